@@ -1,0 +1,47 @@
+// Small geometric value types shared by the geometry module: polygons and boxes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace stairplan {
+
+/// A convex polygon in the xy plane at height z, vertices counter-clockwise.
+struct Polygon2 {
+  std::vector<Eigen::Vector2d> vertices;
+  double z = 0.0;
+
+  /// True when p lies inside or on the boundary (within tol).
+  bool Contains(const Eigen::Vector2d& p, double tol = 1e-12) const;
+  /// The closest point of the polygon to p (p itself when inside).
+  Eigen::Vector2d ClosestPoint(const Eigen::Vector2d& p) const;
+  /// Distance from p to the polygon: 0 inside.
+  double Distance(const Eigen::Vector2d& p) const;
+  /// Signed distance: negative inside (depth to the boundary), positive outside.
+  double SignedDistance(const Eigen::Vector2d& p) const;
+  double Area() const;
+  bool empty() const { return vertices.size() < 3; }
+};
+
+/// An axis-aligned rectangle [x0,x1] x [y0,y1], as a convex polygon.
+Polygon2 Rectangle(double x0, double x1, double y0, double y1, double z);
+
+/// What a stair solid is, for collision reports and drawing.
+enum class SolidKind { kBlock, kNosing };
+
+/// An axis-aligned box.
+struct Box3 {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();
+  SolidKind kind = SolidKind::kBlock;
+  int surface_index = 0;  ///< the surface (block) or edge (nosing) it belongs to
+
+  Eigen::Vector3d Center() const { return 0.5 * (min + max); }
+  Eigen::Vector3d Size() const { return max - min; }
+  /// Signed distance from p: negative inside.
+  double SignedDistance(const Eigen::Vector3d& p) const;
+};
+
+}  // namespace stairplan

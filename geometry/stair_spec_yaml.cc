@@ -1,0 +1,101 @@
+#include "geometry/stair_spec_yaml.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "geometry/field_error.h"
+
+namespace stairplan {
+namespace {
+
+std::string Where(const std::string& source, const std::string& key, const YAML::Node& node) {
+  std::string where = source + ": field '" + key + "'";
+  const YAML::Mark mark = node.Mark();
+  if (mark.line >= 0) where += " (line " + std::to_string(mark.line + 1) + ")";
+  return where;
+}
+
+double ReadNumber(const YAML::Node& node, const std::string& where) {
+  if (!node.IsScalar()) throw FieldError(where, "must be a number");
+  double value = 0.0;
+  try {
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw FieldError(where, "must be a number (got '" + node.Scalar() + "')");
+  }
+  if (!std::isfinite(value)) throw FieldError(where, "must be finite (got '" + node.Scalar() + "')");
+  return value;
+}
+
+std::vector<double> ReadList(const YAML::Node& node, const std::string& where) {
+  if (!node.IsSequence()) throw FieldError(where, "must be a list of numbers");
+  std::vector<double> values;
+  for (std::size_t i = 0; i < node.size(); ++i) values.push_back(ReadNumber(node[i], where + "[" + std::to_string(i) + "]"));
+  return values;
+}
+
+int ReadCount(const YAML::Node& node, const std::string& where) {
+  const double value = ReadNumber(node, where);
+  if (value != std::floor(value) || value < 1 || value > 200) throw FieldError(where, "must be a whole number from 1 to 200");
+  return static_cast<int>(value);
+}
+
+}  // namespace
+
+TravelDirection ParseDirection(const std::string& text, const std::string& field) {
+  if (text == "up") return TravelDirection::kUp;
+  if (text == "down") return TravelDirection::kDown;
+  throw FieldError(field, "must be 'up' or 'down' (got '" + text + "')");
+}
+
+StairSpec StairSpecFromYaml(const std::string& text, const std::string& source, const StairSpec& defaults) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw FieldError(source + " (line " + std::to_string(e.mark.line + 1) + ")", "not valid YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw FieldError(source, "must be a YAML mapping of stair fields");
+  StairSpec spec = defaults;
+  const std::map<std::string, double*> numbers = {
+      {"rise", &spec.rise}, {"run", &spec.run}, {"nosing", &spec.nosing}, {"width", &spec.width},
+      {"landing_before", &spec.landing_before}, {"landing_after", &spec.landing_after},
+      {"nosing_thickness", &spec.nosing_thickness}};
+  for (const auto& item : root) {
+    const std::string key = item.first.as<std::string>();
+    const std::string where = Where(source, key, item.second);
+    if (auto it = numbers.find(key); it != numbers.end()) {
+      *it->second = ReadNumber(item.second, where);
+    } else if (key == "steps") {
+      spec.steps = ReadCount(item.second, where);
+    } else if (key == "rises") {
+      spec.rises = ReadList(item.second, where);
+    } else if (key == "runs") {
+      spec.runs = ReadList(item.second, where);
+    } else if (key == "direction") {
+      spec.direction = ParseDirection(item.second.IsScalar() ? item.second.Scalar() : "", where);
+    } else {
+      throw FieldError(where, "unknown field");
+    }
+  }
+  try {
+    spec.Validate();
+  } catch (const FieldError& e) {
+    throw FieldError(source + ": field '" + e.field() + "'", e.problem());
+  }
+  return spec;
+}
+
+StairSpec StairSpecFromYamlFile(const std::string& path, const StairSpec& defaults) {
+  std::ifstream in(path);
+  if (!in) throw FieldError(path, "cannot open the stairs file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return StairSpecFromYaml(buffer.str(), path, defaults);
+}
+
+}  // namespace stairplan

@@ -1,0 +1,21 @@
+// Reading a StairSpec from YAML. Keys: steps, rise, run, nosing, width, landing_before,
+// landing_after, nosing_thickness, rises, runs, direction (up|down). Unknown keys are errors.
+#pragma once
+
+#include <string>
+
+#include "geometry/staircase.h"
+
+namespace stairplan {
+
+/// Parses YAML text into a validated StairSpec, starting from `defaults`. Throws FieldError whose
+/// field reads "<source>: field '<key>'" (and names the line where yaml-cpp knows it).
+StairSpec StairSpecFromYaml(const std::string& text, const std::string& source, const StairSpec& defaults = {});
+
+/// Reads and parses a YAML file; a missing or unreadable file is a FieldError naming the path.
+StairSpec StairSpecFromYamlFile(const std::string& path, const StairSpec& defaults = {});
+
+/// Parses "up" / "down"; throws FieldError naming `field` otherwise.
+TravelDirection ParseDirection(const std::string& text, const std::string& field);
+
+}  // namespace stairplan

@@ -1,0 +1,81 @@
+// A legged robot read from URDF (urdfdom): its base, its legs found automatically and named
+// LF, RF, LH, RH by where their hips sit in the base frame, joint limits and foot geometry.
+// This is the const model; kinematics solvers keep their own workspaces.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace urdf {
+class ModelInterface;
+}
+
+namespace stairplan {
+
+/// Limits of one movable joint, from the URDF <limit> tag.
+struct JointLimits {
+  double lower = 0.0;     ///< [rad]
+  double upper = 0.0;     ///< [rad]
+  double effort = 0.0;    ///< [N m]
+  double velocity = 0.0;  ///< [rad/s]
+};
+
+/// One leg: the chain of links and movable joints from the base to the foot.
+struct LegModel {
+  std::string name;                      ///< "LF", "RF", "LH" or "RH"
+  std::string foot_link;                 ///< the leaf link at the end of the chain
+  std::vector<std::string> link_names;   ///< links from the base's child to the foot, in order
+  std::vector<std::string> joint_names;  ///< movable joints from base to foot, in order
+  std::vector<JointLimits> limits;       ///< one per movable joint
+  Eigen::Vector3d hip_B = Eigen::Vector3d::Zero();       ///< first movable joint's origin in the base frame [m]
+  Eigen::Vector3d foot_zero_B = Eigen::Vector3d::Zero(); ///< foot origin at zero joint angles, base frame [m]
+  double foot_radius = 0.0;  ///< radius of the foot's sphere collision, 0 when it has none [m]
+  double max_reach = 0.0;    ///< upper bound on the hip-to-foot distance: sum of the chain's offsets [m]
+  double mass = 0.0;         ///< mass of the leg's links [kg]
+};
+
+/// How feet are recognised when the automatic rule is not what a robot needs.
+struct LegDetectionSettings {
+  /// When non-empty, a foot is a link whose name contains this substring (case-sensitive).
+  std::string foot_name_contains;
+};
+
+/// A robot model loaded from URDF. Immutable after loading; cheap to copy (shared URDF).
+class RobotModel {
+ public:
+  /// Loads and checks a URDF file. Throws std::invalid_argument naming the file and the element
+  /// (missing file, malformed XML, a joint naming a missing link, no four feet, ...).
+  static RobotModel FromUrdfFile(const std::string& path, const LegDetectionSettings& settings = {});
+  /// The same from URDF text; `source_name` is used in error messages.
+  static RobotModel FromUrdfString(const std::string& xml, const std::string& source_name,
+                                   const LegDetectionSettings& settings = {});
+
+  const std::string& name() const { return name_; }
+  const std::string& source() const { return source_; }
+  const std::string& base_link() const { return base_link_; }
+  /// The four legs in the order LF, RF, LH, RH.
+  const std::vector<LegModel>& legs() const { return legs_; }
+  /// The leg with that name; throws std::invalid_argument when there is none.
+  const LegModel& leg(const std::string& name) const;
+  double total_mass() const { return total_mass_; }
+  /// Distance along x between the mean front and mean hind hip [m].
+  double hip_length() const;
+  /// Distance along y between the mean left and mean right hip [m].
+  double hip_width() const;
+  /// The parsed URDF, for the kinematics and collision builders.
+  const urdf::ModelInterface& urdf() const { return *urdf_; }
+  std::shared_ptr<const urdf::ModelInterface> urdf_ptr() const { return urdf_; }
+
+ private:
+  std::shared_ptr<const urdf::ModelInterface> urdf_;
+  std::string name_;
+  std::string source_;
+  std::string base_link_;
+  std::vector<LegModel> legs_;
+  double total_mass_ = 0.0;
+};
+
+}  // namespace stairplan

@@ -1,0 +1,28 @@
+// The first planner: a quasi-static crawl that puts every foot at the centre of a step region,
+// one stair per cycle, with the body carried above the feet at a fixed hip height. Later planners
+// (step planner, body planner) replace its parts; it stays as a simple, predictable baseline.
+#pragma once
+
+#include "geometry/constrained_map.h"
+#include "geometry/staircase.h"
+#include "kinematics/robot_model.h"
+#include "planning/plan.h"
+
+namespace stairplan {
+
+struct CrawlSettings {
+  double swing_duration = 0.40;       ///< one leg's swing [s]
+  double hip_height_fraction = 0.75;  ///< hip above the foot, as a fraction of the leg's reach
+  double sample_period = 0.05;        ///< body trajectory sampling [s]
+  double start_gap = 0.10;            ///< front feet this far before the first step region [m]
+
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+/// Plans a crawl over `stairs` for `robot` on `map`. Never throws for geometry it cannot
+/// handle: the plan's status says infeasible and why.
+Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+               const CrawlSettings& settings = {});
+
+}  // namespace stairplan

@@ -1,0 +1,59 @@
+// A plan: footsteps, body trajectory and timings for one traversal of a staircase. Every planner
+// produces one; the validator, the JSON and SVG writers and the simulator consume it.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/constrained_map.h"
+#include "geometry/staircase.h"
+
+namespace stairplan {
+
+/// One touchdown of one foot. The position is the foot's contact point on the surface.
+struct Footstep {
+  std::string leg;            ///< "LF", "RF", "LH" or "RH"
+  double t_liftoff = 0.0;     ///< when the foot leaves its previous foothold [s]
+  double t_touchdown = 0.0;   ///< when it lands here [s]
+  Eigen::Vector3d position_W = Eigen::Vector3d::Zero();  ///< contact point [m]
+  Eigen::Vector3d from_W = Eigen::Vector3d::Zero();      ///< the foothold it left [m]
+  int stair_index = -1;       ///< the surface it lands on
+  bool in_step_region = false;
+};
+
+/// The body (base frame origin) at one instant. Pitch is about the body's y axis, right-hand
+/// rule: nose-up is negative. com_shift is the forward shift of the centre of mass [m].
+struct BodyState {
+  double t = 0.0;
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+  double pitch = 0.0;
+  double yaw = 0.0;
+  double com_shift = 0.0;
+};
+
+enum class PlanStatus { kOk, kInfeasible };
+const char* ToString(PlanStatus status);
+
+struct Plan {
+  std::string robot_name;
+  std::string robot_source;
+  std::vector<std::string> legs;              ///< leg names in the robot's order
+  Facing facing = Facing::kForward;
+  double cadence_s = 0.0;                     ///< swing duration of the chosen controller [s]
+  std::string gait;                           ///< e.g. "crawl"
+  std::vector<Eigen::Vector3d> initial_feet_W;  ///< contact points at t = 0, in `legs` order
+  std::vector<Footstep> footsteps;            ///< sorted by touchdown time
+  std::vector<BodyState> body;                ///< sampled body trajectory
+  PlanStatus status = PlanStatus::kOk;
+  std::string status_reason;                  ///< why it is infeasible, empty when ok
+  std::vector<std::pair<std::string, double>> timing_us;  ///< per stage [us]
+
+  double duration() const { return body.empty() ? 0.0 : body.back().t; }
+};
+
+}  // namespace stairplan

@@ -1,0 +1,76 @@
+#include "planning/plan_json.h"
+
+namespace stairplan {
+namespace {
+
+nlohmann::json PolygonToJson(const Polygon2& poly) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const auto& v : poly.vertices) points.push_back({v.x(), v.y()});
+  return points;
+}
+
+nlohmann::json MapToJson(const ConstrainedMap& map) {
+  nlohmann::json stairs = nlohmann::json::array();
+  for (const StairRegions& s : map.stairs()) {
+    nlohmann::json collisions = nlohmann::json::array();
+    for (const CollisionRegion& c : s.collision_regions) {
+      collisions.push_back({{"kind", ToString(c.kind)}, {"polygon", PolygonToJson(c.polygon)}});
+    }
+    stairs.push_back({{"index", s.index}, {"z", s.z}, {"step_region", PolygonToJson(s.step_region)},
+                      {"collision_regions", collisions}});
+  }
+  return {{"facing", ToString(map.facing())}, {"stairs", stairs}};
+}
+
+}  // namespace
+
+nlohmann::json StairsToJson(const Staircase& stairs) {
+  const StairSpec& spec = stairs.spec();
+  nlohmann::json surfaces = nlohmann::json::array();
+  for (const StairSurface& s : stairs.surfaces()) {
+    surfaces.push_back({{"index", s.index}, {"x_begin", s.x_begin}, {"x_end", s.x_end}, {"z", s.z}});
+  }
+  return {{"steps", spec.steps},       {"rise", spec.rise},
+          {"run", spec.run},           {"nosing", spec.nosing},
+          {"width", spec.width},       {"landing_before", spec.landing_before},
+          {"landing_after", spec.landing_after}, {"nosing_thickness", spec.nosing_thickness},
+          {"rises", spec.rises},       {"runs", spec.runs},
+          {"direction", ToString(spec.direction)}, {"total_rise", stairs.total_rise()},
+          {"surfaces", surfaces}};
+}
+
+nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map) {
+  nlohmann::json footsteps = nlohmann::json::array();
+  for (const Footstep& f : plan.footsteps) {
+    footsteps.push_back({{"leg", f.leg}, {"t_liftoff", f.t_liftoff}, {"t_touchdown", f.t_touchdown},
+                         {"x", f.position_W.x()}, {"y", f.position_W.y()}, {"z", f.position_W.z()},
+                         {"stair_index", f.stair_index}, {"in_step_region", f.in_step_region}});
+  }
+  nlohmann::json initial = nlohmann::json::array();
+  for (std::size_t i = 0; i < plan.initial_feet_W.size(); ++i) {
+    const auto& p = plan.initial_feet_W[i];
+    initial.push_back({{"leg", plan.legs.at(i)}, {"x", p.x()}, {"y", p.y()}, {"z", p.z()}});
+  }
+  nlohmann::json body = nlohmann::json::array();
+  for (const BodyState& b : plan.body) {
+    body.push_back({{"t", b.t}, {"x", b.x}, {"y", b.y}, {"z", b.z}, {"pitch", b.pitch}, {"yaw", b.yaw},
+                    {"com_shift", b.com_shift}});
+  }
+  nlohmann::json timing = nlohmann::json::object();
+  for (const auto& [stage, us] : plan.timing_us) timing[stage] = us;
+  return {{"robot", {{"name", plan.robot_name}, {"source", plan.robot_source}, {"legs", plan.legs}}},
+          {"stairs", StairsToJson(stairs)},
+          {"facing", ToString(plan.facing)},
+          {"map", MapToJson(map)},
+          {"gait", plan.gait},
+          {"cadence_s", plan.cadence_s},
+          {"initial_feet", initial},
+          {"footsteps", footsteps},
+          {"body", body},
+          {"duration_s", plan.duration()},
+          {"status", ToString(plan.status)},
+          {"status_reason", plan.status_reason},
+          {"timing_us", timing}};
+}
+
+}  // namespace stairplan

@@ -1,0 +1,19 @@
+// plan.json: the plan as one JSON object. The key names are a stable interface.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/constrained_map.h"
+#include "geometry/staircase.h"
+#include "planning/plan.h"
+
+namespace stairplan {
+
+/// The resolved staircase as JSON (spec fields plus per-surface geometry).
+nlohmann::json StairsToJson(const Staircase& stairs);
+/// The whole plan: robot, stairs, map regions, footsteps, body, cadence, status, timings.
+nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map);
+
+}  // namespace stairplan

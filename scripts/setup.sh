@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs what stairplan needs from Debian's packages, only what is missing; safe to run again.
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev liborocos-kdl-dev liburdfdom-dev
+  libfcl-dev libccd-dev catch2 libbenchmark-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "setup: installing ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -q
+"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

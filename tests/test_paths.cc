@@ -1,0 +1,44 @@
+#include "test_paths.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace stairplan::testing {
+
+std::string SourceDir() { return STAIRPLAN_SOURCE_DIR; }
+std::string BinDir() { return STAIRPLAN_BIN_DIR; }
+
+std::string SharedDir() {
+  const std::filesystem::path shared(STAIRPLAN_SHARED_DIR);
+  return std::filesystem::is_directory(shared) ? std::filesystem::canonical(shared).string() : std::string();
+}
+
+std::string SharedPath(const std::string& relative) {
+  const std::string dir = SharedDir();
+  return dir.empty() ? std::string() : dir + "/" + relative;
+}
+
+std::string MakeTempDir(const std::string& tag) {
+  std::string pattern = (std::filesystem::temp_directory_path() / ("stairplan-" + tag + "-XXXXXX")).string();
+  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
+  return pattern;
+}
+
+int RunCommand(const std::string& command, const std::string& out_file, const std::string& err_file) {
+  const std::string full = command + " >" + out_file + " 2>" + err_file + " </dev/null";
+  const int raw = std::system(full.c_str());
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+}  // namespace stairplan::testing
