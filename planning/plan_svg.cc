@@ -26,6 +26,13 @@ class SideView {
   double x0_, z1_, scale_, height_px_;
 };
 
+// Each leg's footholds are drawn on their own row above the tread, so legs on the same spot stay visible.
+double LegRowPx(const std::string& leg) {
+  static const std::map<std::string, double> rows = {{"LF", 7}, {"RF", 15}, {"LH", 23}, {"RH", 31}};
+  const auto it = rows.find(leg);
+  return it == rows.end() ? 7 : it->second;
+}
+
 const char* LegColour(const std::string& leg) {
   static const std::map<std::string, const char*> colours = {
       {"LF", "#1f77b4"}, {"RF", "#ff7f0e"}, {"LH", "#9467bd"}, {"RH", "#8c564b"}};
@@ -50,14 +57,14 @@ void DrawAxes(std::ostringstream& svg, const SideView& v, double x0, double x1, 
   svg << "<line x1='" << v.X(x0) << "' y1='" << base << "' x2='" << v.X(x1) << "' y2='" << base << "' stroke='#222'/>\n";
   for (double x = std::ceil(x0 * 2) / 2; x <= x1 + 1e-9; x += 0.5) {
     svg << "<line x1='" << v.X(x) << "' y1='" << base << "' x2='" << v.X(x) << "' y2='" << base + 5 << "' stroke='#222'/>";
-    svg << "<text x='" << v.X(x) - 10 << "' y='" << base + 18 << "'>" << x << "</text>\n";
+    svg << "<text x='" << v.X(x) - 10 << "' y='" << base + 18 << "'>" << (std::abs(x) < 1e-9 ? 0.0 : x) << "</text>\n";
   }
   svg << "<text x='" << v.X(x1) - 40 << "' y='" << base + 34 << "'>x [m]</text>\n";
   const double left = kMarginPx - 20;
   svg << "<line x1='" << left << "' y1='" << v.Y(z0) << "' x2='" << left << "' y2='" << v.Y(z1) << "' stroke='#222'/>\n";
   for (double z = std::ceil(z0 * 4) / 4; z <= z1 + 1e-9; z += 0.25) {
     svg << "<line x1='" << left - 5 << "' y1='" << v.Y(z) << "' x2='" << left << "' y2='" << v.Y(z) << "' stroke='#222'/>";
-    svg << "<text x='" << 4 << "' y='" << v.Y(z) + 4 << "'>" << z << "</text>\n";
+    svg << "<text x='" << 4 << "' y='" << v.Y(z) + 4 << "'>" << (std::abs(z) < 1e-9 ? 0.0 : z) << "</text>\n";
   }
   svg << "<text x='4' y='" << kMarginPx - 30 << "'>z [m]</text>\n</g>\n";
 }
@@ -108,12 +115,11 @@ std::string PlanToSvg(const Plan& plan, const Staircase& stairs, const Constrain
   svg << "'/>\n";
   for (std::size_t i = 0; i < plan.initial_feet_W.size(); ++i) {
     const auto& p = plan.initial_feet_W[i];
-    svg << "<circle cx='" << v.X(p.x()) << "' cy='" << v.Y(p.z()) - 9 << "' r='4' fill='none' stroke='"
+    svg << "<circle cx='" << v.X(p.x()) << "' cy='" << v.Y(p.z()) - LegRowPx(plan.legs[i]) << "' r='4' fill='none' stroke='"
         << LegColour(plan.legs[i]) << "' stroke-width='2'/>\n";
   }
   for (const Footstep& f : plan.footsteps) {
-    const double lift = (f.leg == "LF" || f.leg == "LH") ? 9 : 15;  // left and right feet on two rows
-    svg << "<circle cx='" << v.X(f.position_W.x()) << "' cy='" << v.Y(f.position_W.z()) - lift << "' r='4' fill='"
+    svg << "<circle cx='" << v.X(f.position_W.x()) << "' cy='" << v.Y(f.position_W.z()) - LegRowPx(f.leg) << "' r='3.5' fill='"
         << LegColour(f.leg) << "'><title>" << f.leg << " t=" << f.t_touchdown << " s</title></circle>\n";
   }
   DrawAxes(svg, v, x0, x1, z0, z1);
