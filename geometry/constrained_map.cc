@@ -85,8 +85,10 @@ ConstrainedMap ConstrainedMap::FromStaircase(const Staircase& stairs, Facing fac
     const Band band = StepBand(stairs, s, facing, settings);
     const bool usable = band.hi - band.lo >= settings.min_region_depth && y_hi > y_lo;
     if (usable) regions.step_region = Rectangle(band.lo, band.hi, y_lo, y_hi, s.z);
-    const double cut_lo = usable ? band.lo : s.x_end;
-    const double cut_hi = usable ? band.hi : s.x_end;
+    // A tread too shallow for a step region is split at its middle between the two reasons.
+    const double middle = 0.5 * (s.x_begin + s.x_end);
+    const double cut_lo = usable ? band.lo : middle;
+    const double cut_hi = usable ? band.hi : middle;
     if (cut_lo > s.x_begin) {
       regions.collision_regions.push_back({Rectangle(s.x_begin, cut_lo, -hw, hw, s.z), BandKind(stairs, true)});
     }
