@@ -1,0 +1,449 @@
+// The dual active-set (Goldfarb-Idnani) QP solver with warm starts and proximal regularisation.
+//
+// Notation: constraint k has normal n_k (row k of A, or e_i for a bound) and is active on one
+// side; with sigma = +1 for a lower and -1 for an upper side it reads sigma n_k'x >= sigma b_k.
+// With H = L L', the factorisation keeps J = L^{-T} Q and R such that J1' N = R for the active
+// normals N (J1 = first q columns of J, J2 the rest), so
+//   x = J1 R^{-T} b - J2 J2' g   and   u = R^{-1} (R^{-T} b + J1' g)
+// are the minimiser on the active set and its multipliers (Hx + g = N u).
+#include "planning/optim/active_set_qp_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace stairplan::optim {
+namespace {
+
+// A constraint whose normal has a component below this (relative) in the free space J2 is
+// linearly dependent on the active ones.
+constexpr double kDependencyTol = 1e-10;
+// Multipliers below -kDualTol * scale make a warm start dual infeasible.
+constexpr double kDualTol = 1e-12;
+// Treat H as singular when its smallest Cholesky pivot squared is below this times max |H_ii|.
+constexpr double kSingularPivot = 1e-9;
+// Iterates beyond this size mean the (regularised) problem runs off: unbounded.
+constexpr double kUnboundedNorm = 1e15;
+// Restarts (closed-form re-solves on the final active set) allowed to polish one solve.
+constexpr int kMaxPolish = 5;
+
+// Givens rotation of columns (i, j) of M: col_i <- c col_i + s col_j, col_j <- -s col_i + c col_j.
+void RotateColumns(Eigen::MatrixXd& M, int i, int j, double c, double s) {
+  for (int k = 0; k < M.rows(); ++k) {
+    const double a = M(k, i), b = M(k, j);
+    M(k, i) = c * a + s * b;
+    M(k, j) = -s * a + c * b;
+  }
+}
+
+}  // namespace
+
+void ActiveSetQpSettings::Validate() const {
+  const auto fail = [](const std::string& field) {
+    throw std::invalid_argument("ActiveSetQpSettings::" + field + " is out of range");
+  };
+  if (max_iterations <= 0) fail("max_iterations");
+  if (max_outer_iterations <= 0) fail("max_outer_iterations");
+  if (!(time_limit_s > 0)) fail("time_limit_s");
+  if (!(feasibility_tol > 0 && feasibility_tol < 1)) fail("feasibility_tol");
+  if (!(proximal_weight > 0)) fail("proximal_weight");
+  if (!(proximal_tol > 0 && proximal_tol < 1)) fail("proximal_tol");
+  if (!(proximal_objective_tol > 0 && proximal_objective_tol < 1)) fail("proximal_objective_tol");
+}
+
+void ActiveSetQpSolver::SetWarmStart(const ActiveSet& active_set) {
+  warm_start_ = active_set;
+  pending_warm_start_ = true;
+}
+
+double ActiveSetQpSolver::Lower(int k) const {
+  return k < m_ ? program_->row_lower()[k] : program_->variable_lower()[k - m_];
+}
+
+double ActiveSetQpSolver::Upper(int k) const {
+  return k < m_ ? program_->row_upper()[k] : program_->variable_upper()[k - m_];
+}
+
+double ActiveSetQpSolver::Value(int k) const { return k < m_ ? ax_[k] : x_[k - m_]; }
+
+double ActiveSetQpSolver::RowValue(int k) const {
+  return k < m_ ? program_->constraint_matrix().row(k).dot(x_) : x_[k - m_];
+}
+
+bool ActiveSetQpSolver::OverLimits() {
+  if (has_deadline_ && std::chrono::steady_clock::now() > deadline_) time_exceeded_ = true;
+  return time_exceeded_ || iterations_ >= settings_.max_iterations;
+}
+
+void ActiveSetQpSolver::Prepare(const Program& program) {
+  const int n = program.num_variables(), m = program.num_rows();
+  if (n != n_ || m != m_) {
+    n_ = n;
+    m_ = m;
+    factorization_valid_ = false;
+    hessian_revision_ = 0;
+    J_.resize(n, n);
+    R_.resize(n, n);
+    J0_.resize(n, n);
+    hessian_reg_.resize(n, n);
+    active_.assign(n, -1);
+    state_.assign(n + m, 0);
+    u_.resize(n);
+    for (Eigen::VectorXd* v : {&x_, &g_eff_, &x_prox_, &d_, &z_, &r_, &tmp_, &row_, &hx_}) v->resize(n);
+    ax_.resize(m);
+    row_norm_.resize(m);
+    llt_ = Eigen::LLT<Eigen::MatrixXd>(n);
+    q_ = 0;
+  }
+  if (program.matrix_revision() != matrix_revision_) {
+    matrix_revision_ = program.matrix_revision();
+    factorization_valid_ = false;
+    for (int k = 0; k < m; ++k) row_norm_[k] = std::max(program.constraint_matrix().row(k).norm(), 1e-300);
+  }
+}
+
+bool ActiveSetQpSolver::FactorizeHessian(const Program& program) {
+  if (program.hessian_revision() == hessian_revision_) return true;
+  factorization_valid_ = false;
+  const Eigen::MatrixXd& H = program.hessian();
+  const double scale = std::max(1.0, H.diagonal().cwiseAbs().maxCoeff());
+  hessian_reg_ = H;
+  rho_ = 0.0;
+  llt_.compute(hessian_reg_);
+  bool singular = llt_.info() != Eigen::Success;
+  if (!singular) {
+    const double min_pivot = llt_.matrixLLT().diagonal().minCoeff();
+    singular = !(min_pivot * min_pivot > kSingularPivot * scale);
+  }
+  if (singular) {
+    rho_ = settings_.proximal_weight * scale;
+    hessian_reg_.diagonal().array() += rho_;
+    llt_.compute(hessian_reg_);
+    if (llt_.info() != Eigen::Success) return false;  // not positive semidefinite
+  }
+  // J0 = L^{-T}: the factorisation with no active constraint.
+  J0_.setIdentity();
+  llt_.matrixU().solveInPlace(J0_);
+  hessian_revision_ = program.hessian_revision();
+  return true;
+}
+
+void ActiveSetQpSolver::StartCold() {
+  J_ = J0_;
+  q_ = 0;
+  std::fill(state_.begin(), state_.end(), 0);
+  factorization_valid_ = true;
+}
+
+void ActiveSetQpSolver::ComputeStepVector(int k, double sigma) {
+  if (k < m_) {
+    row_ = program_->constraint_matrix().row(k).transpose();
+    d_.noalias() = J_.transpose() * row_;
+    d_ *= sigma;
+  } else {
+    d_ = sigma * J_.row(k - m_).transpose();
+  }
+}
+
+bool ActiveSetQpSolver::AddConstraint(int k, int side) {
+  // d_ = J'(sigma n_k) must be current. Rotate d(q+1..n-1) into d(q) (and J alike).
+  const double norm_d = d_.norm();
+  for (int j = n_ - 1; j > q_; --j) {
+    const double a = d_[j - 1], b = d_[j];
+    if (b == 0.0) continue;
+    const double h = std::hypot(a, b);
+    const double c = a / h, s = b / h;
+    d_[j - 1] = h;
+    d_[j] = 0.0;
+    RotateColumns(J_, j - 1, j, c, s);
+  }
+  if (!(std::abs(d_[q_]) > kDependencyTol * norm_d)) return false;
+  R_.col(q_).head(q_ + 1) = d_.head(q_ + 1);
+  active_[q_] = k;
+  state_[k] = static_cast<ActiveSide>(side);
+  ++q_;
+  return true;
+}
+
+void ActiveSetQpSolver::DropConstraint(int position) {
+  state_[active_[position]] = 0;
+  for (int j = position; j < q_ - 1; ++j) {
+    R_.col(j).head(j + 2) = R_.col(j + 1).head(j + 2);
+    active_[j] = active_[j + 1];
+    u_[j] = u_[j + 1];
+  }
+  --q_;
+  // R is upper Hessenberg from `position` on: rotate rows (j, j+1) and columns of J alike.
+  for (int j = position; j < q_; ++j) {
+    const double a = R_(j, j), b = R_(j + 1, j);
+    if (b == 0.0) continue;
+    const double h = std::hypot(a, b);
+    const double c = a / h, s = b / h;
+    R_(j, j) = h;
+    R_(j + 1, j) = 0.0;
+    for (int col = j + 1; col < q_; ++col) {
+      const double ra = R_(j, col), rb = R_(j + 1, col);
+      R_(j, col) = c * ra + s * rb;
+      R_(j + 1, col) = -s * ra + c * rb;
+    }
+    RotateColumns(J_, j, j + 1, c, s);
+  }
+}
+
+void ActiveSetQpSolver::StartFromActiveSet(const ActiveSet& set) {
+  StartCold();
+  AddEqualities();
+  const auto add = [&](int k, ActiveSide side) {
+    if (side == 0 || state_[k] != 0) return;
+    const double b = side < 0 ? Lower(k) : Upper(k);
+    if (!std::isfinite(b)) return;
+    ComputeStepVector(k, side < 0 ? 1.0 : -1.0);
+    AddConstraint(k, side);
+  };
+  for (int k = 0; k < m_ && k < static_cast<int>(set.rows.size()); ++k) add(k, set.rows[k]);
+  for (int i = 0; i < n_ && i < static_cast<int>(set.bounds.size()); ++i) add(m_ + i, set.bounds[i]);
+}
+
+void ActiveSetQpSolver::AddEqualities() {
+  for (int k = 0; k < m_ + n_; ++k) {
+    if (state_[k] != 0 || !IsEquality(k) || !std::isfinite(Lower(k))) continue;
+    if (q_ == n_) break;
+    ComputeStepVector(k, 1.0);
+    AddConstraint(k, -1);  // dependent rows are skipped here and checked for violation later
+  }
+}
+
+void ActiveSetQpSolver::ComputePrimalDual() {
+  // b (in r_), then a = R^{-T} b (in r_), x = J1 a - J2 J2' g, u = R^{-1} (a + J1' g).
+  for (int j = 0; j < q_; ++j) {
+    const int k = active_[j];
+    r_[j] = state_[k] < 0 ? Lower(k) : -Upper(k);
+  }
+  const int q = q_;
+  if (q > 0) R_.topLeftCorner(q, q).triangularView<Eigen::Upper>().transpose().solveInPlace(r_.head(q));
+  tmp_.noalias() = J_.transpose() * g_eff_;
+  x_.noalias() = -J_.rightCols(n_ - q) * tmp_.tail(n_ - q);
+  if (q > 0) {
+    x_.noalias() += J_.leftCols(q) * r_.head(q);
+    u_.head(q) = r_.head(q) + tmp_.head(q);
+    R_.topLeftCorner(q, q).triangularView<Eigen::Upper>().solveInPlace(u_.head(q));
+  }
+}
+
+int ActiveSetQpSolver::Restart() {
+  int drops = 0;
+  // Active constraints whose bound disappeared (made infinite by an update) cannot stay.
+  for (int j = q_ - 1; j >= 0; --j) {
+    const int k = active_[j];
+    if (!std::isfinite(state_[k] < 0 ? Lower(k) : Upper(k))) {
+      DropConstraint(j);
+      ++drops;
+    }
+  }
+  AddEqualities();
+  for (;;) {
+    ComputePrimalDual();
+    int worst = -1;
+    double most_negative = 0.0;
+    for (int j = 0; j < q_; ++j) {
+      if (IsEquality(active_[j])) continue;
+      const double scale = 1.0 + std::abs(u_[j]);
+      if (u_[j] < -kDualTol * scale && u_[j] < most_negative) {
+        most_negative = u_[j];
+        worst = j;
+      }
+    }
+    if (worst < 0) break;
+    DropConstraint(worst);
+    ++drops;
+  }
+  if (m_ > 0) ax_.noalias() = program_->constraint_matrix() * x_;
+  return drops;
+}
+
+SolveStatus ActiveSetQpSolver::Iterate() {
+  const double tol = settings_.feasibility_tol;
+  for (;;) {
+    if (OverLimits()) return time_exceeded_ ? SolveStatus::kTimeLimit : SolveStatus::kIterationLimit;
+    // Step 1: the most violated constraint (violation scaled by the normal's length).
+    int p = -1, side = 0;
+    double worst = 0.0;
+    for (int k = 0; k < m_ + n_; ++k) {
+      if (state_[k] != 0) continue;
+      const double v = Value(k), lo = Lower(k), hi = Upper(k);
+      const double norm = k < m_ ? row_norm_[k] : 1.0;
+      if (v < lo && lo - v > tol * (1.0 + std::abs(lo))) {
+        const double score = (lo - v) / norm;
+        if (score > worst) { worst = score; p = k; side = -1; }
+      } else if (v > hi && v - hi > tol * (1.0 + std::abs(hi))) {
+        const double score = (v - hi) / norm;
+        if (score > worst) { worst = score; p = k; side = 1; }
+      }
+    }
+    if (p < 0) return SolveStatus::kSolved;
+    const double sigma = side < 0 ? 1.0 : -1.0;
+    const double bound = side < 0 ? Lower(p) : Upper(p);
+    double u_p = 0.0;
+    // Step 2: move primal and dual until p is satisfied (full step) or a multiplier hits zero.
+    for (;;) {
+      if (OverLimits()) return time_exceeded_ ? SolveStatus::kTimeLimit : SolveStatus::kIterationLimit;
+      ComputeStepVector(p, sigma);
+      const int q = q_;
+      z_.noalias() = J_.rightCols(n_ - q) * d_.tail(n_ - q);
+      const double free_norm2 = d_.tail(n_ - q).squaredNorm();
+      if (q > 0) {
+        r_.head(q) = d_.head(q);
+        R_.topLeftCorner(q, q).triangularView<Eigen::Upper>().solveInPlace(r_.head(q));
+      }
+      double t1 = kInf;
+      int drop = -1;
+      for (int j = 0; j < q; ++j) {
+        if (r_[j] > 0.0 && !IsEquality(active_[j])) {
+          const double ratio = u_[j] / r_[j];
+          if (ratio < t1) { t1 = ratio; drop = j; }
+        }
+      }
+      const double slack = sigma * (RowValue(p) - bound);  // negative while violated
+      const bool dependent = !(free_norm2 > kDependencyTol * kDependencyTol * d_.squaredNorm());
+      const double t2 = dependent ? kInf : std::max(0.0, -slack / free_norm2);
+      if (t1 == kInf && t2 == kInf) return SolveStatus::kInfeasible;
+      ++iterations_;
+      const double t = std::min(t1, t2);
+      if (!dependent) x_.noalias() += t * z_;
+      if (q > 0) u_.head(q) -= t * r_.head(q);
+      u_p += t;
+      if (t2 <= t1) {
+        if (!AddConstraint(p, side)) return SolveStatus::kNumericalError;
+        u_[q_ - 1] = u_p;
+        break;
+      }
+      DropConstraint(drop);
+    }
+    if (m_ > 0) ax_.noalias() = program_->constraint_matrix() * x_;
+    if (!(x_.lpNorm<Eigen::Infinity>() < kUnboundedNorm)) return SolveStatus::kUnbounded;
+  }
+}
+
+void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
+  program_ = &program;
+  iterations_ = 0;
+  time_exceeded_ = false;
+  has_deadline_ = std::isfinite(settings_.time_limit_s);
+  if (has_deadline_) {
+    deadline_ = std::chrono::steady_clock::now() +
+                std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                    std::chrono::duration<double>(settings_.time_limit_s));
+  }
+  const double previous_rho = rho_;
+  Prepare(program);
+  if (!FactorizeHessian(program)) {
+    x_ = program.initial_guess();
+    return FillResult(program, SolveStatus::kInvalidInput, result);  // H is not positive semidefinite
+  }
+  if (rho_ != previous_rho) factorization_valid_ = false;
+  if (OverLimits()) {
+    x_ = program.initial_guess();
+    return FillResult(program, SolveStatus::kTimeLimit, result);
+  }
+  const bool regularized = rho_ > 0.0;
+  // The proximal centre starts at the previous solution when warm, else at the initial guess.
+  const bool warm = settings_.warm_start && factorization_valid_ && !pending_warm_start_;
+  if (!warm) x_prox_ = program.initial_guess();
+  if (pending_warm_start_) {
+    StartFromActiveSet(warm_start_);
+    pending_warm_start_ = false;
+  } else if (!warm) {
+    StartCold();
+  } else {
+    x_prox_ = x_;
+  }
+  const Eigen::VectorXd& g = program.linear_cost();
+  SolveStatus status = SolveStatus::kIterationLimit;
+  int outer = 0;
+  for (; outer < (regularized ? settings_.max_outer_iterations : 1); ++outer) {
+    g_eff_ = g;
+    if (regularized) g_eff_.noalias() -= rho_ * x_prox_;
+    status = SolveStatus::kIterationLimit;
+    for (int polish = 0; polish < kMaxPolish; ++polish) {
+      iterations_ += Restart();
+      status = Iterate();
+      if (status != SolveStatus::kSolved) break;
+      // Polish: recompute x and u in closed form on the final active set; done when that point
+      // needs no change (no negative multiplier, nothing violated).
+      const int q_before = q_;
+      if (Restart() == 0 && q_ == q_before) {
+        bool violated = false;
+        for (int k = 0; k < m_ + n_ && !violated; ++k) {
+          if (state_[k] != 0) continue;
+          const double v = Value(k), lo = Lower(k), hi = Upper(k);
+          violated = (lo - v > settings_.feasibility_tol * (1.0 + std::abs(lo))) ||
+                     (v - hi > settings_.feasibility_tol * (1.0 + std::abs(hi)));
+        }
+        if (!violated) break;
+      }
+    }
+    if (status != SolveStatus::kSolved || !regularized) break;
+    const double step = (x_ - x_prox_).lpNorm<Eigen::Infinity>();
+    x_prox_ = x_;
+    // x solves the original problem up to a dual residual of rho * step (the proximal term's
+    // gradient); stop when that residual can change the objective by a negligible amount, or when
+    // the iterates stand still.
+    const double x_norm = x_.lpNorm<Eigen::Infinity>();
+    hx_.noalias() = program.hessian() * x_;
+    const double objective = 0.5 * x_.dot(hx_) + g.dot(x_) + program.constant();
+    if (step <= settings_.proximal_tol * (1.0 + x_norm) ||
+        rho_ * step * (1.0 + x_norm) <= settings_.proximal_objective_tol * (1.0 + std::abs(objective))) {
+      ++outer;
+      break;
+    }
+    if (OverLimits()) {
+      status = time_exceeded_ ? SolveStatus::kTimeLimit : SolveStatus::kIterationLimit;
+      break;
+    }
+    if (outer + 1 == settings_.max_outer_iterations) status = SolveStatus::kIterationLimit;
+  }
+  result->info.outer_iterations = outer;
+  FillResult(program, status, result);
+}
+
+void ActiveSetQpSolver::FillResult(const Program& program, SolveStatus status, SolveResult* result) {
+  result->status = status;
+  result->x = x_;
+  result->row_duals.setZero();
+  result->bound_duals.setZero();
+  std::fill(result->active_set.rows.begin(), result->active_set.rows.end(), 0);
+  std::fill(result->active_set.bounds.begin(), result->active_set.bounds.end(), 0);
+  if (factorization_valid_) {
+    for (int j = 0; j < q_; ++j) {
+      const int k = active_[j];
+      const double sigma = state_[k] < 0 ? 1.0 : -1.0;
+      const double dual = -sigma * u_[j];
+      if (k < m_) {
+        result->row_duals[k] = dual;
+        result->active_set.rows[k] = state_[k];
+      } else {
+        result->bound_duals[k - m_] = dual;
+        result->active_set.bounds[k - m_] = state_[k];
+      }
+    }
+  }
+  hx_.noalias() = program.hessian() * x_;
+  result->objective = 0.5 * x_.dot(hx_) + program.linear_cost().dot(x_) + program.constant();
+  // Residuals of the original (unregularised) problem.
+  double primal = 0.0;
+  if (m_ > 0) ax_.noalias() = program.constraint_matrix() * x_;
+  for (int k = 0; k < m_ + n_; ++k) {
+    const double v = Value(k), lo = Lower(k), hi = Upper(k);
+    if (lo > -kInf) primal = std::max(primal, lo - v);
+    if (hi < kInf) primal = std::max(primal, v - hi);
+  }
+  hx_ += program.linear_cost();
+  hx_ += result->bound_duals;
+  if (m_ > 0) hx_.noalias() += program.constraint_matrix().transpose() * result->row_duals;
+  result->info.primal_residual = primal;
+  result->info.dual_residual = hx_.lpNorm<Eigen::Infinity>();
+  result->info.iterations = iterations_;
+}
+
+}  // namespace stairplan::optim

@@ -1,0 +1,138 @@
+// ActiveSetQpSolver: our per-cycle QP solver, a dense dual active-set method of the
+// Goldfarb-Idnani family, built for repeated solves of one Program.
+//
+// Why this shape: the body planner solves the same QP structure every 3 ms with new bounds and
+// linear terms. The solver keeps the Cholesky factor of H and the QR-like factorisation (J, R) of
+// the active constraints between solves, so a re-solve starts from the previous active set in
+// O(n^2) and only pays for the active-set changes. Nothing is allocated after the first solve at
+// a given size (tests/optim/qp_allocation_test.cc counts it).
+//
+//   ActiveSetQpSolver solver;             // one per planner, lives as long as the Program
+//   SolveResult result;
+//   solver.Solve(program, &result);       // first solve: factorises H, sizes the workspace
+//   program.SetVariableBounds(block, lo, hi);
+//   solver.Solve(program, &result);       // warm: starts from the last active set, no allocation
+//   solver.SetWarmStart(saved.active_set); // or start from any stored active set
+//   solver.ResetWarmStart();              // or cold
+//
+// Positive semidefinite H: proximal-point outer iterations
+//   x_{k+1} = argmin 0.5 x'Hx + g'x + rho/2 |x - x_k|^2  s.t. constraints,
+// each warm-started from the previous active set and factorisation (H + rho I does not change),
+// until the step is tiny; LP-like problems solve too. Dependent equality rows are detected while
+// factorising and skipped when consistent. Bounds at or beyond 1e20 in magnitude mean none.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "planning/optim/solver.h"
+
+namespace stairplan::optim {
+
+/// Settings of ActiveSetQpSolver (the defaults suit both per-cycle use and the test sets).
+struct ActiveSetQpSettings {
+  /// Active-set changes allowed per solve (over all proximal iterations).
+  int max_iterations = 100000;
+  /// Proximal-point iterations allowed when H is singular.
+  int max_outer_iterations = 2000;
+  /// Wall-clock limit per solve [s]; checked inside the iteration loop. Infinity means none.
+  double time_limit_s = kInf;
+  /// A constraint counts as violated beyond feasibility_tol * (1 + |bound|).
+  double feasibility_tol = 1e-9;
+  /// Proximal weight relative to max(1, max |H_ii|), used when H is singular.
+  double proximal_weight = 1e-7;
+  /// Proximal iterations stop when |x_{k+1} - x_k|_inf <= proximal_tol * (1 + |x|_inf).
+  double proximal_tol = 1e-11;
+  /// ... or when the remaining dual residual rho |x_{k+1} - x_k| times (1 + |x|_inf) is below
+  /// proximal_objective_tol * (1 + |objective|): it can no longer move the objective noticeably.
+  double proximal_objective_tol = 1e-10;
+  /// Start each solve from the previous solve's active set and factorisation.
+  bool warm_start = true;
+  /// Throws std::invalid_argument naming the offending field.
+  void Validate() const;
+};
+
+class ActiveSetQpSolver final : public Solver {
+ public:
+  ActiveSetQpSolver() = default;
+  explicit ActiveSetQpSolver(const ActiveSetQpSettings& settings) : settings_(settings) { settings_.Validate(); }
+
+  std::string_view name() const override { return "active-set"; }
+  /// Quadratic programs only (no nonlinear costs or constraints).
+  bool Supports(const Program& program) const override { return program.IsQuadratic(); }
+
+  ActiveSetQpSettings& settings() { return settings_; }
+  const ActiveSetQpSettings& settings() const { return settings_; }
+
+  /// The next solve starts from this active set (sizes must match the program then).
+  void SetWarmStart(const ActiveSet& active_set);
+  /// The next solve starts cold (from the unconstrained minimum).
+  void ResetWarmStart() { factorization_valid_ = false; pending_warm_start_ = false; }
+
+ private:
+  void DoSolve(const Program& program, SolveResult* result) override;
+
+  // Workspace sizing and the factorisation of H (+ rho I), reused while H is unchanged.
+  void Prepare(const Program& program);
+  bool FactorizeHessian(const Program& program);
+  // Starting points: cold, from a given active set, or the kept factorisation.
+  void StartCold();
+  void StartFromActiveSet(const ActiveSet& set);
+  void AddEqualities();
+  // Closed-form primal and dual on the current active set; drops constraints with negative
+  // multipliers until the start is dual feasible. Returns the number of drops.
+  int Restart();
+  void ComputePrimalDual();
+  // The Goldfarb-Idnani loop from a dual-feasible start.
+  SolveStatus Iterate();
+  // Factorisation updates.
+  void ComputeStepVector(int k, double sigma);  // d_ = J' (sigma n_k)
+  bool AddConstraint(int k, int side);
+  void DropConstraint(int position);
+
+  // Constraint k: k < m is row k of A, k >= m bounds variable k - m.
+  double Lower(int k) const;
+  double Upper(int k) const;
+  double Value(int k) const;
+  double RowValue(int k) const;
+  bool IsEquality(int k) const { return Lower(k) == Upper(k); }
+  bool OverLimits();
+  void FillResult(const Program& program, SolveStatus status, SolveResult* result);
+
+  ActiveSetQpSettings settings_;
+  const Program* program_ = nullptr;
+  int n_ = 0, m_ = 0;
+
+  // Cached factorisation of H + rho I: J0 = L^{-T}.
+  std::uint64_t hessian_revision_ = 0;
+  std::uint64_t matrix_revision_ = 0;
+  double rho_ = 0.0;
+  Eigen::MatrixXd hessian_reg_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::MatrixXd J0_;
+
+  // Active-set state: J = L^{-T} Q, upper triangular R, active constraints with their multipliers.
+  bool factorization_valid_ = false;
+  bool pending_warm_start_ = false;
+  ActiveSet warm_start_;
+  Eigen::MatrixXd J_, R_;
+  std::vector<int> active_;
+  std::vector<ActiveSide> state_;  // per constraint: 0, -1 lower active, +1 upper active
+  int q_ = 0;
+  Eigen::VectorXd u_;
+
+  // Vectors of size n or m.
+  Eigen::VectorXd x_, g_eff_, x_prox_, d_, z_, r_, tmp_, row_, hx_;
+  Eigen::VectorXd ax_, row_norm_;
+
+  int iterations_ = 0;
+  std::chrono::steady_clock::time_point deadline_;
+  bool has_deadline_ = false;
+  bool time_exceeded_ = false;
+};
+
+}  // namespace stairplan::optim

@@ -1,0 +1,276 @@
+// The Ipopt back-end: a TNLP view of a Program (sparse linear rows, dense nonlinear blocks).
+#include "planning/optim/ipopt_solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <coin/IpIpoptApplication.hpp>
+#include <coin/IpSolveStatistics.hpp>
+#include <coin/IpTNLP.hpp>
+
+namespace stairplan::optim {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+// Ipopt's "infinite" bound (nlp_lower_bound_inf / nlp_upper_bound_inf defaults).
+constexpr double kIpoptInf = 1e19;
+
+double ToIpopt(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf : -kIpoptInf); }
+
+class ProgramNlp : public Ipopt::TNLP {
+ public:
+  ProgramNlp(const Program& p, bool exact_hessian, std::chrono::steady_clock::time_point deadline, bool has_deadline)
+      : p_(p), exact_hessian_(exact_hessian), deadline_(deadline), has_deadline_(has_deadline) {
+    n_ = p.num_variables();
+    m_lin_ = p.num_rows();
+    m_ = m_lin_ + p.num_nonlinear_rows();
+    const Eigen::MatrixXd& A = p.constraint_matrix();
+    for (int i = 0; i < m_lin_; ++i) {
+      for (int j = 0; j < n_; ++j) {
+        if (A(i, j) != 0.0) jac_entries_.push_back({i, j});
+      }
+    }
+    int row = m_lin_;
+    for (const auto& c : p.nonlinear_constraints()) {
+      for (const auto& b : c.blocks) {
+        for (int r = 0; r < c.lower.size(); ++r) {
+          for (int j = 0; j < b.size; ++j) jac_entries_.push_back({row + r, b.start + j});
+        }
+      }
+      row += static_cast<int>(c.lower.size());
+    }
+    const Eigen::MatrixXd& H = p.hessian();
+    for (int i = 0; i < n_; ++i) {
+      for (int j = 0; j <= i; ++j) {
+        if (H(i, j) != 0.0) hess_entries_.push_back({i, j});
+      }
+    }
+    x_.resize(n_);
+  }
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
+    n = n_;
+    m = m_;
+    nnz_jac_g = static_cast<Index>(jac_entries_.size());
+    nnz_h_lag = exact_hessian_ ? static_cast<Index>(hess_entries_.size()) : 0;
+    style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index, Number* x_l, Number* x_u, Index, Number* g_l, Number* g_u) override {
+    for (int j = 0; j < n_; ++j) {
+      x_l[j] = ToIpopt(p_.variable_lower()[j]);
+      x_u[j] = ToIpopt(p_.variable_upper()[j]);
+    }
+    for (int i = 0; i < m_lin_; ++i) {
+      g_l[i] = ToIpopt(p_.row_lower()[i]);
+      g_u[i] = ToIpopt(p_.row_upper()[i]);
+    }
+    int row = m_lin_;
+    for (const auto& c : p_.nonlinear_constraints()) {
+      for (int r = 0; r < c.lower.size(); ++r, ++row) {
+        g_l[row] = ToIpopt(c.lower[r]);
+        g_u[row] = ToIpopt(c.upper[r]);
+      }
+    }
+    return true;
+  }
+
+  bool get_starting_point(Index n, bool, Number* x, bool, Number*, Number*, Index, bool, Number*) override {
+    for (int j = 0; j < n; ++j) x[j] = p_.initial_guess()[j];
+    return true;
+  }
+
+  bool eval_f(Index, const Number* x, bool, Number& obj) override {
+    Load(x);
+    obj = p_.Objective(x_);
+    return std::isfinite(obj);
+  }
+
+  bool eval_grad_f(Index, const Number* x, bool, Number* grad) override {
+    Load(x);
+    Eigen::Map<Eigen::VectorXd> out(grad, n_);
+    out.noalias() = p_.hessian() * x_;
+    out += p_.linear_cost();
+    for (const auto& c : p_.nonlinear_costs()) {
+      for (int b = 0; b < static_cast<int>(c.blocks.size()); ++b) {
+        Eigen::VectorXd part(c.blocks[b].size);
+        c.gradient(x_, b, part);
+        out.segment(c.blocks[b].start, c.blocks[b].size) += part;
+      }
+    }
+    return true;
+  }
+
+  bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
+    Load(x);
+    Eigen::Map<Eigen::VectorXd> out(g, m_);
+    if (m_lin_ > 0) out.head(m_lin_).noalias() = p_.constraint_matrix() * x_;
+    int row = m_lin_;
+    for (const auto& c : p_.nonlinear_constraints()) {
+      const int rows = static_cast<int>(c.lower.size());
+      Eigen::VectorXd values(rows);
+      c.value(x_, values);
+      out.segment(row, rows) = values;
+      row += rows;
+    }
+    return true;
+  }
+
+  bool eval_jac_g(Index, const Number* x, bool, Index, Index, Index* i_row, Index* j_col, Number* values) override {
+    if (values == nullptr) {
+      for (std::size_t k = 0; k < jac_entries_.size(); ++k) {
+        i_row[k] = jac_entries_[k].first;
+        j_col[k] = jac_entries_[k].second;
+      }
+      return true;
+    }
+    Load(x);
+    std::size_t k = 0;
+    const Eigen::MatrixXd& A = p_.constraint_matrix();
+    for (; k < jac_entries_.size() && jac_entries_[k].first < m_lin_; ++k) {
+      values[k] = A(jac_entries_[k].first, jac_entries_[k].second);
+    }
+    for (const auto& c : p_.nonlinear_constraints()) {
+      const int rows = static_cast<int>(c.lower.size());
+      for (int b = 0; b < static_cast<int>(c.blocks.size()); ++b) {
+        Eigen::MatrixXd jac(rows, c.blocks[b].size);
+        c.jacobian(x_, b, jac);
+        // Entries were listed row-major per block.
+        for (int r = 0; r < rows; ++r) {
+          for (int j = 0; j < c.blocks[b].size; ++j) values[k++] = jac(r, j);
+        }
+      }
+    }
+    return true;
+  }
+
+  bool eval_h(Index, const Number*, bool, Number obj_factor, Index, const Number*, bool, Index, Index* i_row,
+              Index* j_col, Number* values) override {
+    if (!exact_hessian_) return false;
+    for (std::size_t k = 0; k < hess_entries_.size(); ++k) {
+      if (values == nullptr) {
+        i_row[k] = hess_entries_[k].first;
+        j_col[k] = hess_entries_[k].second;
+      } else {
+        values[k] = obj_factor * p_.hessian()(hess_entries_[k].first, hess_entries_[k].second);
+      }
+    }
+    return true;
+  }
+
+  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number* z_L, const Number* z_U,
+                         Index m, const Number*, const Number* lambda, Number obj_value, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    status_ = status;
+    x_out_ = Eigen::Map<const Eigen::VectorXd>(x, n);
+    bound_duals_ = Eigen::Map<const Eigen::VectorXd>(z_U, n) - Eigen::Map<const Eigen::VectorXd>(z_L, n);
+    row_duals_ = Eigen::Map<const Eigen::VectorXd>(lambda, m).head(m_lin_);
+    objective_ = obj_value;
+    finalized_ = true;
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode, Index, Number, Number, Number, Number, Number, Number, Number,
+                             Number, Index, const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+    if (has_deadline_ && std::chrono::steady_clock::now() > deadline_) {
+      deadline_hit_ = true;
+      return false;
+    }
+    return true;
+  }
+
+  bool finalized_ = false;
+  bool deadline_hit_ = false;
+  Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
+  Eigen::VectorXd x_out_, bound_duals_, row_duals_;
+  double objective_ = 0.0;
+
+ private:
+  void Load(const Number* x) { x_ = Eigen::Map<const Eigen::VectorXd>(x, n_); }
+
+  const Program& p_;
+  bool exact_hessian_;
+  std::chrono::steady_clock::time_point deadline_;
+  bool has_deadline_;
+  int n_ = 0, m_ = 0, m_lin_ = 0;
+  std::vector<std::pair<int, int>> jac_entries_, hess_entries_;
+  Eigen::VectorXd x_;
+};
+
+SolveStatus ToStatus(Ipopt::SolverReturn r, bool deadline_hit) {
+  switch (r) {
+    case Ipopt::SUCCESS:
+    case Ipopt::STOP_AT_ACCEPTABLE_POINT:
+      return SolveStatus::kSolved;
+    case Ipopt::MAXITER_EXCEEDED: return SolveStatus::kIterationLimit;
+    case Ipopt::CPUTIME_EXCEEDED: return SolveStatus::kTimeLimit;
+    case Ipopt::USER_REQUESTED_STOP: return deadline_hit ? SolveStatus::kTimeLimit : SolveStatus::kNumericalError;
+    case Ipopt::LOCAL_INFEASIBILITY: return SolveStatus::kInfeasible;
+    case Ipopt::DIVERGING_ITERATES: return SolveStatus::kUnbounded;
+    case Ipopt::INVALID_NUMBER_DETECTED: return SolveStatus::kInvalidInput;
+    default: return SolveStatus::kNumericalError;
+  }
+}
+
+}  // namespace
+
+void IpoptSettings::Validate() const {
+  if (!(tolerance > 0)) throw std::invalid_argument("IpoptSettings::tolerance must be positive");
+  if (max_iterations <= 0) throw std::invalid_argument("IpoptSettings::max_iterations must be positive");
+  if (!(time_limit_s > 0)) throw std::invalid_argument("IpoptSettings::time_limit_s must be positive");
+}
+
+void IpoptSolver::DoSolve(const Program& program, SolveResult* result) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool has_deadline = std::isfinite(settings_.time_limit_s);
+  const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                    std::chrono::duration<double>(has_deadline ? settings_.time_limit_s : 0.0));
+  const bool exact = program.IsQuadratic() && settings_.exact_hessian_for_qp;
+  Ipopt::SmartPtr<ProgramNlp> nlp = new ProgramNlp(program, exact, deadline, has_deadline);
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  auto& options = *app->Options();
+  options.SetStringValue("sb", "yes");
+  options.SetIntegerValue("print_level", 0);
+  options.SetNumericValue("tol", settings_.tolerance);
+  options.SetIntegerValue("max_iter", settings_.max_iterations);
+  if (has_deadline) options.SetNumericValue("max_cpu_time", settings_.time_limit_s);
+  if (exact) {
+    options.SetStringValue("hessian_constant", "yes");
+    options.SetStringValue("jac_c_constant", "yes");
+    options.SetStringValue("jac_d_constant", "yes");
+  } else {
+    options.SetStringValue("hessian_approximation", "limited-memory");
+  }
+  for (const auto& [key, value] : settings_.string_options) options.SetStringValue(key, value);
+  for (const auto& [key, value] : settings_.numeric_options) options.SetNumericValue(key, value);
+  for (const auto& [key, value] : settings_.integer_options) options.SetIntegerValue(key, value);
+  if (app->Initialize() != Ipopt::Solve_Succeeded) {
+    result->status = SolveStatus::kInvalidInput;  // an option Ipopt rejects
+    result->x = program.initial_guess();
+    return;
+  }
+  app->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(nlp)));
+  if (!nlp->finalized_) {
+    result->status = SolveStatus::kNumericalError;
+    result->x = program.initial_guess();
+    return;
+  }
+  result->status = ToStatus(nlp->status_, nlp->deadline_hit_);
+  result->x = nlp->x_out_;
+  result->bound_duals = nlp->bound_duals_;
+  result->row_duals = nlp->row_duals_;
+  result->objective = program.Objective(result->x);
+  result->info.primal_residual = program.MaxViolation(result->x);
+  Eigen::VectorXd residual = program.hessian() * result->x + program.linear_cost() + result->bound_duals;
+  if (program.num_rows() > 0) residual += program.constraint_matrix().transpose() * result->row_duals;
+  result->info.dual_residual = program.IsQuadratic() ? residual.lpNorm<Eigen::Infinity>() : 0.0;
+  if (Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app->Statistics(); IsValid(stats)) {
+    result->info.iterations = stats->IterationCount();
+  }
+}
+
+}  // namespace stairplan::optim

@@ -1,0 +1,52 @@
+// IpoptSolver: any Program (nonlinear included) through Ipopt 3.11's TNLP interface.
+//
+// QPs get the exact (constant) Hessian; programs with nonlinear parts use Ipopt's limited-memory
+// quasi-Newton Hessian. Options pass through by name. The time limit is a wall-clock deadline
+// checked in Ipopt's per-iteration callback on every solve (and also passed as max_cpu_time), so
+// it holds for the second solve as for the first. A fresh IpoptApplication per solve keeps solves
+// independent; Ipopt allocates, so this is not the per-cycle solver.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "planning/optim/solver.h"
+
+namespace stairplan::optim {
+
+/// Settings of IpoptSolver.
+struct IpoptSettings {
+  /// Ipopt's "tol" (scaled NLP error).
+  double tolerance = 1e-9;
+  /// Ipopt's "max_iter".
+  int max_iterations = 3000;
+  /// Wall-clock limit per solve [s]. Infinity means none.
+  double time_limit_s = kInf;
+  /// Use the exact Hessian for quadratic programs (limited-memory is always used otherwise).
+  bool exact_hessian_for_qp = true;
+  /// Options passed through to Ipopt as they are (set after the ones above, so they win).
+  std::map<std::string, std::string> string_options;
+  std::map<std::string, double> numeric_options;
+  std::map<std::string, int> integer_options;
+  /// Throws std::invalid_argument naming the offending field.
+  void Validate() const;
+};
+
+class IpoptSolver final : public Solver {
+ public:
+  IpoptSolver() = default;
+  explicit IpoptSolver(const IpoptSettings& settings) : settings_(settings) { settings_.Validate(); }
+
+  std::string_view name() const override { return "ipopt"; }
+  bool Supports(const Program&) const override { return true; }
+
+  IpoptSettings& settings() { return settings_; }
+  const IpoptSettings& settings() const { return settings_; }
+
+ private:
+  void DoSolve(const Program& program, SolveResult* result) override;
+
+  IpoptSettings settings_;
+};
+
+}  // namespace stairplan::optim

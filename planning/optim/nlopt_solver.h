@@ -1,0 +1,47 @@
+// NloptSolver: NLopt's SLSQP for smooth NLPs, or a derivative-free algorithm (COBYLA) on request.
+//
+// Linear rows and nonlinear constraints become NLopt inequality (c(x) <= 0) and equality
+// constraints; variable bounds are passed as bounds. NLopt returns no multipliers, so the duals
+// in the result are zero. NLopt allocates: this is an offline and cross-checking solver.
+#pragma once
+
+#include "planning/optim/solver.h"
+
+namespace stairplan::optim {
+
+/// Settings of NloptSolver.
+struct NloptSettings {
+  enum class Algorithm { kSlsqp, kCobyla };
+  /// kSlsqp (gradient based, default) or kCobyla (derivative-free).
+  Algorithm algorithm = Algorithm::kSlsqp;
+  /// Relative tolerance on x and on f between iterations.
+  double xtol_rel = 1e-10;
+  double ftol_rel = 1e-14;
+  /// Tolerance on each constraint's violation.
+  double constraint_tol = 1e-10;
+  /// Function evaluations allowed.
+  int max_evaluations = 100000;
+  /// Wall-clock limit per solve [s]. Infinity means none.
+  double time_limit_s = kInf;
+  /// Throws std::invalid_argument naming the offending field.
+  void Validate() const;
+};
+
+class NloptSolver final : public Solver {
+ public:
+  NloptSolver() = default;
+  explicit NloptSolver(const NloptSettings& settings) : settings_(settings) { settings_.Validate(); }
+
+  std::string_view name() const override { return "nlopt"; }
+  bool Supports(const Program&) const override { return true; }
+
+  NloptSettings& settings() { return settings_; }
+  const NloptSettings& settings() const { return settings_; }
+
+ private:
+  void DoSolve(const Program& program, SolveResult* result) override;
+
+  NloptSettings settings_;
+};
+
+}  // namespace stairplan::optim

@@ -1,0 +1,188 @@
+// Program: an optimisation problem built once and updated in place between solves.
+//
+// Continuous variables live in named blocks; costs are linear, quadratic or nonlinear; constraints
+// are linear rows with lower/upper bounds or nonlinear functions with Jacobians per variable block
+// (the ifopt idea, with block handles instead of string keys). The quadratic and linear parts are
+// stored densely because the per-cycle problems are small (tens to a few hundred variables).
+//
+// Per-cycle usage (the body planner): build once, then update and re-solve without allocating.
+//
+//   Program prog;
+//   const VariableBlock z = prog.AddVariables("height", 40);
+//   prog.AddQuadraticCost(z, weights.asDiagonal().toDenseMatrix(), Eigen::VectorXd::Zero(40));
+//   const ConstraintRows smooth = prog.AddLinearConstraint({{z, D}}, -slope, slope);
+//   ActiveSetQpSolver solver;                    // holds its workspace and factorizations
+//   SolveResult result;                          // reused: sized by the first solve
+//   for (;;) {                                   // every 3 ms cycle
+//     prog.SetVariableBounds(z, z_min, z_max);   // in place, no allocation
+//     prog.SetLinearCost(z, -weights.cwiseProduct(z_ref));
+//     solver.Solve(prog, &result);               // warm-started from the last active set
+//     if (result.status != SolveStatus::kSolved) { /* keep the last plan */ }
+//     Use(result.x.segment(z.start, z.size));
+//   }
+//
+// Setters check sizes and finiteness and throw std::invalid_argument naming the block or rows.
+// The Mutable*() accessors are unchecked (for readers that fill whole matrices); Solve() checks
+// the data again and reports SolveStatus::kInvalidInput for NaN.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace stairplan::optim {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Bounds at or beyond this magnitude mean "no bound" (QPS files use 1e30).
+constexpr double kInfiniteBound = 1e20;
+
+/// A contiguous block of decision variables.
+struct VariableBlock {
+  std::string name;
+  int start = 0;
+  int size = 0;
+  /// This block's values inside the full vector x.
+  Eigen::VectorBlock<const Eigen::VectorXd> Of(const Eigen::VectorXd& x) const { return x.segment(start, size); }
+};
+
+/// A contiguous group of linear constraint rows.
+struct ConstraintRows {
+  std::string name;
+  int start = 0;
+  int size = 0;
+};
+
+/// One block's coefficients in a linear constraint: rows x block.size.
+using LinearTerm = std::pair<VariableBlock, Eigen::MatrixXd>;
+
+/// A nonlinear cost f(x) depending on some blocks, with its gradient per block.
+struct NonlinearCost {
+  std::string name;
+  std::vector<VariableBlock> blocks;
+  std::function<double(const Eigen::VectorXd& x)> value;
+  /// Writes df/d(blocks[block]) into `out` (size blocks[block].size).
+  std::function<void(const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::VectorXd> out)> gradient;
+};
+
+/// Nonlinear constraints lower <= c(x) <= upper, with Jacobians per block.
+struct NonlinearConstraint {
+  std::string name;
+  std::vector<VariableBlock> blocks;
+  Eigen::VectorXd lower, upper;
+  /// Writes c(x) into `out` (size lower.size()).
+  std::function<void(const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> out)> value;
+  /// Writes dc/d(blocks[block]) into `out` (rows x blocks[block].size).
+  std::function<void(const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::MatrixXd> out)> jacobian;
+};
+
+/// min 0.5 x'Hx + g'x + constant + sum f_i(x)
+/// s.t. row_lower <= A x <= row_upper, lower <= c_j(x) <= upper, var_lower <= x <= var_upper.
+class Program {
+ public:
+  Program() = default;
+
+  // ---- building (may allocate) ----
+  /// Adds `size` variables named `name`; they start unbounded with initial guess 0.
+  VariableBlock AddVariables(const std::string& name, int size);
+  /// Adds 0.5 x_b'Q x_b + g'x_b; Q must be square and symmetric-sized to the block.
+  void AddQuadraticCost(const VariableBlock& block, const Eigen::MatrixXd& Q, const Eigen::VectorXd& g);
+  /// Adds x_a' Q x_b (a cross term between two blocks; Q is a.size x b.size).
+  void AddCrossQuadraticCost(const VariableBlock& a, const VariableBlock& b, const Eigen::MatrixXd& Q);
+  /// Adds g'x_b.
+  void AddLinearCost(const VariableBlock& block, const Eigen::VectorXd& g);
+  /// Adds a constant to the objective.
+  void AddConstant(double c) { constant_ += c; }
+  /// Adds rows lower <= sum_k A_k x_{b_k} <= upper; equal bounds make equalities, +-inf one side.
+  ConstraintRows AddLinearConstraint(const std::vector<LinearTerm>& terms, const Eigen::VectorXd& lower,
+                                     const Eigen::VectorXd& upper, const std::string& name = "");
+  void AddNonlinearCost(NonlinearCost cost);
+  void AddNonlinearConstraint(NonlinearConstraint constraint);
+  /// Resizes to n variables in one block "x" and m empty rows (for file readers).
+  void ResizeDense(int n, int m);
+
+  // ---- updating in place (no allocation) ----
+  void SetVariableBounds(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& lower,
+                         const Eigen::Ref<const Eigen::VectorXd>& upper);
+  /// Replaces the linear cost of a block (the part added by AddQuadraticCost/AddLinearCost).
+  void SetLinearCost(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& g);
+  void SetConstraintBounds(const ConstraintRows& rows, const Eigen::Ref<const Eigen::VectorXd>& lower,
+                           const Eigen::Ref<const Eigen::VectorXd>& upper);
+  /// Replaces the coefficients of `block` in `rows`.
+  void SetConstraintCoefficients(const ConstraintRows& rows, const VariableBlock& block,
+                                 const Eigen::Ref<const Eigen::MatrixXd>& coefficients);
+  void SetInitialGuess(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& x0);
+
+  // ---- unchecked whole-data access (bumps the revision counters; Solve() validates) ----
+  Eigen::MatrixXd& MutableHessian();
+  Eigen::MatrixXd& MutableConstraintMatrix();
+  Eigen::VectorXd& MutableLinearCost() { return g_; }
+  Eigen::VectorXd& MutableRowLower() { return row_lower_; }
+  Eigen::VectorXd& MutableRowUpper() { return row_upper_; }
+  Eigen::VectorXd& MutableVariableLower() { return var_lower_; }
+  Eigen::VectorXd& MutableVariableUpper() { return var_upper_; }
+  Eigen::VectorXd& MutableInitialGuess() { return x0_; }
+  void SetConstant(double c) { constant_ = c; }
+
+  // ---- reading ----
+  int num_variables() const { return static_cast<int>(g_.size()); }
+  int num_rows() const { return static_cast<int>(row_lower_.size()); }
+  int num_nonlinear_rows() const;
+  const std::vector<VariableBlock>& blocks() const { return blocks_; }
+  const Eigen::MatrixXd& hessian() const { return H_; }
+  const Eigen::VectorXd& linear_cost() const { return g_; }
+  double constant() const { return constant_; }
+  const Eigen::MatrixXd& constraint_matrix() const { return A_; }
+  const Eigen::VectorXd& row_lower() const { return row_lower_; }
+  const Eigen::VectorXd& row_upper() const { return row_upper_; }
+  const Eigen::VectorXd& variable_lower() const { return var_lower_; }
+  const Eigen::VectorXd& variable_upper() const { return var_upper_; }
+  const Eigen::VectorXd& initial_guess() const { return x0_; }
+  const std::vector<NonlinearCost>& nonlinear_costs() const { return nonlinear_costs_; }
+  const std::vector<NonlinearConstraint>& nonlinear_constraints() const { return nonlinear_constraints_; }
+  /// True when there are no nonlinear costs or constraints.
+  bool IsQuadratic() const { return nonlinear_costs_.empty() && nonlinear_constraints_.empty(); }
+
+  /// Objective value at x (quadratic part, constant and nonlinear costs).
+  double Objective(const Eigen::VectorXd& x) const;
+  /// Largest violation of rows, nonlinear constraints and variable bounds at x.
+  double MaxViolation(const Eigen::VectorXd& x) const;
+
+  /// Changes whenever H (or the problem's size) changes; solvers key cached factorizations on it.
+  std::uint64_t hessian_revision() const { return hessian_revision_; }
+  /// Changes whenever A (or the problem's size) changes.
+  std::uint64_t matrix_revision() const { return matrix_revision_; }
+
+ private:
+  void CheckBlock(const VariableBlock& block, const char* what) const;
+  void CheckRows(const ConstraintRows& rows, const char* what) const;
+  void TouchHessian();
+  void TouchMatrix();
+
+  std::vector<VariableBlock> blocks_;
+  std::vector<ConstraintRows> row_groups_;
+  Eigen::MatrixXd H_;
+  Eigen::VectorXd g_;
+  double constant_ = 0.0;
+  Eigen::MatrixXd A_;
+  Eigen::VectorXd row_lower_, row_upper_;
+  Eigen::VectorXd var_lower_, var_upper_;
+  Eigen::VectorXd x0_;
+  std::vector<NonlinearCost> nonlinear_costs_;
+  std::vector<NonlinearConstraint> nonlinear_constraints_;
+  std::uint64_t hessian_revision_ = 0;
+  std::uint64_t matrix_revision_ = 0;
+};
+
+/// A bound value with +-1e20 and beyond mapped to +-inf.
+inline double NormalizeBound(double b) {
+  if (b >= kInfiniteBound) return kInf;
+  if (b <= -kInfiniteBound) return -kInf;
+  return b;
+}
+
+}  // namespace stairplan::optim

@@ -1,0 +1,77 @@
+// The checked Solve(): validation, timing, result sizing; and the automatic solver choice.
+#include "planning/optim/solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "planning/optim/active_set_qp_solver.h"
+#include "planning/optim/ipopt_solver.h"
+#include "planning/optim/nlopt_solver.h"
+
+namespace stairplan::optim {
+namespace {
+
+void SizeResult(const Program& p, SolveResult* r) {
+  const int n = p.num_variables(), m = p.num_rows();
+  if (r->x.size() != n) r->x.resize(n);
+  if (r->bound_duals.size() != n) r->bound_duals.resize(n);
+  if (r->row_duals.size() != m) r->row_duals.resize(m);
+  if (static_cast<int>(r->active_set.rows.size()) != m) r->active_set.rows.assign(m, 0);
+  if (static_cast<int>(r->active_set.bounds.size()) != n) r->active_set.bounds.assign(n, 0);
+}
+
+}  // namespace
+
+bool Solver::DataIsValid(const Program& p) {
+  if (p.hessian_revision() != checked_hessian_revision_) {
+    if (p.hessian().hasNaN()) return false;
+    checked_hessian_revision_ = p.hessian_revision();
+  }
+  if (p.matrix_revision() != checked_matrix_revision_) {
+    if (p.constraint_matrix().hasNaN()) return false;
+    checked_matrix_revision_ = p.matrix_revision();
+  }
+  return !(p.linear_cost().hasNaN() || p.row_lower().hasNaN() || p.row_upper().hasNaN() ||
+           p.variable_lower().hasNaN() || p.variable_upper().hasNaN() || p.initial_guess().hasNaN() ||
+           std::isnan(p.constant()));
+}
+
+void Solver::Solve(const Program& program, SolveResult* result) {
+  if (result == nullptr) throw std::invalid_argument("Solver::Solve: result must not be null");
+  const auto start = std::chrono::steady_clock::now();
+  SizeResult(program, result);
+  result->info = SolveInfo{};
+  if (program.num_variables() == 0 || !DataIsValid(program) || !Supports(program)) {
+    result->status = SolveStatus::kInvalidInput;
+    result->x.setZero();
+    result->row_duals.setZero();
+    result->bound_duals.setZero();
+    result->objective = 0.0;
+  } else {
+    DoSolve(program, result);
+  }
+  result->info.solve_time_us =
+      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+}
+
+SolveResult Solver::Solve(const Program& program) {
+  SolveResult result;
+  Solve(program, &result);
+  return result;
+}
+
+std::unique_ptr<Solver> MakeSolver(const Program& program) {
+  if (program.IsQuadratic()) return std::make_unique<ActiveSetQpSolver>();
+  return std::make_unique<IpoptSolver>();
+}
+
+std::unique_ptr<Solver> MakeSolver(std::string_view name) {
+  if (name == "active-set") return std::make_unique<ActiveSetQpSolver>();
+  if (name == "ipopt") return std::make_unique<IpoptSolver>();
+  if (name == "nlopt") return std::make_unique<NloptSolver>();
+  throw std::invalid_argument("unknown solver '" + std::string(name) + "' (expected active-set, ipopt or nlopt)");
+}
+
+}  // namespace stairplan::optim
