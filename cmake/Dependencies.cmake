@@ -7,6 +7,8 @@ find_package(NLopt REQUIRED CONFIG)
 find_package(yaml-cpp REQUIRED CONFIG)
 find_package(nlohmann_json 3.11 REQUIRED CONFIG)
 find_package(CLI11 REQUIRED CONFIG)
+# MuJoCo's exported target names libqhull's include folder, so libqhull-dev must be installed too.
+find_package(mujoco REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 # Debian's Ipopt 3.11 ships no CMake config, only pkg-config.
 pkg_check_modules(IPOPT REQUIRED IMPORTED_TARGET GLOBAL ipopt)

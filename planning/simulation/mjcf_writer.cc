@@ -1,0 +1,154 @@
+#include "planning/simulation/mjcf_writer.h"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include <urdf_model/model.h>
+
+#include "geometry/field_error.h"
+
+namespace stairplan {
+namespace {
+
+std::string Vec(double x, double y, double z) {
+  std::ostringstream out;
+  out << std::setprecision(10) << x << " " << y << " " << z;
+  return out.str();
+}
+
+std::string Pos(const urdf::Pose& p) { return Vec(p.position.x, p.position.y, p.position.z); }
+
+std::string Quat(const urdf::Pose& p) {
+  double x = 0, y = 0, z = 0, w = 1;
+  p.rotation.getQuaternion(x, y, z, w);
+  std::ostringstream out;
+  out << std::setprecision(10) << w << " " << x << " " << y << " " << z;
+  return out.str();
+}
+
+bool IsMovable(const urdf::Joint& j) {
+  return j.type == urdf::Joint::REVOLUTE || j.type == urdf::Joint::CONTINUOUS || j.type == urdf::Joint::PRISMATIC;
+}
+
+void WriteInertial(std::ostringstream& out, const urdf::Link& link, const MjcfSettings& s, const std::string& indent) {
+  if (!link.inertial) return;
+  const urdf::Inertial& i = *link.inertial;
+  out << indent << "<inertial pos='" << Pos(i.origin) << "' quat='" << Quat(i.origin) << "' mass='"
+      << std::max(i.mass, s.min_mass) << "' fullinertia='" << std::max(i.ixx, s.min_inertia) << " "
+      << std::max(i.iyy, s.min_inertia) << " " << std::max(i.izz, s.min_inertia) << " " << i.ixy << " " << i.ixz
+      << " " << i.iyz << "'/>\n";
+}
+
+void WriteGeoms(std::ostringstream& out, const urdf::Link& link, const std::string& indent) {
+  int n = 0;
+  for (const auto& c : link.collision_array) {
+    if (!c || !c->geometry) continue;
+    std::string type, size;
+    if (c->geometry->type == urdf::Geometry::BOX) {
+      const auto& b = static_cast<const urdf::Box&>(*c->geometry);
+      type = "box";
+      size = Vec(b.dim.x / 2, b.dim.y / 2, b.dim.z / 2);
+    } else if (c->geometry->type == urdf::Geometry::CYLINDER) {
+      const auto& cyl = static_cast<const urdf::Cylinder&>(*c->geometry);
+      type = "cylinder";
+      std::ostringstream sz;
+      sz << std::setprecision(10) << cyl.radius << " " << cyl.length / 2;
+      size = sz.str();
+    } else if (c->geometry->type == urdf::Geometry::SPHERE) {
+      type = "sphere";
+      std::ostringstream sz;
+      sz << std::setprecision(10) << static_cast<const urdf::Sphere&>(*c->geometry).radius;
+      size = sz.str();
+    } else {
+      continue;  // meshes are not collision primitives: the robots we support use primitives
+    }
+    out << indent << "<geom name='" << link.name << "_collision_" << n++ << "' type='" << type << "' size='" << size
+        << "' pos='" << Pos(c->origin) << "' quat='" << Quat(c->origin) << "'/>\n";
+  }
+}
+
+void WriteJoint(std::ostringstream& out, const urdf::Joint& j, const MjcfSettings& s, const std::string& indent) {
+  const bool hinge = j.type != urdf::Joint::PRISMATIC;
+  out << indent << "<joint name='" << j.name << "' type='" << (hinge ? "hinge" : "slide") << "' axis='"
+      << Vec(j.axis.x, j.axis.y, j.axis.z) << "'";
+  if (j.type != urdf::Joint::CONTINUOUS && j.limits && j.limits->upper > j.limits->lower) {
+    out << " limited='true' range='" << j.limits->lower << " " << j.limits->upper << "'";
+  }
+  const double damping = (j.dynamics && j.dynamics->damping > 0.0) ? j.dynamics->damping : s.default_damping;
+  out << " damping='" << damping << "' armature='" << s.armature << "'/>\n";
+}
+
+// One URDF link and its subtree as nested bodies. Fixed joints become bodies without joints.
+void WriteBody(std::ostringstream& out, const urdf::Link& link, const MjcfSettings& s, int depth) {
+  const std::string indent(2 * static_cast<std::size_t>(depth), ' ');
+  const urdf::Joint& j = *link.parent_joint;
+  const urdf::Pose& origin = j.parent_to_joint_origin_transform;
+  out << indent << "<body name='" << link.name << "' pos='" << Pos(origin) << "' quat='" << Quat(origin) << "'>\n";
+  if (IsMovable(j)) WriteJoint(out, j, s, indent + "  ");
+  WriteInertial(out, link, s, indent + "  ");
+  WriteGeoms(out, link, indent + "  ");
+  for (const auto& child : link.child_links) WriteBody(out, *child, s, depth + 1);
+  out << indent << "</body>\n";
+}
+
+void WriteStairs(std::ostringstream& out, const Staircase& stairs) {
+  for (const Box3& box : stairs.Solids()) {
+    const Eigen::Vector3d c = box.Center(), h = 0.5 * box.Size();
+    out << "    <geom name='stair_" << (box.kind == SolidKind::kBlock ? "block_" : "nosing_") << box.surface_index
+        << "' type='box' pos='" << Vec(c.x(), c.y(), c.z()) << "' size='" << Vec(h.x(), h.y(), h.z())
+        << "' rgba='0.7 0.7 0.7 1'/>\n";
+  }
+}
+
+void WriteMotors(std::ostringstream& out, const RobotModel& robot) {
+  out << "  <actuator>\n";
+  for (const LegModel& leg : robot.legs()) {
+    for (std::size_t i = 0; i < leg.joint_names.size(); ++i) {
+      const double effort = leg.limits[i].effort > 0.0 ? leg.limits[i].effort : 1e3;
+      out << "    <motor name='" << leg.joint_names[i] << "_motor' joint='" << leg.joint_names[i]
+          << "' ctrllimited='true' ctrlrange='" << -effort << " " << effort << "'/>\n";
+    }
+  }
+  out << "  </actuator>\n";
+}
+
+}  // namespace
+
+void MjcfSettings::Validate() const {
+  const auto check = [](const char* name, double v, double lo, double hi) {
+    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
+  };
+  check("friction", friction, 0.0, 10.0);
+  check("timestep", timestep, 1e-5, 0.05);
+  check("default_damping", default_damping, 0.0, 100.0);
+  check("armature", armature, 0.0, 10.0);
+  check("min_mass", min_mass, 1e-9, 1.0);
+  check("min_inertia", min_inertia, 1e-12, 1.0);
+}
+
+std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const MjcfSettings& settings) {
+  settings.Validate();
+  const urdf::ModelInterface& model = robot.urdf();
+  const urdf::LinkConstSharedPtr base = model.getLink(robot.base_link());
+  std::ostringstream out;
+  out << std::setprecision(10);
+  out << "<mujoco model='" << robot.name() << "'>\n"
+      << "  <compiler angle='radian' inertiafromgeom='false' boundmass='" << settings.min_mass
+      << "' boundinertia='" << settings.min_inertia << "'/>\n"
+      << "  <option timestep='" << settings.timestep << "' gravity='0 0 -9.81'/>\n"
+      << "  <default><geom friction='" << settings.friction << " 0.005 0.0001' condim='3'/></default>\n"
+      << "  <worldbody>\n"
+      << "    <light pos='0 -3 4' dir='0 0.6 -0.8' directional='true'/>\n";
+  WriteStairs(out, stairs);
+  out << "    <body name='" << base->name << "' pos='0 0 1'>\n      <freejoint name='floating_base'/>\n";
+  WriteInertial(out, *base, settings, "      ");
+  WriteGeoms(out, *base, "      ");
+  for (const auto& child : base->child_links) WriteBody(out, *child, settings, 3);
+  out << "    </body>\n  </worldbody>\n";
+  WriteMotors(out, robot);
+  out << "</mujoco>\n";
+  return out.str();
+}
+
+}  // namespace stairplan

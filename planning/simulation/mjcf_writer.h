@@ -1,0 +1,31 @@
+// Our own writer of MJCF (MuJoCo's model format) from a loaded robot and a staircase: the robot's
+// links as bodies with their URDF inertias, revolute joints with limits and damping, collision
+// primitives as geoms, a free-floating base, torque motors bounded by the URDF efforts, and the
+// stairs as boxes. MuJoCo is the physics check that nobody on this team wrote.
+#pragma once
+
+#include <string>
+
+#include "geometry/staircase.h"
+#include "kinematics/robot_model.h"
+
+namespace stairplan {
+
+/// Contact and integration parameters of the simulated world.
+struct MjcfSettings {
+  double friction = 0.8;          ///< sliding friction of every geom
+  double timestep = 0.001;        ///< simulation step [s] (1 kHz)
+  double default_damping = 0.2;   ///< joint damping where the URDF gives none [N m s/rad]
+  double armature = 0.01;         ///< rotor inertia added to every joint [kg m^2], for stability
+  double min_mass = 1e-3;         ///< MuJoCo needs positive mass on moving bodies [kg]
+  double min_inertia = 1e-6;      ///< ... and positive inertia [kg m^2]
+
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+/// The MJCF text of `robot` standing in a world that holds `stairs`. Bodies are named after the
+/// URDF links, joints after the URDF joints, stair geoms "stair_block_<k>" and "stair_nosing_<k>".
+std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const MjcfSettings& settings = {});
+
+}  // namespace stairplan

@@ -1,0 +1,91 @@
+// Our MJCF writer against MuJoCo itself: every robot loads with the URDF's mass and joints, and
+// the built-in robot stands on the landing under PD control with only its feet touching.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <set>
+
+#include <mujoco/mujoco.h>
+
+#include "kinematics/builtin_robot.h"
+#include "planning/simulation/mujoco_world.h"
+#include "test_paths.h"
+
+using namespace stairplan;
+
+namespace {
+
+int LegJointCount(const RobotModel& robot) {
+  int n = 0;
+  for (const LegModel& leg : robot.legs()) n += static_cast<int>(leg.joint_names.size());
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("the built-in robot's MJCF loads with its URDF mass, joints and motors", "[mujoco]") {
+  const RobotModel& robot = BuiltinRobot();
+  const Staircase stairs(StairSpec{});
+  MujocoWorld world(robot, stairs);
+  CHECK(world.model()->nu == 12);
+  CHECK(world.model()->njnt == 13);  // 12 leg joints and the free base
+  CHECK(world.RobotMass() == Approx(robot.total_mass()).epsilon(1e-9));
+  int stair_geoms = 0;
+  for (int g = 0; g < world.model()->ngeom; ++g) {
+    const char* name = mj_id2name(world.model(), mjOBJ_GEOM, g);
+    stair_geoms += (name != nullptr && std::string(name).rfind("stair_", 0) == 0) ? 1 : 0;
+  }
+  CHECK(stair_geoms == static_cast<int>(stairs.Solids().size()));
+  // Joint limits carried over from the URDF.
+  const int knee = mj_name2id(world.model(), mjOBJ_JOINT, "LF_KFE");
+  REQUIRE(knee >= 0);
+  CHECK(world.model()->jnt_range[2 * knee] == Approx(-2.6));
+  CHECK(world.model()->jnt_range[2 * knee + 1] == Approx(-0.35));
+}
+
+TEST_CASE("the shared robots load in MuJoCo through our writer", "[mujoco]") {
+  if (testing::SharedDir().empty()) {
+    WARN("skipped: ../shared not found");
+    return;
+  }
+  for (const char* file : {"unitree_a1.urdf", "unitree_go1.urdf", "unitree_go2.urdf", "anymal_b.urdf", "anymal_c.urdf"}) {
+    INFO(file);
+    const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath(std::string("data/robots/") + file));
+    MujocoWorld world(robot, Staircase(StairSpec{}));
+    CHECK(world.model()->nu == LegJointCount(robot));
+    CHECK(world.RobotMass() == Approx(robot.total_mass()).epsilon(0.02));
+  }
+}
+
+TEST_CASE("the built-in robot stands on the landing under PD control", "[mujoco]") {
+  const RobotModel& robot = BuiltinRobot();
+  MujocoWorld world(robot, Staircase(StairSpec{}));
+  // Thigh 0.7 rad back, knee -1.4 rad: each foot straight below its hip, 0.459 m down.
+  std::vector<std::pair<int, int>> joints;  // (qpos, motor) per joint
+  std::vector<double> target;
+  for (const LegModel& leg : robot.legs()) {
+    for (std::size_t i = 0; i < leg.joint_names.size(); ++i) {
+      joints.emplace_back(world.QposIndex(leg.joint_names[i]), world.MotorIndex(leg.joint_names[i]));
+      target.push_back(i == 0 ? 0.0 : (i == 1 ? 0.7 : -1.4));
+    }
+  }
+  for (std::size_t j = 0; j < joints.size(); ++j) world.data()->qpos[joints[j].first] = target[j];
+  world.SetBasePose({-0.6, 0.0, 0.49}, 0.0, 0.0);
+  for (int step = 0; step < 1500; ++step) {
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      const int dof = world.model()->jnt_dofadr[world.model()->actuator_trnid[2 * joints[j].second]];
+      const double q = world.data()->qpos[joints[j].first], qd = world.data()->qvel[dof];
+      world.data()->ctrl[joints[j].second] = 200.0 * (target[j] - q) - 5.0 * qd + world.data()->qfrc_bias[dof];
+    }
+    world.Step();
+  }
+  const Eigen::Vector3d base = world.BasePosition();
+  const Eigen::Vector3d rpy = world.BaseRollPitchYaw();
+  CHECK(base.z() > 0.40);
+  CHECK(base.z() < 0.50);
+  CHECK(std::abs(rpy.x()) < 0.05);
+  CHECK(std::abs(rpy.y()) < 0.05);
+  std::set<std::string> touching;
+  for (const StairContact& c : world.StairContacts()) touching.insert(c.body);
+  CHECK(touching == std::set<std::string>{"LF_foot", "RF_foot", "LH_foot", "RH_foot"});
+}
