@@ -4,6 +4,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <urdf_model/model.h>
 
 #include "geometry/field_error.h"
@@ -31,13 +33,31 @@ bool IsMovable(const urdf::Joint& j) {
   return j.type == urdf::Joint::REVOLUTE || j.type == urdf::Joint::CONTINUOUS || j.type == urdf::Joint::PRISMATIC;
 }
 
+// Some published URDFs carry inertias that no rigid body has (ANYmal B's edited base): MuJoCo
+// rejects them, so the principal moments are raised until positive and triangle-consistent.
+Eigen::Matrix3d PhysicalInertia(const Eigen::Matrix3d& inertia, double min_inertia) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(inertia);
+  Eigen::Vector3d moments = eig.eigenvalues().cwiseMax(min_inertia);
+  for (int i = 0; i < 3; ++i) {
+    const double others = moments.sum() - moments(i);
+    moments(i) = std::min(moments(i), others);  // A <= B + C for every principal moment
+  }
+  return eig.eigenvectors() * moments.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+// MJCF takes a full inertia only in the body frame, so the URDF's inertial rotation is applied here.
 void WriteInertial(std::ostringstream& out, const urdf::Link& link, const MjcfSettings& s, const std::string& indent) {
   if (!link.inertial) return;
   const urdf::Inertial& i = *link.inertial;
-  out << indent << "<inertial pos='" << Pos(i.origin) << "' quat='" << Quat(i.origin) << "' mass='"
-      << std::max(i.mass, s.min_mass) << "' fullinertia='" << std::max(i.ixx, s.min_inertia) << " "
-      << std::max(i.iyy, s.min_inertia) << " " << std::max(i.izz, s.min_inertia) << " " << i.ixy << " " << i.ixz
-      << " " << i.iyz << "'/>\n";
+  double x = 0, y = 0, z = 0, w = 1;
+  i.origin.rotation.getQuaternion(x, y, z, w);
+  const Eigen::Matrix3d r = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
+  Eigen::Matrix3d inertia;
+  inertia << i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz;
+  const Eigen::Matrix3d body = PhysicalInertia(r * inertia * r.transpose(), s.min_inertia);
+  out << indent << "<inertial pos='" << Pos(i.origin) << "' mass='" << std::max(i.mass, s.min_mass)
+      << "' fullinertia='" << body(0, 0) << " " << body(1, 1) << " " << body(2, 2) << " " << body(0, 1) << " "
+      << body(0, 2) << " " << body(1, 2) << "'/>\n";
 }
 
 void WriteGeoms(std::ostringstream& out, const urdf::Link& link, const std::string& indent) {
