@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "geometry/field_error.h"
+#include "kinematics/builtin_robot.h"
 
 namespace stairplan::cli {
 
@@ -65,6 +66,12 @@ void WriteFileAtomically(const std::string& path, const std::string& contents) {
     std::remove(temporary.c_str());
     throw BadInput(path + ": cannot rename the temporary file into place");
   }
+}
+
+RobotModel LoadRobot(const std::string& path) {
+  if (path.empty()) return BuiltinRobot();
+  if (!std::filesystem::is_regular_file(path)) throw BadInput("--robot: no such file '" + path + "'");
+  return RobotModel::FromUrdfFile(path);
 }
 
 void MakeOutputDir(const std::string& dir, const std::string& flag) {

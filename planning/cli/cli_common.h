@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "kinematics/robot_model.h"
+
 namespace stairplan::cli {
 
 constexpr int kExitOk = 0;
@@ -44,6 +46,9 @@ int Guarded(const std::string& command, const std::function<int()>& body);
 
 /// Writes `contents` to `path` through a temporary file and a rename; throws BadInput on failure.
 void WriteFileAtomically(const std::string& path, const std::string& contents);
+
+/// The robot named by --robot: the built-in stairbot when `path` is empty; BadInput when missing.
+RobotModel LoadRobot(const std::string& path);
 
 /// Creates `dir` (and parents) or throws BadInput naming the flag.
 void MakeOutputDir(const std::string& dir, const std::string& flag);

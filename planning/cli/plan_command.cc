@@ -7,9 +7,8 @@
 
 #include "geometry/field_error.h"
 #include "geometry/stair_spec_yaml.h"
-#include "kinematics/builtin_robot.h"
 #include "planning/cli/cli_common.h"
-#include "planning/crawl_planner.h"
+#include "planning/plan_pipeline.h"
 #include "planning/plan_json.h"
 #include "planning/plan_svg.h"
 
@@ -79,12 +78,6 @@ Facing ParseFacing(const std::string& text) {
   throw BadInput("--facing: must be 'forward' or 'backward' (got '" + text + "')");
 }
 
-RobotModel LoadRobot(const std::string& path) {
-  if (path.empty()) return BuiltinRobot();
-  if (!std::filesystem::is_regular_file(path)) throw BadInput("--robot: no such file '" + path + "'");
-  return RobotModel::FromUrdfFile(path);
-}
-
 double MicrosSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
 }
@@ -110,19 +103,17 @@ int RunPlan(const std::vector<std::string>& args) {
   return Guarded("plan", [&] {
     const auto t0 = std::chrono::steady_clock::now();
     const Staircase stairs = ResolveStairs(o);
-    const Facing facing = ParseFacing(o.facing);
+    PipelineOptions options;
+    options.facing = ParseFacing(o.facing);
     const RobotModel robot = LoadRobot(o.robot);
-    const double t_load = MicrosSince(t0);
-    const auto t1 = std::chrono::steady_clock::now();
-    const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, facing);
-    const double t_map = MicrosSince(t1);
-    const auto t2 = std::chrono::steady_clock::now();
-    Plan plan = PlanCrawl(robot, stairs, map);
-    plan.timing_us = {{"load", t_load}, {"map", t_map}, {"plan", MicrosSince(t2)}};
-    const nlohmann::json json = PlanToJson(plan, stairs, map);
+    const double load_us = MicrosSince(t0);
+    PipelineResult result = RunPipeline(robot, stairs, options);
+    Plan& plan = result.plan;
+    plan.timing_us.insert(plan.timing_us.begin(), {"load", load_us});
+    const nlohmann::json json = PlanToJson(plan, stairs, result.map);
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");
-    WriteFileAtomically(o.out + "/plan.svg", PlanToSvg(plan, stairs, map));
+    WriteFileAtomically(o.out + "/plan.svg", PlanToSvg(plan, stairs, result.map));
     if (o.json) {
       std::cout << json.dump(2) << "\n";
     } else {

@@ -1,0 +1,150 @@
+// `stairplan sweep`: plan and validate over a grid of stair geometries; CSV rows, an SVG heatmap,
+// threads and shards with output identical for any split. `stairplan sweep-merge` joins shards.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "geometry/field_error.h"
+#include "planning/cli/cli_common.h"
+#include "planning/plan_pipeline.h"
+#include "planning/sweep/sweep_runner.h"
+
+namespace stairplan::cli {
+namespace {
+
+struct SweepOptions {
+  std::string rise = "0.10:0.25:20", run = "0.20:0.35:20", nosing = "0.02", steps = "7";
+  std::string directions = "up", facing = "forward", robot, csv, svg, shard = "0/1";
+  int threads = 1;
+  bool times = false;
+};
+
+SweepGrid ParseGrid(const SweepOptions& o) {
+  SweepGrid grid;
+  grid.rise = SweepAxis::Parse(o.rise, "--rise");
+  grid.run = SweepAxis::Parse(o.run, "--run");
+  grid.nosing = SweepAxis::Parse(o.nosing, "--nosing");
+  grid.steps = SweepAxis::Parse(o.steps, "--steps");
+  grid.directions = ParseDirections(o.directions, "--direction");
+  if (o.facing != "forward" && o.facing != "backward") {
+    throw BadInput("--facing: must be 'forward' or 'backward' (got '" + o.facing + "')");
+  }
+  grid.facing = o.facing == "forward" ? Facing::kForward : Facing::kBackward;
+  return grid;
+}
+
+// One grid point through the same pipeline as `stairplan plan`.
+SweepRow Evaluate(const SweepPoint& point, const RobotModel& robot, Facing facing) {
+  SweepRow row;
+  row.point = point;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const Staircase stairs(point.Spec());
+    PipelineOptions options;
+    options.facing = facing;
+    const PipelineResult result = RunPipeline(robot, stairs, options);
+    row.cadence_s = result.plan.cadence_s;
+    row.footsteps = static_cast<int>(result.plan.footsteps.size());
+    if (result.plan.status != PlanStatus::kOk) {
+      row.status = "infeasible";
+      row.reason = result.plan.status_reason;
+    } else {
+      row.status = "valid";
+      for (const Footstep& f : result.plan.footsteps) {
+        if (!f.in_step_region) {
+          row.status = "invalid";
+          row.reason = "foot outside its step region";
+          break;
+        }
+      }
+    }
+  } catch (const std::invalid_argument& e) {
+    row.status = "bad_stairs";
+    row.reason = e.what();
+  }
+  row.plan_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  return row;
+}
+
+void ShowProgress(int done, int total) {
+  const int width = 40, filled = total > 0 ? width * done / total : width;
+  std::fprintf(stderr, "\r[%s%s] %d/%d", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+               std::string(static_cast<std::size_t>(width - filled), '.').c_str(), done, total);
+  if (done == total) std::fprintf(stderr, "\n");
+}
+
+int RunSweepCommand(const std::vector<std::string>& args) {
+  CLI::App app("Plan and validate over a grid of stair geometries", "sweep");
+  SweepOptions o;
+  app.add_option("--rise", o.rise, "Rise axis A:B:N or a value [m] (default 0.10:0.25:20)");
+  app.add_option("--run", o.run, "Run axis A:B:N or a value [m] (default 0.20:0.35:20)");
+  app.add_option("--nosing", o.nosing, "Nosing axis A:B:N or a value [m] (default 0.02)");
+  app.add_option("--steps", o.steps, "Step count axis A:B:N or a value (default 7)");
+  app.add_option("--direction", o.directions, "up, down or up,down (default up)");
+  app.add_option("--facing", o.facing, "forward or backward (default forward)");
+  app.add_option("--robot", o.robot, "Robot URDF (default: the built-in stairbot)");
+  app.add_option("--threads", o.threads, "Worker threads (default 1); the output does not depend on it")
+      ->check(CLI::Range(1, 256));
+  app.add_option("--shard", o.shard, "Compute only shard i of N (i/N); join with sweep-merge");
+  app.add_option("--csv", o.csv, "Output CSV file")->required();
+  app.add_option("--svg", o.svg, "Output SVG heatmap");
+  app.add_flag("--times", o.times, "Add plan_us and validate_us columns (not reproducible)");
+  if (const int code = Parse(app, args); code >= 0) return code;
+  return Guarded("sweep", [&] {
+    SweepGrid grid;
+    Shard shard;
+    try {
+      grid = ParseGrid(o);
+      shard = Shard::Parse(o.shard, "--shard");
+    } catch (const FieldError& e) {
+      throw BadInput(e.what());
+    }
+    const RobotModel robot = LoadRobot(o.robot);
+    const std::vector<SweepPoint> points = EnumeratePoints(grid);
+    const bool terminal = isatty(STDERR_FILENO) != 0;
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<SweepRow> rows = RunSweep(
+        points, [&](const SweepPoint& p) { return Evaluate(p, robot, grid.facing); }, o.threads, shard,
+        terminal ? SweepProgress(ShowProgress) : SweepProgress());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    WriteFileAtomically(o.csv, SweepToCsv(rows, o.times));
+    if (!o.svg.empty()) WriteFileAtomically(o.svg, SweepHeatmapSvg(rows, grid));
+    int valid = 0;
+    for (const SweepRow& r : rows) valid += r.status == "valid" ? 1 : 0;
+    std::cout << "stairplan sweep: " << rows.size() << " points, " << valid << " valid; " << seconds << " s on "
+              << o.threads << " thread(s), " << (seconds > 0 ? rows.size() / seconds / o.threads : 0.0)
+              << " points/s per thread\n";
+    return kExitOk;
+  });
+}
+
+int RunSweepMerge(const std::vector<std::string>& args) {
+  CLI::App app("Merge sweep shards into the CSV of the whole sweep", "sweep-merge");
+  std::string out;
+  std::vector<std::string> inputs;
+  app.add_option("--csv", out, "Output CSV file")->required();
+  app.add_option("inputs", inputs, "Shard CSV files")->required();
+  if (const int code = Parse(app, args); code >= 0) return code;
+  return Guarded("sweep-merge", [&] {
+    std::vector<std::pair<std::string, std::string>> texts;
+    for (const std::string& path : inputs) {
+      std::ifstream in(path);
+      if (!in) throw BadInput(path + ": cannot open");
+      std::stringstream buffer;
+      buffer << in.rdbuf();
+      texts.emplace_back(path, buffer.str());
+    }
+    WriteFileAtomically(out, MergeSweepCsv(texts));
+    return kExitOk;
+  });
+}
+
+const CommandRegistrar kSweep({"sweep", "plan and validate over a grid of stair geometries (CSV, SVG)", RunSweepCommand});
+const CommandRegistrar kMerge({"sweep-merge", "merge sweep shards into one CSV", RunSweepMerge});
+
+}  // namespace
+}  // namespace stairplan::cli

@@ -1,0 +1,61 @@
+// The grid of a parameter sweep over stair geometries: axes written "A:B:N", the points in a fixed
+// order (so any shard or thread count yields the same rows), and sharding for batch systems.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/constrained_map.h"
+#include "geometry/staircase.h"
+
+namespace stairplan {
+
+/// N evenly spaced values from lo to hi inclusive (N = 1: just lo).
+struct SweepAxis {
+  double lo = 0.0;
+  double hi = 0.0;
+  int count = 1;
+
+  std::vector<double> Values() const;
+  /// Parses "A:B:N" or a single value "V"; throws FieldError naming `flag`.
+  static SweepAxis Parse(const std::string& text, const std::string& flag);
+};
+
+/// Everything a sweep varies and holds fixed.
+struct SweepGrid {
+  SweepAxis rise{0.10, 0.25, 20};
+  SweepAxis run{0.20, 0.35, 20};
+  SweepAxis nosing{0.02, 0.02, 1};
+  SweepAxis steps{7, 7, 1};  ///< whole numbers
+  std::vector<TravelDirection> directions{TravelDirection::kUp};
+  Facing facing = Facing::kForward;
+};
+
+/// One grid point: a staircase to plan and validate.
+struct SweepPoint {
+  int index = 0;
+  TravelDirection direction = TravelDirection::kUp;
+  int steps = 7;
+  double nosing = 0.02;
+  double rise = 0.17;
+  double run = 0.27;
+
+  StairSpec Spec() const;
+};
+
+/// Every point, in the fixed order direction > steps > nosing > rise > run.
+std::vector<SweepPoint> EnumeratePoints(const SweepGrid& grid);
+
+/// Which part of a sweep this process computes: points with index % count == index.
+struct Shard {
+  int index = 0;
+  int count = 1;
+  /// Parses "i/N"; throws FieldError naming `flag`.
+  static Shard Parse(const std::string& text, const std::string& flag);
+  bool Holds(int point_index) const { return point_index % count == index; }
+};
+
+/// Parses "up", "down" or "up,down"; throws FieldError naming `flag`.
+std::vector<TravelDirection> ParseDirections(const std::string& text, const std::string& flag);
+
+}  // namespace stairplan

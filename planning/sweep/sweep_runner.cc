@@ -1,0 +1,123 @@
+#include "planning/sweep/sweep_runner.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+namespace stairplan {
+namespace {
+
+std::string Number(double v) {
+  if (!std::isfinite(v)) return "";
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.6g", v);
+  return buffer;
+}
+
+std::string Quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += (c == '\n' || c == '\r') ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+// The point index: the first field of a data row.
+int RowIndex(const std::string& line, const std::string& file, int line_number) {
+  const std::size_t comma = line.find(',');
+  std::size_t used = 0;
+  int index = -1;
+  try {
+    index = std::stoi(line.substr(0, comma), &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (comma == std::string::npos || used != comma || index < 0) {
+    throw std::invalid_argument(file + ":" + std::to_string(line_number) + ": not a sweep row");
+  }
+  return index;
+}
+
+}  // namespace
+
+std::vector<SweepRow> RunSweep(const std::vector<SweepPoint>& points, const PointEvaluator& evaluate, int threads,
+                               const Shard& shard, const SweepProgress& progress) {
+  std::vector<const SweepPoint*> mine;
+  for (const SweepPoint& p : points) {
+    if (shard.Holds(p.index)) mine.push_back(&p);
+  }
+  std::vector<SweepRow> rows(mine.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  int done = 0;
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < mine.size(); i = next++) {
+      rows[i] = evaluate(*mine[i]);
+      if (progress) {
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        progress(++done, static_cast<int>(mine.size()));
+      }
+    }
+  };
+  const int count = std::max(1, std::min(threads, static_cast<int>(mine.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < count; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return rows;
+}
+
+std::string SweepCsvHeader(bool with_times) {
+  std::string header =
+      "index,direction,steps,rise,run,nosing,status,cadence_s,footsteps,min_clearance_m,min_stability_margin_m,reason";
+  return with_times ? header + ",plan_us,validate_us" : header;
+}
+
+std::string SweepToCsv(const std::vector<SweepRow>& rows, bool with_times) {
+  std::ostringstream out;
+  out << SweepCsvHeader(with_times) << "\n";
+  for (const SweepRow& r : rows) {
+    out << r.point.index << "," << ToString(r.point.direction) << "," << r.point.steps << "," << Number(r.point.rise)
+        << "," << Number(r.point.run) << "," << Number(r.point.nosing) << "," << r.status << ","
+        << Number(r.cadence_s) << "," << r.footsteps << "," << Number(r.min_clearance_m) << ","
+        << Number(r.min_stability_margin_m) << "," << Quoted(r.reason);
+    if (with_times) out << "," << Number(r.plan_us) << "," << Number(r.validate_us);
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string MergeSweepCsv(const std::vector<std::pair<std::string, std::string>>& files_and_texts) {
+  std::string header;
+  std::map<int, std::string> rows;
+  for (const auto& [file, text] : files_and_texts) {
+    std::istringstream in(text);
+    std::string line;
+    if (!std::getline(in, line) || line.rfind("index,", 0) != 0) {
+      throw std::invalid_argument(file + ":1: not a sweep CSV (no header)");
+    }
+    if (header.empty()) header = line;
+    if (line != header) throw std::invalid_argument(file + ":1: header differs from the first file's");
+    for (int number = 2; std::getline(in, line); ++number) {
+      if (line.empty()) continue;
+      const int index = RowIndex(line, file, number);
+      if (!rows.emplace(index, line).second) {
+        throw std::invalid_argument(file + ":" + std::to_string(number) + ": point " + std::to_string(index) + " appears twice");
+      }
+    }
+  }
+  if (header.empty()) throw std::invalid_argument("sweep-merge: no input files");
+  std::ostringstream out;
+  out << header << "\n";
+  for (const auto& [index, line] : rows) out << line << "\n";
+  return out.str();
+}
+
+}  // namespace stairplan

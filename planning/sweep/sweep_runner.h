@@ -1,0 +1,48 @@
+// Running a sweep: each grid point planned and validated by an evaluator, on K threads, with the
+// rows in point order whatever the thread count; CSV output, merging of shards, an SVG heatmap.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "planning/sweep/sweep_grid.h"
+
+namespace stairplan {
+
+/// The outcome at one grid point.
+struct SweepRow {
+  SweepPoint point;
+  std::string status;       ///< "valid", "invalid" (plan found, validation failed), "infeasible", "bad_stairs"
+  std::string reason;       ///< the first violation or why there is no plan; empty when valid
+  double cadence_s = 0.0;
+  int footsteps = 0;
+  double min_clearance_m = 0.0;
+  double min_stability_margin_m = 0.0;
+  double plan_us = 0.0;     ///< not deterministic: only written with times
+  double validate_us = 0.0;
+};
+
+/// Plans and validates one point. Must be thread-safe and must not throw for any stairs.
+using PointEvaluator = std::function<SweepRow(const SweepPoint&)>;
+
+/// Called after each finished point with (done, total); from worker threads, serialised.
+using SweepProgress = std::function<void(int done, int total)>;
+
+/// Evaluates the points of `shard` on `threads` threads; rows are in point order.
+std::vector<SweepRow> RunSweep(const std::vector<SweepPoint>& points, const PointEvaluator& evaluate, int threads,
+                               const Shard& shard = {}, const SweepProgress& progress = nullptr);
+
+/// The CSV header line (without newline); `with_times` adds plan_us and validate_us.
+std::string SweepCsvHeader(bool with_times);
+/// The CSV text of `rows` with header; byte-identical for identical results.
+std::string SweepToCsv(const std::vector<SweepRow>& rows, bool with_times);
+
+/// Merges shard CSVs into the CSV of the whole sweep. Throws std::invalid_argument naming the
+/// file when headers differ, a row is malformed, or a point index appears twice.
+std::string MergeSweepCsv(const std::vector<std::pair<std::string, std::string>>& files_and_texts);
+
+/// A rise x run heatmap per direction with the building-code boxes drawn.
+std::string SweepHeatmapSvg(const std::vector<SweepRow>& rows, const SweepGrid& grid);
+
+}  // namespace stairplan
