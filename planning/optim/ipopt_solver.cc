@@ -231,7 +231,8 @@ void IpoptSolver::DoSolve(const Program& program, SolveResult* result) {
                                     std::chrono::duration<double>(has_deadline ? settings_.time_limit_s : 0.0));
   const bool exact = program.IsQuadratic() && settings_.exact_hessian_for_qp;
   Ipopt::SmartPtr<ProgramNlp> nlp = new ProgramNlp(program, exact, deadline, has_deadline);
-  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  // No console journal: the library never prints (Ipopt would report bad options on stdout).
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication(/*create_console_out=*/false);
   auto& options = *app->Options();
   options.SetStringValue("sb", "yes");
   options.SetIntegerValue("print_level", 0);
@@ -245,10 +246,11 @@ void IpoptSolver::DoSolve(const Program& program, SolveResult* result) {
   } else {
     options.SetStringValue("hessian_approximation", "limited-memory");
   }
-  for (const auto& [key, value] : settings_.string_options) options.SetStringValue(key, value);
-  for (const auto& [key, value] : settings_.numeric_options) options.SetNumericValue(key, value);
-  for (const auto& [key, value] : settings_.integer_options) options.SetIntegerValue(key, value);
-  if (app->Initialize() != Ipopt::Solve_Succeeded) {
+  bool options_ok = true;
+  for (const auto& [key, value] : settings_.string_options) options_ok &= options.SetStringValue(key, value);
+  for (const auto& [key, value] : settings_.numeric_options) options_ok &= options.SetNumericValue(key, value);
+  for (const auto& [key, value] : settings_.integer_options) options_ok &= options.SetIntegerValue(key, value);
+  if (!options_ok || app->Initialize() != Ipopt::Solve_Succeeded) {
     result->status = SolveStatus::kInvalidInput;  // an option Ipopt rejects
     result->x = program.initial_guess();
     return;

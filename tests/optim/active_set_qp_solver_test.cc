@@ -1,0 +1,253 @@
+// ActiveSetQpSolver: known optima, KKT conditions of its answers, agreement with Ipopt, warm
+// starts, singular Hessians, dependent equalities, and the failure statuses.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "planning/optim/active_set_qp_solver.h"
+#include "planning/optim/body_qp_example.h"
+#include "planning/optim/ipopt_solver.h"
+
+using namespace stairplan::optim;
+
+namespace {
+
+// Checks the KKT conditions of a QP result in the documented dual convention.
+void CheckKkt(const Program& p, const SolveResult& r, double tol) {
+  const Eigen::VectorXd ax = p.constraint_matrix() * r.x;
+  const Eigen::VectorXd stationarity =
+      p.hessian() * r.x + p.linear_cost() + p.constraint_matrix().transpose() * r.row_duals + r.bound_duals;
+  CHECK(stationarity.lpNorm<Eigen::Infinity>() < tol);
+  CHECK(p.MaxViolation(r.x) < tol);
+  const auto complementary = [&](double value, double lo, double hi, double dual) {
+    if (dual < -tol) CHECK(std::abs(value - lo) < tol);  // pushed up by the lower bound
+    if (dual > tol) CHECK(std::abs(value - hi) < tol);
+  };
+  for (int i = 0; i < p.num_rows(); ++i) complementary(ax[i], p.row_lower()[i], p.row_upper()[i], r.row_duals[i]);
+  for (int j = 0; j < p.num_variables(); ++j) {
+    complementary(r.x[j], p.variable_lower()[j], p.variable_upper()[j], r.bound_duals[j]);
+  }
+}
+
+// A random strictly convex QP with box bounds, two-sided rows and equalities; feasible by
+// construction (the rows' bounds bracket A x_feasible).
+Program RandomQp(int n, int m, int equalities, unsigned seed, bool singular = false) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  Program p;
+  const VariableBlock x = p.AddVariables("x", n);
+  Eigen::MatrixXd M(n, n);
+  for (int i = 0; i < n; ++i) for (int j = 0; j < n; ++j) M(i, j) = normal(rng);
+  Eigen::MatrixXd Q = M * M.transpose() / n;
+  if (singular) {
+    Eigen::MatrixXd B = M.leftCols(n / 3);
+    Q = B * B.transpose() / n;  // rank n/3
+  } else {
+    Q += 0.1 * Eigen::MatrixXd::Identity(n, n);
+  }
+  Eigen::VectorXd g(n);
+  for (int i = 0; i < n; ++i) g[i] = 3.0 * normal(rng);
+  p.AddQuadraticCost(x, Q, g);
+  Eigen::VectorXd x_feasible(n);
+  for (int i = 0; i < n; ++i) x_feasible[i] = 0.5 * normal(rng);
+  Eigen::MatrixXd A(m, n);
+  for (int i = 0; i < m; ++i) for (int j = 0; j < n; ++j) A(i, j) = normal(rng);
+  const Eigen::VectorXd ax = A * x_feasible;
+  Eigen::VectorXd lo(m), hi(m);
+  for (int i = 0; i < m; ++i) {
+    if (i < equalities) {
+      lo[i] = hi[i] = ax[i];
+    } else {
+      lo[i] = uniform(rng) < 0.3 ? -kInf : ax[i] - uniform(rng);
+      hi[i] = uniform(rng) < 0.3 ? kInf : ax[i] + uniform(rng);
+    }
+  }
+  p.AddLinearConstraint({{x, A}}, lo, hi, "rows");
+  Eigen::VectorXd bl(n), bu(n);
+  for (int i = 0; i < n; ++i) {
+    bl[i] = x_feasible[i] - 0.2 - uniform(rng);
+    bu[i] = x_feasible[i] + 0.2 + uniform(rng);
+  }
+  p.SetVariableBounds(x, bl, bu);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("a small QP with an active inequality reaches its known optimum", "[active_set]") {
+  // min (x-1)^2 + (y-2.5)^2 s.t. x - 2y >= -2, -x - 2y >= -6, -x + 2y >= -2, x, y >= 0
+  // (the textbook example; optimum (1.4, 1.7), objective 0.8 for this scaling).
+  Program p;
+  const VariableBlock v = p.AddVariables("xy", 2);
+  p.AddQuadraticCost(v, 2.0 * Eigen::Matrix2d::Identity(), Eigen::Vector2d(-2, -5));
+  p.AddConstant(1.0 + 6.25);
+  Eigen::MatrixXd A(3, 2);
+  A << 1, -2, -1, -2, -1, 2;
+  p.AddLinearConstraint({{v, A}}, Eigen::Vector3d(-2, -6, -2), Eigen::Vector3d::Constant(kInf), "rows");
+  p.SetVariableBounds(v, Eigen::Vector2d::Zero(), Eigen::Vector2d::Constant(kInf));
+  ActiveSetQpSolver solver;
+  const SolveResult r = solver.Solve(p);
+  REQUIRE(r.status == SolveStatus::kSolved);
+  CHECK(r.x[0] == Approx(1.4).margin(1e-12));
+  CHECK(r.x[1] == Approx(1.7).margin(1e-12));
+  CHECK(r.objective == Approx(0.8).margin(1e-12));
+  CHECK(r.active_set.rows[0] == -1);  // x - 2y >= -2 holds with equality at its lower side
+  CheckKkt(p, r, 1e-9);
+}
+
+TEST_CASE("random strictly convex QPs match Ipopt and satisfy KKT", "[active_set]") {
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const Program p = RandomQp(25, 30, 3, seed);
+    ActiveSetQpSolver ours;
+    IpoptSolver ipopt;
+    const SolveResult a = ours.Solve(p);
+    const SolveResult b = ipopt.Solve(p);
+    INFO("seed " << seed);
+    REQUIRE(a.status == SolveStatus::kSolved);
+    REQUIRE(b.status == SolveStatus::kSolved);
+    CHECK(a.objective == Approx(b.objective).epsilon(1e-6));
+    CHECK((a.x - b.x).lpNorm<Eigen::Infinity>() < 1e-5);
+    CheckKkt(p, a, 1e-8);
+  }
+}
+
+TEST_CASE("singular Hessians (proximal iterations) match Ipopt", "[active_set]") {
+  for (unsigned seed = 10; seed <= 13; ++seed) {
+    const Program p = RandomQp(24, 20, 2, seed, /*singular=*/true);
+    ActiveSetQpSolver ours;
+    IpoptSolver ipopt;
+    const SolveResult a = ours.Solve(p);
+    const SolveResult b = ipopt.Solve(p);
+    INFO("seed " << seed);
+    REQUIRE(a.status == SolveStatus::kSolved);
+    REQUIRE(b.status == SolveStatus::kSolved);
+    CHECK(a.info.outer_iterations >= 1);
+    CHECK(a.objective == Approx(b.objective).epsilon(1e-6).margin(1e-7));
+    CHECK(p.MaxViolation(a.x) < 1e-8);
+  }
+}
+
+TEST_CASE("a linear program (H = 0) solves to its vertex", "[active_set]") {
+  // max x + y s.t. x + 2y <= 4, 3x + y <= 6, x, y >= 0: optimum (1.6, 1.2), value -2.8.
+  Program p;
+  const VariableBlock v = p.AddVariables("xy", 2);
+  p.AddLinearCost(v, Eigen::Vector2d(-1, -1));
+  Eigen::MatrixXd A(2, 2);
+  A << 1, 2, 3, 1;
+  p.AddLinearConstraint({{v, A}}, Eigen::Vector2d::Constant(-kInf), Eigen::Vector2d(4, 6), "rows");
+  p.SetVariableBounds(v, Eigen::Vector2d::Zero(), Eigen::Vector2d::Constant(kInf));
+  const SolveResult r = ActiveSetQpSolver().Solve(p);
+  REQUIRE(r.status == SolveStatus::kSolved);
+  CHECK(r.x[0] == Approx(1.6).margin(1e-9));
+  CHECK(r.x[1] == Approx(1.2).margin(1e-9));
+  CHECK(r.objective == Approx(-2.8).margin(1e-9));
+}
+
+TEST_CASE("dependent equality rows are tolerated, contradictory ones are infeasible", "[active_set]") {
+  Program p;
+  const VariableBlock v = p.AddVariables("v", 3);
+  p.AddQuadraticCost(v, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
+  Eigen::MatrixXd A(3, 3);
+  A << 1, 1, 0, 0, 1, 1, 1, 2, 1;  // row 3 = row 1 + row 2
+  const ConstraintRows rows = p.AddLinearConstraint({{v, A}}, Eigen::Vector3d(1, 1, 2), Eigen::Vector3d(1, 1, 2), "eq");
+  ActiveSetQpSolver solver;
+  SolveResult r = solver.Solve(p);
+  REQUIRE(r.status == SolveStatus::kSolved);
+  // min |v|^2 s.t. v1 + v2 = 1, v2 + v3 = 1: v = (1/3, 2/3, 1/3).
+  CHECK(r.x[0] == Approx(1.0 / 3));
+  CHECK(r.x[1] == Approx(2.0 / 3));
+  CHECK(r.x[2] == Approx(1.0 / 3));
+  p.SetConstraintBounds(rows, Eigen::Vector3d(1, 1, 2.5), Eigen::Vector3d(1, 1, 2.5));
+  r = solver.Solve(p);
+  CHECK(r.status == SolveStatus::kInfeasible);
+}
+
+TEST_CASE("an infeasible QP is reported as infeasible", "[active_set]") {
+  Program p;
+  const VariableBlock v = p.AddVariables("v", 2);
+  p.AddQuadraticCost(v, Eigen::Matrix2d::Identity(), Eigen::Vector2d::Zero());
+  Eigen::MatrixXd A(2, 2);
+  A << 1, 1, 1, 1;
+  p.AddLinearConstraint({{v, A}}, Eigen::Vector2d(2, -kInf), Eigen::Vector2d(kInf, 1), "contradiction");
+  const SolveResult r = ActiveSetQpSolver().Solve(p);
+  CHECK(r.status == SolveStatus::kInfeasible);
+}
+
+TEST_CASE("NaN in the data gives InvalidInput, a nonlinear program too", "[active_set]") {
+  Program p;
+  const VariableBlock v = p.AddVariables("v", 2);
+  p.AddQuadraticCost(v, Eigen::Matrix2d::Identity(), Eigen::Vector2d::Zero());
+  ActiveSetQpSolver solver;
+  CHECK(solver.Solve(p).status == SolveStatus::kSolved);
+  p.MutableHessian()(0, 1) = std::nan("");
+  CHECK(solver.Solve(p).status == SolveStatus::kInvalidInput);
+  p.MutableHessian()(0, 1) = 0.0;
+  p.MutableLinearCost()[1] = std::nan("");
+  CHECK(solver.Solve(p).status == SolveStatus::kInvalidInput);
+  p.MutableLinearCost()[1] = 0.0;
+  NonlinearCost cost{"quartic", {v}, [](const Eigen::VectorXd& x) { return x.array().pow(4).sum(); },
+                     [](const Eigen::VectorXd& x, int, Eigen::Ref<Eigen::VectorXd> out) { out = 4 * x.array().pow(3).matrix(); }};
+  p.AddNonlinearCost(cost);
+  CHECK(solver.Solve(p).status == SolveStatus::kInvalidInput);
+}
+
+TEST_CASE("a 1 us time limit stops promptly with TimeLimit", "[active_set]") {
+  const Program p = RandomQp(60, 80, 5, 42);
+  ActiveSetQpSettings settings;
+  settings.time_limit_s = 1e-6;
+  ActiveSetQpSolver solver(settings);
+  const SolveResult r = solver.Solve(p);
+  CHECK(r.status == SolveStatus::kTimeLimit);
+  settings.time_limit_s = kInf;
+  settings.max_iterations = 2;
+  ActiveSetQpSolver limited(settings);
+  CHECK(limited.Solve(p).status == SolveStatus::kIterationLimit);
+}
+
+TEST_CASE("settings are validated naming the field", "[active_set]") {
+  ActiveSetQpSettings s;
+  s.feasibility_tol = -1;
+  CHECK_THROWS_WITH(ActiveSetQpSolver(s), Catch::Contains("feasibility_tol"));
+}
+
+TEST_CASE("warm starts reproduce the cold solution with fewer iterations", "[active_set]") {
+  BodyQpExample e = MakeBodyQpExample(40);
+  ActiveSetQpSettings cold_settings;
+  cold_settings.warm_start = false;
+  ActiveSetQpSolver warm, cold(cold_settings);
+  SolveResult rw, rc;
+  int warm_iterations = 0, cold_iterations = 0;
+  for (int cycle = 0; cycle < 50; ++cycle) {
+    UpdateBodyQpExample(cycle, &e);
+    warm.Solve(e.program, &rw);
+    cold.Solve(e.program, &rc);
+    REQUIRE(rw.status == SolveStatus::kSolved);
+    REQUIRE(rc.status == SolveStatus::kSolved);
+    CHECK((rw.x - rc.x).lpNorm<Eigen::Infinity>() < 1e-9);
+    if (cycle > 0) {
+      warm_iterations += rw.info.iterations;
+      cold_iterations += rc.info.iterations;
+    }
+  }
+  CHECK(warm_iterations < cold_iterations);
+  // A stored active set works as a warm start for a fresh solver too.
+  ActiveSetQpSolver fresh;
+  fresh.SetWarmStart(rw.active_set);
+  const SolveResult again = fresh.Solve(e.program);
+  REQUIRE(again.status == SolveStatus::kSolved);
+  CHECK(again.info.iterations == 0);
+  CHECK((again.x - rw.x).lpNorm<Eigen::Infinity>() < 1e-9);
+}
+
+TEST_CASE("the automatic choice sends QPs to the active-set solver and NLPs to Ipopt", "[active_set]") {
+  Program p;
+  const VariableBlock v = p.AddVariables("v", 1);
+  p.AddQuadraticCost(v, Eigen::MatrixXd::Identity(1, 1), Eigen::VectorXd::Zero(1));
+  CHECK(MakeSolver(p)->name() == "active-set");
+  p.AddNonlinearCost({"c", {v}, [](const Eigen::VectorXd& x) { return std::cosh(x[0]); },
+                      [](const Eigen::VectorXd& x, int, Eigen::Ref<Eigen::VectorXd> out) { out[0] = std::sinh(x[0]); }});
+  CHECK(MakeSolver(p)->name() == "ipopt");
+  CHECK_THROWS_WITH(MakeSolver("gurobi"), Catch::Contains("gurobi"));
+}

@@ -1,0 +1,171 @@
+// Ipopt and NLopt on nonlinear programs with known optima (Hock-Schittkowski 71 and 100), the
+// derivative-free option, and time limits that hold on every solve.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "planning/optim/ipopt_solver.h"
+#include "planning/optim/nlopt_solver.h"
+
+using namespace stairplan::optim;
+
+namespace {
+
+// HS71: min x1 x4 (x1 + x2 + x3) + x3 s.t. x1 x2 x3 x4 >= 25, |x|^2 = 40, 1 <= x <= 5.
+Program Hs71() {
+  Program p;
+  const VariableBlock x = p.AddVariables("x", 4);
+  p.SetVariableBounds(x, Eigen::Vector4d::Constant(1), Eigen::Vector4d::Constant(5));
+  p.SetInitialGuess(x, Eigen::Vector4d(1, 5, 5, 1));
+  p.AddNonlinearCost({"objective", {x},
+                      [](const Eigen::VectorXd& v) { return v[0] * v[3] * (v[0] + v[1] + v[2]) + v[2]; },
+                      [](const Eigen::VectorXd& v, int, Eigen::Ref<Eigen::VectorXd> g) {
+                        g[0] = v[3] * (2 * v[0] + v[1] + v[2]);
+                        g[1] = v[0] * v[3];
+                        g[2] = v[0] * v[3] + 1;
+                        g[3] = v[0] * (v[0] + v[1] + v[2]);
+                      }});
+  NonlinearConstraint c;
+  c.name = "product_and_sphere";
+  c.blocks = {x};
+  c.lower = Eigen::Vector2d(25, 40);
+  c.upper = Eigen::Vector2d(kInf, 40);
+  c.value = [](const Eigen::VectorXd& v, Eigen::Ref<Eigen::VectorXd> out) {
+    out[0] = v.prod();
+    out[1] = v.squaredNorm();
+  };
+  c.jacobian = [](const Eigen::VectorXd& v, int, Eigen::Ref<Eigen::MatrixXd> J) {
+    J.row(0) << v[1] * v[2] * v[3], v[0] * v[2] * v[3], v[0] * v[1] * v[3], v[0] * v[1] * v[2];
+    J.row(1) = 2 * v.transpose();
+  };
+  p.AddNonlinearConstraint(c);
+  return p;
+}
+
+// HS100: seven variables, a polynomial objective and four polynomial inequalities.
+Program Hs100() {
+  Program p;
+  const VariableBlock x = p.AddVariables("x", 7);
+  Eigen::VectorXd x0(7);
+  x0 << 1, 2, 0, 4, 0, 1, 1;
+  p.SetInitialGuess(x, x0);
+  p.AddNonlinearCost({"objective", {x},
+                      [](const Eigen::VectorXd& v) {
+                        return std::pow(v[0] - 10, 2) + 5 * std::pow(v[1] - 12, 2) + std::pow(v[2], 4) +
+                               3 * std::pow(v[3] - 11, 2) + 10 * std::pow(v[4], 6) + 7 * v[5] * v[5] +
+                               std::pow(v[6], 4) - 4 * v[5] * v[6] - 10 * v[5] - 8 * v[6];
+                      },
+                      [](const Eigen::VectorXd& v, int, Eigen::Ref<Eigen::VectorXd> g) {
+                        g[0] = 2 * (v[0] - 10);
+                        g[1] = 10 * (v[1] - 12);
+                        g[2] = 4 * std::pow(v[2], 3);
+                        g[3] = 6 * (v[3] - 11);
+                        g[4] = 60 * std::pow(v[4], 5);
+                        g[5] = 14 * v[5] - 4 * v[6] - 10;
+                        g[6] = 4 * std::pow(v[6], 3) - 4 * v[5] - 8;
+                      }});
+  NonlinearConstraint c;
+  c.name = "hs100";
+  c.blocks = {x};
+  c.lower = Eigen::Vector4d::Zero();
+  c.upper = Eigen::Vector4d::Constant(kInf);
+  c.value = [](const Eigen::VectorXd& v, Eigen::Ref<Eigen::VectorXd> out) {
+    out[0] = 127 - 2 * v[0] * v[0] - 3 * std::pow(v[1], 4) - v[2] - 4 * v[3] * v[3] - 5 * v[4];
+    out[1] = 282 - 7 * v[0] - 3 * v[1] - 10 * v[2] * v[2] - v[3] + v[4];
+    out[2] = 196 - 23 * v[0] - v[1] * v[1] - 6 * v[5] * v[5] + 8 * v[6];
+    out[3] = -4 * v[0] * v[0] - v[1] * v[1] + 3 * v[0] * v[1] - 2 * v[2] * v[2] - 5 * v[5] + 11 * v[6];
+  };
+  c.jacobian = [](const Eigen::VectorXd& v, int, Eigen::Ref<Eigen::MatrixXd> J) {
+    J.setZero();
+    J.row(0) << -4 * v[0], -12 * std::pow(v[1], 3), -1, -8 * v[3], -5, 0, 0;
+    J.row(1) << -7, -3, -20 * v[2], -1, 1, 0, 0;
+    J.row(2) << -23, -2 * v[1], 0, 0, 0, -12 * v[5], 8;
+    J.row(3) << -8 * v[0] + 3 * v[1], -2 * v[1] + 3 * v[0], -4 * v[2], 0, 0, -5, 11;
+  };
+  p.AddNonlinearConstraint(c);
+  return p;
+}
+
+constexpr double kHs71 = 17.0140173;
+constexpr double kHs100 = 680.6300573;
+
+}  // namespace
+
+TEST_CASE("Ipopt solves HS71 and HS100 to their published optima", "[nonlinear]") {
+  IpoptSolver ipopt;
+  const SolveResult a = ipopt.Solve(Hs71());
+  REQUIRE(a.status == SolveStatus::kSolved);
+  CHECK(a.objective == Approx(kHs71).epsilon(1e-6));
+  CHECK(Hs71().MaxViolation(a.x) < 1e-7);
+  const SolveResult b = ipopt.Solve(Hs100());
+  REQUIRE(b.status == SolveStatus::kSolved);
+  CHECK(b.objective == Approx(kHs100).epsilon(1e-6));
+  CHECK(Hs100().MaxViolation(b.x) < 1e-7);
+}
+
+TEST_CASE("NLopt SLSQP solves HS71 and HS100 to their published optima", "[nonlinear]") {
+  NloptSolver slsqp;
+  const SolveResult a = slsqp.Solve(Hs71());
+  REQUIRE(a.status == SolveStatus::kSolved);
+  CHECK(a.objective == Approx(kHs71).epsilon(1e-6));
+  const SolveResult b = slsqp.Solve(Hs100());
+  REQUIRE(b.status == SolveStatus::kSolved);
+  CHECK(b.objective == Approx(kHs100).epsilon(1e-6));
+}
+
+TEST_CASE("NLopt's derivative-free COBYLA solves a constrained problem", "[nonlinear]") {
+  // min (x - 2)^2 + (y - 1)^2 s.t. x + y <= 2: optimum (1.5, 0.5), value 0.5.
+  Program p;
+  const VariableBlock v = p.AddVariables("v", 2);
+  p.AddQuadraticCost(v, 2 * Eigen::Matrix2d::Identity(), Eigen::Vector2d(-4, -2));
+  p.AddConstant(5);
+  p.AddLinearConstraint({{v, Eigen::RowVector2d(1, 1)}}, Eigen::VectorXd::Constant(1, -kInf), Eigen::VectorXd::Constant(1, 2), "sum");
+  p.SetVariableBounds(v, Eigen::Vector2d::Constant(-10), Eigen::Vector2d::Constant(10));
+  NloptSettings s;
+  s.algorithm = NloptSettings::Algorithm::kCobyla;
+  s.xtol_rel = 1e-10;
+  const SolveResult r = NloptSolver(s).Solve(p);
+  REQUIRE(r.status == SolveStatus::kSolved);
+  CHECK(r.x[0] == Approx(1.5).margin(1e-5));
+  CHECK(r.x[1] == Approx(0.5).margin(1e-5));
+  CHECK(r.objective == Approx(0.5).margin(1e-5));
+}
+
+TEST_CASE("Ipopt's QP duals follow the documented convention", "[nonlinear]") {
+  // min 0.5 |x|^2 s.t. x1 + x2 >= 2, x1 <= 0.5: x = (0.5, 1.5); row dual -1.5, bound dual +1.
+  Program p;
+  const VariableBlock v = p.AddVariables("v", 2);
+  p.AddQuadraticCost(v, Eigen::Matrix2d::Identity(), Eigen::Vector2d::Zero());
+  p.AddLinearConstraint({{v, Eigen::RowVector2d(1, 1)}}, Eigen::VectorXd::Constant(1, 2), Eigen::VectorXd::Constant(1, kInf), "sum");
+  p.SetVariableBounds(v, Eigen::Vector2d(-kInf, -kInf), Eigen::Vector2d(0.5, kInf));
+  const SolveResult r = IpoptSolver().Solve(p);
+  REQUIRE(r.status == SolveStatus::kSolved);
+  CHECK(r.x[0] == Approx(0.5).margin(1e-7));
+  CHECK(r.row_duals[0] == Approx(-1.5).margin(1e-6));
+  CHECK(r.bound_duals[0] == Approx(1.0).margin(1e-6));
+  CHECK(r.info.dual_residual < 1e-6);
+}
+
+TEST_CASE("Ipopt's time limit holds on every solve, not only the first", "[nonlinear]") {
+  IpoptSettings s;
+  s.time_limit_s = 1e-6;
+  IpoptSolver ipopt(s);
+  for (int k = 0; k < 3; ++k) {
+    const SolveResult r = ipopt.Solve(Hs100());
+    INFO("solve " << k);
+    CHECK(r.status == SolveStatus::kTimeLimit);
+  }
+  s.time_limit_s = 10;
+  IpoptSolver relaxed(s);
+  CHECK(relaxed.Solve(Hs100()).status == SolveStatus::kSolved);
+  CHECK(relaxed.Solve(Hs100()).status == SolveStatus::kSolved);
+}
+
+TEST_CASE("Ipopt options pass through; a bad option is invalid input", "[nonlinear]") {
+  IpoptSettings s;
+  s.integer_options["max_iter"] = 2;
+  CHECK(IpoptSolver(s).Solve(Hs100()).status == SolveStatus::kIterationLimit);
+  IpoptSettings bad;
+  bad.string_options["no_such_option"] = "yes";
+  CHECK(IpoptSolver(bad).Solve(Hs71()).status == SolveStatus::kInvalidInput);
+}

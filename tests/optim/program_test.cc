@@ -1,0 +1,100 @@
+// Program: block layout, cost and constraint assembly, in-place updates and their checks.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "planning/optim/program.h"
+
+using namespace stairplan::optim;
+
+namespace {
+
+std::string ThrownMessage(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
+}  // namespace
+
+TEST_CASE("blocks are laid out one after the other", "[program]") {
+  Program p;
+  const VariableBlock a = p.AddVariables("a", 2);
+  const VariableBlock b = p.AddVariables("b", 3);
+  CHECK(a.start == 0);
+  CHECK(b.start == 2);
+  CHECK(p.num_variables() == 5);
+  CHECK(p.variable_lower()[4] == -kInf);
+  CHECK(p.variable_upper()[0] == kInf);
+}
+
+TEST_CASE("costs and constraints assemble into H, g, A", "[program]") {
+  Program p;
+  const VariableBlock a = p.AddVariables("a", 2);
+  const VariableBlock b = p.AddVariables("b", 1);
+  Eigen::MatrixXd Q(2, 2);
+  Q << 2, 1, 0, 4;  // not symmetric: the symmetric part is stored
+  p.AddQuadraticCost(a, Q, Eigen::Vector2d(1, -1));
+  p.AddCrossQuadraticCost(a, b, Eigen::MatrixXd(Eigen::Vector2d(0.5, 0)));
+  p.AddLinearCost(b, Eigen::VectorXd::Constant(1, 3.0));
+  p.AddConstant(7.0);
+  const ConstraintRows rows = p.AddLinearConstraint({{a, Eigen::RowVector2d(1, 1)}, {b, Eigen::MatrixXd::Constant(1, 1, -1)}},
+                                                    Eigen::VectorXd::Constant(1, -1e30), Eigen::VectorXd::Constant(1, 2.0), "sum");
+  CHECK(rows.start == 0);
+  CHECK(p.hessian()(0, 1) == Approx(0.5));
+  CHECK(p.hessian()(1, 0) == Approx(0.5));
+  CHECK(p.hessian()(0, 2) == Approx(0.5));
+  CHECK(p.hessian()(2, 0) == Approx(0.5));
+  CHECK(p.row_lower()[0] == -kInf);  // 1e30 means no bound
+  const Eigen::Vector3d x(1, 2, 3);
+  // 0.5 x'Hx + g'x + c with H = [[2, .5, .5], [.5, 4, 0], [.5, 0, 0]], g = (1, -1, 3).
+  const double expected = 0.5 * (2 * 1 + 4 * 4 + 2 * 0.5 * 1 * 2 + 2 * 0.5 * 1 * 3) + (1 - 2 + 9) + 7;
+  CHECK(p.Objective(x) == Approx(expected));
+  CHECK(p.MaxViolation(x) == Approx(0.0));  // 1 + 2 - 3 = 0 <= 2
+  CHECK(p.MaxViolation(Eigen::Vector3d(5, 0, 0)) == Approx(3.0));
+}
+
+TEST_CASE("in-place updates change the data and keep the matrices' revisions", "[program]") {
+  Program p;
+  const VariableBlock x = p.AddVariables("x", 2);
+  const ConstraintRows r = p.AddLinearConstraint({{x, Eigen::RowVector2d(1, 1)}}, Eigen::VectorXd::Zero(1),
+                                                 Eigen::VectorXd::Ones(1), "r");
+  const auto h = p.hessian_revision();
+  const auto a = p.matrix_revision();
+  p.SetVariableBounds(x, Eigen::Vector2d(-1, -2), Eigen::Vector2d(1, 2));
+  p.SetLinearCost(x, Eigen::Vector2d(3, 4));
+  p.SetConstraintBounds(r, Eigen::VectorXd::Constant(1, -5), Eigen::VectorXd::Constant(1, 5));
+  p.SetInitialGuess(x, Eigen::Vector2d(0.5, 0.5));
+  CHECK(p.hessian_revision() == h);
+  CHECK(p.matrix_revision() == a);
+  CHECK(p.variable_lower()[1] == -2);
+  CHECK(p.linear_cost()[1] == 4);
+  CHECK(p.row_upper()[0] == 5);
+  CHECK(p.initial_guess()[0] == 0.5);
+  p.SetConstraintCoefficients(r, x, Eigen::RowVector2d(2, 0));
+  CHECK(p.matrix_revision() != a);
+  CHECK(p.constraint_matrix()(0, 0) == 2);
+}
+
+TEST_CASE("misuse throws invalid_argument naming the block or rows", "[program]") {
+  Program p;
+  const VariableBlock x = p.AddVariables("feet", 2);
+  const ConstraintRows r = p.AddLinearConstraint({{x, Eigen::RowVector2d(1, 1)}}, Eigen::VectorXd::Zero(1),
+                                                 Eigen::VectorXd::Ones(1), "support");
+  CHECK_THAT(ThrownMessage([&] { p.SetVariableBounds(x, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)); }),
+             Catch::Contains("feet"));
+  CHECK_THAT(ThrownMessage([&] { p.SetLinearCost(x, Eigen::Vector2d(std::nan(""), 0)); }), Catch::Contains("feet"));
+  CHECK_THAT(ThrownMessage([&] { p.SetConstraintBounds(r, Eigen::VectorXd::Ones(1), Eigen::VectorXd::Zero(1)); }),
+             Catch::Contains("support"));
+  CHECK_THAT(ThrownMessage([&] { p.AddQuadraticCost(x, Eigen::MatrixXd::Identity(3, 3), Eigen::VectorXd::Zero(3)); }),
+             Catch::Contains("feet"));
+  const VariableBlock stranger{"stranger", 5, 2};
+  CHECK_THAT(ThrownMessage([&] { p.SetInitialGuess(stranger, Eigen::Vector2d::Zero()); }), Catch::Contains("stranger"));
+  CHECK_THAT(ThrownMessage([&] { p.AddVariables("empty", 0); }), Catch::Contains("empty"));
+}

@@ -1,0 +1,96 @@
+// `stairplan qp solve` and `stairplan qp bench`: output, JSON keys and exit codes.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_paths.h"
+
+using namespace stairplan::testing;
+
+namespace {
+
+const char* kFeasible = R"(NAME          TINY
+ROWS
+ N  obj
+ G  c1
+COLUMNS
+    x1        obj       -1.0   c1         1.0
+    x2        c1         1.0
+RHS
+    rhs       c1         1.0
+BOUNDS
+ UP bnd       x1         4.0
+QUADOBJ
+    x1        x1         1.0
+    x2        x2         1.0
+ENDATA
+)";
+
+std::string WriteFile(const std::string& dir, const std::string& name, const std::string& text) {
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string Qp(const std::string& text, const std::string& from, const std::string& to) {
+  std::string s = text;
+  s.replace(s.find(from), from.size(), to);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("qp solve prints JSON with the documented keys and exits 0", "[cli]") {
+  const std::string dir = MakeTempDir("qp_cli");
+  const std::string file = WriteFile(dir, "tiny.qps", kFeasible);
+  const int code = RunCommand(BinDir() + "/stairplan qp solve " + file + " --json", dir + "/out", dir + "/err");
+  REQUIRE(code == 0);
+  const auto json = nlohmann::json::parse(ReadFile(dir + "/out"));
+  for (const char* key : {"status", "objective", "iterations", "solve_time_us", "max_violation", "x"}) {
+    CHECK(json.contains(key));
+  }
+  CHECK(json["status"] == "solved");
+  // min 0.5 x1^2 - x1 + 0.5 x2^2 s.t. x1 + x2 >= 1: x = (1, 0) with objective -0.5.
+  CHECK(json["objective"].get<double>() == Approx(-0.5).margin(1e-9));
+  CHECK(json["x"][0].get<double>() == Approx(1.0).margin(1e-9));
+  for (const char* solver : {"ipopt", "nlopt"}) {
+    INFO(solver);
+    CHECK(RunCommand(BinDir() + "/stairplan qp solve " + file + " --solver " + solver, dir + "/out", dir + "/err") == 0);
+    CHECK_THAT(ReadFile(dir + "/out"), Catch::Contains("solved"));
+  }
+}
+
+TEST_CASE("qp solve exits 3 on an infeasible QP and 2 on bad input", "[cli]") {
+  const std::string dir = MakeTempDir("qp_cli_bad");
+  // x1 <= 4 and x2 <= 4 (added) but x1 + x2 >= 9.
+  const std::string infeasible2 = WriteFile(dir, "infeasible2.qps", Qp(Qp(kFeasible, "    rhs       c1         1.0", "    rhs       c1         9.0"),
+                                                                         " UP bnd       x1         4.0", " UP bnd       x1         4.0\n UP bnd       x2         4.0"));
+  CHECK(RunCommand(BinDir() + "/stairplan qp solve " + infeasible2 + " --json", dir + "/out", dir + "/err") == 3);
+  CHECK(nlohmann::json::parse(ReadFile(dir + "/out"))["status"] == "infeasible");
+  const std::string nan = WriteFile(dir, "nan.qps", Qp(kFeasible, "x1        x1         1.0", "x1        x1         nan"));
+  CHECK(RunCommand(BinDir() + "/stairplan qp solve " + nan, dir + "/out", dir + "/err") == 2);
+  CHECK_THAT(ReadFile(dir + "/err"), Catch::Contains("invalid"));
+  const std::string broken = WriteFile(dir, "broken.qps", Qp(kFeasible, "-1.0   c1", "minus  c1"));
+  CHECK(RunCommand(BinDir() + "/stairplan qp solve " + broken, dir + "/out", dir + "/err") == 2);
+  CHECK_THAT(ReadFile(dir + "/err"), Catch::Contains("broken.qps:6:"));
+  CHECK(RunCommand(BinDir() + "/stairplan qp solve " + dir + "/none.qps", dir + "/out", dir + "/err") == 2);
+  CHECK(RunCommand(BinDir() + "/stairplan qp solve " + WriteFile(dir, "ok.qps", kFeasible) + " --solver cplex", dir + "/out", dir + "/err") == 2);
+  CHECK_THAT(ReadFile(dir + "/err"), Catch::Contains("cplex"));
+}
+
+TEST_CASE("qp bench reports each solver and writes CSV", "[cli]") {
+  const std::string dir = MakeTempDir("qp_bench");
+  WriteFile(dir, "a.qps", kFeasible);
+  WriteFile(dir, "b.qps", Qp(kFeasible, "    rhs       c1         1.0", "    rhs       c1         2.0"));
+  const int code = RunCommand(BinDir() + "/stairplan qp bench " + dir + " --solvers active-set,ipopt --repeat 2 --csv " +
+                                  dir + "/out.csv", dir + "/out", dir + "/err");
+  REQUIRE(code == 0);
+  const std::string out = ReadFile(dir + "/out");
+  CHECK_THAT(out, Catch::Contains("active-set") && Catch::Contains("ipopt") && Catch::Contains("2/2"));
+  CHECK_THAT(out, Catch::Contains("ratio"));
+  const std::string csv = ReadFile(dir + "/out.csv");
+  CHECK_THAT(csv, Catch::Contains("problem,solver,status,objective,iterations,time_us"));
+  CHECK_THAT(csv, Catch::Contains("a.qps,ipopt,solved"));
+}
