@@ -1,0 +1,38 @@
+// Quasi-static stability of the paper's crawl (seed 003, "Stability Analysis"): over one cycle of
+// hip travel (one CL), the fraction during which the centre of mass, projected on the ground, lies
+// outside the support polygon of the feet on the stairs (the triangle of the three stance feet
+// while one leg swings).
+//
+// The model is the paper's: hips travel along a line parallel to the edge line at clearance d, the
+// body is inclined with the stairs, the COM is midway between the hips, each leg lifts off when its
+// hip passes the point where its contact offset puts it (eq. (3)) and swings for D_i.
+#pragma once
+
+#include <array>
+
+#include "planning/gait/gait_design.h"
+
+namespace stairplan {
+
+/// The two arrangements of contact offsets in the paper: case 1, right legs at a_min and left
+/// legs at a_max; case 2, the front pair switched.
+enum class CrawlCase { kRightFirst = 1, kFrontSwitched = 2 };
+
+/// The stability estimate for one arrangement.
+struct CrawlStability {
+  CrawlCase arrangement = CrawlCase::kRightFirst;
+  /// Legs in the order they swing within one cycle, starting with the hind right leg.
+  std::array<const char*, 4> swing_sequence{};
+  /// Fraction of a cycle with the COM outside the support polygon (two legs in the air counts
+  /// as outside) [0, 1].
+  double fraction_outside = 0.0;
+  /// The same split by the swinging leg, in the order HR, HL, FR, FL.
+  std::array<double, 4> fraction_outside_by_leg{};
+};
+
+/// Evaluates one arrangement by sampling `samples` hip positions evenly over one CL. Needs a
+/// design with D_s > 0 (condition (10)); throws std::invalid_argument otherwise.
+CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDesign& design, CrawlCase arrangement,
+                                      int samples = 7200);
+
+}  // namespace stairplan

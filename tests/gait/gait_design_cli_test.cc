@@ -1,0 +1,56 @@
+// `stairplan gait-design` end to end: JSON keys, the verdict as the exit code, flags named on error.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "test_paths.h"
+
+using namespace stairplan::testing;
+
+namespace {
+
+int Run(const std::string& flags, std::string* out, std::string* err) {
+  const std::string dir = MakeTempDir("gait-cli");
+  const int code = RunCommand(BinDir() + "/stairplan gait-design " + flags, dir + "/out", dir + "/err");
+  *out = ReadFile(dir + "/out");
+  *err = ReadFile(dir + "/err");
+  return code;
+}
+
+}  // namespace
+
+TEST_CASE("gait-design --json: the paper's robot on its stairs", "[gait][cli]") {
+  std::string out, err;
+  const int code = Run("--rise 0.17 --run 0.27 --lmax 0.21 --body-length 0.444 --body-width 0.36 --buffer 0.42 --json", &out, &err);
+  INFO(err);
+  REQUIRE(code == 0);
+  const auto j = nlohmann::json::parse(out);
+  CHECK(j["l_min"].get<double>() == Approx(0.1885).margin(0.00005));
+  CHECK(j["D_s"].get<double>() == Approx(0.05737).margin(0.00001));
+  CHECK(j["D_o"].get<double>() == Approx(1.58 * 0.05737).margin(0.00002));
+  CHECK(j["feasible"].get<bool>());
+  CHECK_FALSE(j["binding"].get<std::string>().empty());
+  CHECK(j["swing_sequence"] == nlohmann::json({"HR", "HL", "FR", "FL"}));
+  CHECK(j["error_tolerance"]["dW_max"].get<double>() == Approx(0.029).margin(0.0005));
+  CHECK(j["stability"]["case1"]["fraction_outside"].get<double>() > 0.0);
+}
+
+TEST_CASE("gait-design: a short leg is infeasible (exit 3) naming (10)", "[gait][cli]") {
+  std::string out, err;
+  const int code = Run("--rise 0.17 --run 0.27 --lmax 0.18 --body-length 0.444 --json", &out, &err);
+  CHECK(code == 3);
+  const auto j = nlohmann::json::parse(out);
+  CHECK_FALSE(j["feasible"].get<bool>());
+  CHECK(j["binding"] == "(10)");
+  CHECK(j["stability"].is_null());
+}
+
+TEST_CASE("gait-design: bad input exits 2 naming the flag", "[gait][cli]") {
+  std::string out, err;
+  CHECK(Run("--rise -0.17 --run 0.27 --lmax 0.21 --body-length 0.444", &out, &err) == 2);
+  CHECK_THAT(err, Catch::Contains("--rise"));
+  CHECK(Run("--rise 0.17 --run 0.27 --lmax 0.21 --body-length 0.444 --buffer 1.5", &out, &err) == 2);
+  CHECK_THAT(err, Catch::Contains("--buffer"));
+  CHECK(Run("--rise 0.17 --run 0.27 --body-length 0.444", &out, &err) == 2);
+  CHECK_THAT(err, Catch::Contains("--lmax"));
+}
