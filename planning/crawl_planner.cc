@@ -61,9 +61,7 @@ std::vector<double> FootholdLattice(const Staircase& stairs, const ConstrainedMa
 struct LegTrack {
   std::string name;
   Eigen::Vector2d foot_offset_W;  // foot relative to the body origin in the world, horizontal
-  bool front = false;
   int start_index = 0;
-  int swing_slot = 0;             // position in the crawl order
 };
 
 Plan Infeasible(Plan plan, const std::string& reason) {
@@ -81,9 +79,9 @@ void CrawlSettings::Validate() const {
     }
   };
   check("swing_duration", swing_duration, 0.0, 5.0);
-  check("hip_height_fraction", hip_height_fraction, 0.0, 1.0);
-  check("sample_period", sample_period, 0.0, 1.0);
+  check("shift_duration", shift_duration, -1e-12, 5.0);
   check("start_gap", start_gap, -1.0, 5.0);
+  body.Validate();
 }
 
 Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const CrawlSettings& settings) {
@@ -102,17 +100,12 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   const Eigen::Rotation2Dd rotation(yaw);
 
   std::vector<LegTrack> tracks;
-  double reach = 0.0, hip_z = 0.0, foot_radius = 0.0, front_x = -1e9;
+  double front_x = -1e9;
   for (const LegModel& leg : robot.legs()) {
     LegTrack track;
     track.name = leg.name;
     track.foot_offset_W = rotation * Eigen::Vector2d(leg.hip_B.x(), leg.foot_zero_B.y());
-    track.front = leg.hip_B.x() > 0.0;
-    track.swing_slot = static_cast<int>(std::find(kCrawlOrder.begin(), kCrawlOrder.end(), leg.name) - kCrawlOrder.begin());
     front_x = std::max(front_x, track.foot_offset_W.x());
-    reach += leg.max_reach / 4.0;
-    hip_z += leg.hip_B.z() / 4.0;
-    foot_radius += leg.foot_radius / 4.0;
     tracks.push_back(track);
   }
   // Start with the leading feet just before the flight's first step region.
@@ -139,8 +132,6 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
       return Infeasible(plan, "landing_after is too short for the robot's " + track.name + " foot");
     }
   }
-  const double hip_height = settings.hip_height_fraction * reach;
-
   // Foot contact point of leg `l` at lattice index k.
   const auto foothold = [&](const LegTrack& l, int k) {
     const double x = lattice[static_cast<std::size_t>(k)];
@@ -149,14 +140,15 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   };
   for (const LegTrack& l : tracks) plan.initial_feet_W.push_back(foothold(l, l.start_index));
 
-  const double T = settings.swing_duration;
+  // Each swing is preceded by a four-feet phase in which the COM moves over the next triangle.
+  const double slot_duration = settings.shift_duration + settings.swing_duration;
   for (int c = 0; c < cycles; ++c) {
     for (std::size_t slot = 0; slot < kCrawlOrder.size(); ++slot) {
       const auto leg = std::find_if(tracks.begin(), tracks.end(), [&](const LegTrack& l) { return l.name == kCrawlOrder[slot]; });
       Footstep step;
       step.leg = leg->name;
-      step.t_liftoff = (4.0 * c + static_cast<double>(slot)) * T;
-      step.t_touchdown = step.t_liftoff + T;
+      step.t_liftoff = (4.0 * c + static_cast<double>(slot)) * slot_duration + settings.shift_duration;
+      step.t_touchdown = step.t_liftoff + settings.swing_duration;
       step.from_W = foothold(*leg, leg->start_index + c);
       step.position_W = foothold(*leg, leg->start_index + c + 1);
       step.stair_index = map.StairAt(step.position_W.head<2>());
@@ -164,37 +156,7 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
       plan.footsteps.push_back(step);
     }
   }
-
-  // The body follows the feet: horizontally the mean of (foot - offset), vertically the mean foot
-  // height plus the hip height, pitched along the line from the hind to the front feet.
-  const double duration = 4.0 * cycles * T;
-  const int samples = static_cast<int>(std::ceil(duration / settings.sample_period - 1e-9));
-  for (int s = 0; s <= samples; ++s) {
-    const double t = std::min(duration, s * settings.sample_period);
-    Eigen::Vector2d sum_xy = Eigen::Vector2d::Zero();
-    double sum_z = 0.0, front_xz[2] = {0, 0}, hind_xz[2] = {0, 0};
-    for (const LegTrack& l : tracks) {
-      const int cycle = std::min(cycles - 1, static_cast<int>(std::floor(t / (4.0 * T))));
-      const double phase = (t - cycle * 4.0 * T) / T - l.swing_slot;  // 0..1 during this leg's swing
-      const int done = cycle + (phase >= 1.0 ? 1 : 0);
-      const double a = (phase > 0.0 && phase < 1.0) ? phase : 0.0;  // swing progress
-      const Eigen::Vector3d p0 = foothold(l, l.start_index + done);
-      const Eigen::Vector3d p = a > 0.0 ? (1.0 - a) * p0 + a * foothold(l, l.start_index + done + 1) : p0;
-      sum_xy += p.head<2>() - l.foot_offset_W;
-      sum_z += p.z();
-      double* side = l.front ? front_xz : hind_xz;
-      side[0] += p.x() / 2.0;
-      side[1] += p.z() / 2.0;
-    }
-    BodyState b;
-    b.t = t;
-    b.x = sum_xy.x() / 4.0;
-    b.y = sum_xy.y() / 4.0;
-    b.z = sum_z / 4.0 + foot_radius + hip_height - hip_z;
-    b.yaw = yaw;
-    b.pitch = -std::atan2(front_xz[1] - hind_xz[1], (front_xz[0] - hind_xz[0]) * std::cos(yaw));
-    plan.body.push_back(b);
-  }
+  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, settings.body);
   return plan;
 }
 

@@ -1,20 +1,22 @@
 // The first planner: a quasi-static crawl that puts every foot at the centre of a step region,
-// one stair per cycle, with the body carried above the feet at a fixed hip height. Later planners
+// one stair per cycle, with four-feet phases between swings in which the centre of mass moves
+// over the next support triangle, and the body carried above the feet at a fixed hip height. Later planners
 // (step planner, body planner) replace its parts; it stays as a simple, predictable baseline.
 #pragma once
 
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
 #include "kinematics/robot_model.h"
+#include "planning/body_path.h"
 #include "planning/plan.h"
 
 namespace stairplan {
 
 struct CrawlSettings {
   double swing_duration = 0.40;       ///< one leg's swing [s]
-  double hip_height_fraction = 0.75;  ///< hip above the foot, as a fraction of the leg's reach
-  double sample_period = 0.05;        ///< body trajectory sampling [s]
+  double shift_duration = 0.25;       ///< four feet down between swings, moving the COM [s]
   double start_gap = 0.10;            ///< front feet this far before the first step region [m]
+  BodyPathSettings body;              ///< how the body follows the feet
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,8 @@ struct SweepRow {
   std::string reason;       ///< the first violation or why there is no plan; empty when valid
   double cadence_s = 0.0;
   int footsteps = 0;
-  double min_clearance_m = 0.0;
-  double min_stability_margin_m = 0.0;
+  double min_clearance_m = std::numeric_limits<double>::quiet_NaN();         ///< blank in CSV when unknown
+  double min_stability_margin_m = std::numeric_limits<double>::quiet_NaN();
   double plan_us = 0.0;     ///< not deterministic: only written with times
   double validate_us = 0.0;
 };

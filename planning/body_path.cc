@@ -1,0 +1,153 @@
+#include "planning/body_path.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <urdf_model/model.h>
+
+#include "geometry/field_error.h"
+
+namespace stairplan {
+namespace {
+
+double Smooth(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return u * u * (3.0 - 2.0 * u);
+}
+
+struct Keyframe {
+  double t;
+  Eigen::Vector2d com_xy;
+};
+
+Eigen::Vector2d Centroid(const std::vector<Eigen::Vector3d>& feet, const std::vector<bool>& use) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int n = 0;
+  for (std::size_t i = 0; i < feet.size(); ++i) {
+    if (!use[i]) continue;
+    sum += feet[i].head<2>();
+    ++n;
+  }
+  return n > 0 ? Eigen::Vector2d(sum / n) : sum;
+}
+
+// COM keyframes: at the start and end the centroid of all four feet; through each swing the
+// centroid of the other three (blended by `shift` toward the four-foot centroid).
+std::vector<Keyframe> ComKeyframes(const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& initial,
+                                   const std::vector<Footstep>& steps, double shift) {
+  const std::vector<bool> all(legs.size(), true);
+  std::vector<Keyframe> keys = {{0.0, Centroid(initial, all)}};
+  for (const Footstep& s : steps) {
+    const double mid = 0.5 * (s.t_liftoff + s.t_touchdown);
+    std::vector<bool> stance;
+    const std::vector<Eigen::Vector3d> feet = FeetAt(legs, initial, steps, mid, &stance);
+    const Eigen::Vector2d target = shift * Centroid(feet, stance) + (1.0 - shift) * Centroid(feet, all);
+    keys.push_back({s.t_liftoff, target});
+    keys.push_back({s.t_touchdown, target});
+  }
+  const double end = steps.empty() ? 0.0 : steps.back().t_touchdown;
+  keys.push_back({end + 1e-9, Centroid(FeetAt(legs, initial, steps, end + 1.0), all)});
+  return keys;
+}
+
+Eigen::Vector2d ComAt(const std::vector<Keyframe>& keys, double t) {
+  const auto next = std::upper_bound(keys.begin(), keys.end(), t, [](double v, const Keyframe& k) { return v < k.t; });
+  if (next == keys.begin()) return keys.front().com_xy;
+  if (next == keys.end()) return keys.back().com_xy;
+  const Keyframe& a = *(next - 1);
+  const double u = next->t > a.t ? (t - a.t) / (next->t - a.t) : 1.0;
+  return a.com_xy + Smooth(u) * (next->com_xy - a.com_xy);
+}
+
+}  // namespace
+
+void BodyPathSettings::Validate() const {
+  const auto check = [](const char* name, double v, double lo, double hi) {
+    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
+  };
+  check("hip_height_fraction", hip_height_fraction, 0.05, 1.0);
+  check("sample_period", sample_period, 1e-3, 1.0);
+  check("stability_shift", stability_shift, 0.0, 1.0);
+}
+
+Eigen::Vector3d ApproximateComOffset(const RobotModel& robot) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double mass = 0.0;
+  for (const LegModel& leg : robot.legs()) {
+    sum += leg.mass * leg.hip_B;
+    mass += leg.mass;
+  }
+  // Everything not in a leg is lumped at the base link's own centre of mass.
+  const double base_mass = std::max(0.0, robot.total_mass() - mass);
+  const urdf::LinkConstSharedPtr base = robot.urdf().getLink(robot.base_link());
+  if (base && base->inertial) {
+    const urdf::Vector3& p = base->inertial->origin.position;
+    sum += base_mass * Eigen::Vector3d(p.x, p.y, p.z);
+  }
+  return mass + base_mass > 0.0 ? Eigen::Vector3d(sum / (mass + base_mass)) : Eigen::Vector3d::Zero();
+}
+
+std::vector<Eigen::Vector3d> FeetAt(const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& initial,
+                                    const std::vector<Footstep>& footsteps, double t, std::vector<bool>* in_stance) {
+  std::vector<Eigen::Vector3d> feet = initial;
+  if (in_stance != nullptr) in_stance->assign(legs.size(), true);
+  for (const Footstep& s : footsteps) {
+    if (s.t_liftoff >= t) continue;
+    const auto leg = static_cast<std::size_t>(std::find(legs.begin(), legs.end(), s.leg) - legs.begin());
+    if (leg >= legs.size()) continue;
+    if (t >= s.t_touchdown) {
+      feet[leg] = s.position_W;
+    } else {
+      const double u = (t - s.t_liftoff) / (s.t_touchdown - s.t_liftoff);
+      feet[leg] = s.from_W + u * (s.position_W - s.from_W);
+      if (in_stance != nullptr) (*in_stance)[leg] = false;
+    }
+  }
+  return feet;
+}
+
+std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::vector<std::string>& legs,
+                                            const std::vector<Eigen::Vector3d>& initial_feet,
+                                            const std::vector<Footstep>& footsteps, double yaw,
+                                            const BodyPathSettings& settings) {
+  settings.Validate();
+  double reach = 0.0, hip_z = 0.0, foot_radius = 0.0;
+  for (const LegModel& leg : robot.legs()) {
+    reach += leg.max_reach / 4.0;
+    hip_z += leg.hip_B.z() / 4.0;
+    foot_radius += leg.foot_radius / 4.0;
+  }
+  const double hip_height = settings.hip_height_fraction * reach;
+  const Eigen::Vector3d com_B = ApproximateComOffset(robot);
+  const Eigen::Vector2d com_offset_W = Eigen::Rotation2Dd(yaw) * com_B.head<2>();
+  const std::vector<Keyframe> keys = ComKeyframes(legs, initial_feet, footsteps, settings.stability_shift);
+  const double duration = footsteps.empty() ? 0.0 : footsteps.back().t_touchdown;
+  const int samples = static_cast<int>(std::ceil(duration / settings.sample_period - 1e-9));
+  std::vector<BodyState> body;
+  for (int s = 0; s <= samples; ++s) {
+    const double t = std::min(duration, s * settings.sample_period);
+    const std::vector<Eigen::Vector3d> feet = FeetAt(legs, initial_feet, footsteps, t);
+    double sum_z = 0.0, front_x = 0.0, front_z = 0.0, hind_x = 0.0, hind_z = 0.0;
+    Eigen::Vector2d feet_xy = Eigen::Vector2d::Zero();
+    for (std::size_t i = 0; i < feet.size(); ++i) {
+      sum_z += feet[i].z() / 4.0;
+      feet_xy += feet[i].head<2>() / 4.0;
+      const bool front = robot.leg(legs[i]).hip_B.x() > 0.0;
+      (front ? front_x : hind_x) += feet[i].x() / 2.0;
+      (front ? front_z : hind_z) += feet[i].z() / 2.0;
+    }
+    BodyState b;
+    b.t = t;
+    const Eigen::Vector2d com = ComAt(keys, t);
+    b.x = com.x() - com_offset_W.x();
+    b.y = com.y() - com_offset_W.y();
+    b.z = sum_z + foot_radius + hip_height - hip_z;
+    b.yaw = yaw;
+    b.pitch = -std::atan2(front_z - hind_z, (front_x - hind_x) * std::cos(yaw));
+    b.com_shift = (com - feet_xy).dot(Eigen::Vector2d(std::cos(yaw), std::sin(yaw)));
+    body.push_back(b);
+  }
+  return body;
+}
+
+}  // namespace stairplan

@@ -1,0 +1,40 @@
+// A quasi-static body path for a given footstep sequence: while a leg swings, the centre of mass
+// sits over the centroid of the three stance feet (so it stays inside the support triangle);
+// with four feet down it moves to the next triangle; the body rides at a fixed hip height above
+// the feet, pitched along the line from the hind to the front feet. Planners that choose
+// footsteps (the crawl, the step planner) use it for their first body path.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinematics/robot_model.h"
+#include "planning/plan.h"
+
+namespace stairplan {
+
+struct BodyPathSettings {
+  double hip_height_fraction = 0.75;  ///< hip above the feet, as a fraction of the leg's reach
+  double sample_period = 0.05;        ///< sampling of the body trajectory [s]
+  /// How far toward the support triangle's centroid the COM moves while a leg swings (1: all the way).
+  double stability_shift = 1.0;
+
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+/// The centre of mass in the base frame at the robot's zero pose, legs lumped at their hips [m].
+Eigen::Vector3d ApproximateComOffset(const RobotModel& robot);
+
+/// Where each foot is at time t (contact points, legs in `legs` order), swing feet interpolated.
+std::vector<Eigen::Vector3d> FeetAt(const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& initial,
+                                    const std::vector<Footstep>& footsteps, double t, std::vector<bool>* in_stance = nullptr);
+
+/// The body states for `footsteps` (sorted by touchdown) starting from `initial_feet`, facing `yaw`.
+std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::vector<std::string>& legs,
+                                            const std::vector<Eigen::Vector3d>& initial_feet,
+                                            const std::vector<Footstep>& footsteps, double yaw,
+                                            const BodyPathSettings& settings = {});
+
+}  // namespace stairplan

@@ -1,0 +1,63 @@
+#include "planning/swing_trajectory.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/field_error.h"
+
+namespace stairplan {
+namespace {
+
+// 0 -> 1 with zero slope at both ends, so the foot starts and stops each motion smoothly.
+double Smooth(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return u * u * (3.0 - 2.0 * u);
+}
+
+}  // namespace
+
+void SwingSettings::Validate() const {
+  const auto check = [](const char* name, double v, double lo, double hi) {
+    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
+  };
+  check("clearance", clearance, 0.0, 1.0);
+  check("min_lift", min_lift, 0.0, 1.0);
+  check("lift_fraction", lift_fraction, 0.01, 0.49);
+  check("lower_fraction", lower_fraction, 0.01, 0.49);
+}
+
+double HighestObstacleBetween(const Staircase& stairs, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const double x_lo = std::min(a.x(), b.x()), x_hi = std::max(a.x(), b.x());
+  double highest = -std::numeric_limits<double>::infinity();
+  for (const Box3& box : stairs.Solids()) {
+    if (box.max.x() < x_lo || box.min.x() > x_hi) continue;
+    highest = std::max(highest, box.max.z());
+  }
+  return std::isfinite(highest) ? highest : std::max(stairs.HeightAt(a.x(), a.y()), stairs.HeightAt(b.x(), b.y()));
+}
+
+SwingTrajectory::SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, const Staircase& stairs,
+                                 const SwingSettings& settings)
+    : from_(from_W), to_(to_W), settings_(settings) {
+  settings_.Validate();
+  const double obstacle = HighestObstacleBetween(stairs, from_W.head<2>(), to_W.head<2>());
+  apex_z_ = std::max(obstacle + settings_.clearance, std::max(from_W.z(), to_W.z()) + settings_.min_lift);
+}
+
+Eigen::Vector3d SwingTrajectory::At(double s) const {
+  s = std::clamp(s, 0.0, 1.0);
+  const double rise_end = settings_.lift_fraction, lower_start = 1.0 - settings_.lower_fraction;
+  // Horizontal travel only between the rise and the descent, so the foot never sweeps a nosing.
+  const double travel = Smooth((s - rise_end) / (lower_start - rise_end));
+  Eigen::Vector3d p = from_ + travel * (to_ - from_);
+  if (s <= rise_end) {
+    p.z() = from_.z() + Smooth(s / rise_end) * (apex_z_ - from_.z());
+  } else if (s >= lower_start) {
+    p.z() = apex_z_ + Smooth((s - lower_start) / settings_.lower_fraction) * (to_.z() - apex_z_);
+  } else {
+    p.z() = apex_z_;
+  }
+  return p;
+}
+
+}  // namespace stairplan

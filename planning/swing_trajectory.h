@@ -1,0 +1,42 @@
+// The path of a swinging foot from one foothold to the next: lift, travel, lower. It rises above
+// everything the stairs put between the two footholds (treads and nosings) by a clearance, so the
+// validator, the simulator and the drawings all move the foot the same way.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "geometry/staircase.h"
+
+namespace stairplan {
+
+struct SwingSettings {
+  double clearance = 0.06;      ///< foot contact point above the highest obstacle on the way [m]
+  double min_lift = 0.05;       ///< at least this far above the higher foothold [m]
+  double lift_fraction = 0.25;  ///< share of the swing spent rising before moving forward
+  double lower_fraction = 0.25; ///< share spent lowering after arriving above the target
+
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+/// One foot's swing: contact-point positions over the swing phase 0..1.
+class SwingTrajectory {
+ public:
+  SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, const Staircase& stairs,
+                  const SwingSettings& settings = {});
+
+  /// The foot's contact point at phase s in [0, 1] (clamped).
+  Eigen::Vector3d At(double s) const;
+  /// Height of the swing's top [m].
+  double apex_z() const { return apex_z_; }
+
+ private:
+  Eigen::Vector3d from_, to_;
+  double apex_z_ = 0.0;
+  SwingSettings settings_;
+};
+
+/// The highest stair surface (with its nosing lip) under the segment from a to b in xy [m].
+double HighestObstacleBetween(const Staircase& stairs, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
+}  // namespace stairplan
