@@ -39,6 +39,16 @@ struct BodyState {
 enum class PlanStatus { kOk, kInfeasible };
 const char* ToString(PlanStatus status);
 
+/// How one fixed-cadence controller of the step planner fared over a traversal.
+struct ControllerScore {
+  double cadence_s = 0.0;         ///< swing duration [s]
+  std::string gait;               ///< "crawl", "crawl_alt" or "trot"
+  double score = 0.0;             ///< mean score over the cycles where it was admissible (inf: never)
+  std::string ruled_out_reason;   ///< why it was first ruled out, "" when never
+  int cycles_selected = 0;        ///< cycles in which it was chosen
+  int cycles_ruled_out = 0;       ///< cycles in which a hard rule excluded it
+};
+
 struct Plan {
   std::string robot_name;
   std::string robot_source;
@@ -52,6 +62,8 @@ struct Plan {
   PlanStatus status = PlanStatus::kOk;
   std::string status_reason;                  ///< why it is infeasible, empty when ok
   std::vector<std::pair<std::string, double>> timing_us;  ///< per stage [us]
+  std::vector<ControllerScore> controllers;   ///< the step planner's controllers, empty for other planners
+  int selected = -1;                          ///< index into `controllers` chosen most often, -1 when none
 
   double duration() const { return body.empty() ? 0.0 : body.back().t; }
 };

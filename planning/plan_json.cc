@@ -1,5 +1,7 @@
 #include "planning/plan_json.h"
 
+#include <cmath>
+
 namespace stairplan {
 namespace {
 
@@ -56,6 +58,13 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
     body.push_back({{"t", b.t}, {"x", b.x}, {"y", b.y}, {"z", b.z}, {"pitch", b.pitch}, {"yaw", b.yaw},
                     {"com_shift", b.com_shift}});
   }
+  nlohmann::json controllers = nlohmann::json::array();
+  for (const ControllerScore& c : plan.controllers) {
+    controllers.push_back({{"cadence_s", c.cadence_s}, {"gait", c.gait},
+                           {"score", std::isfinite(c.score) ? nlohmann::json(c.score) : nlohmann::json(nullptr)},
+                           {"ruled_out_reason", c.ruled_out_reason}, {"cycles_selected", c.cycles_selected},
+                           {"cycles_ruled_out", c.cycles_ruled_out}});
+  }
   nlohmann::json timing = nlohmann::json::object();
   for (const auto& [stage, us] : plan.timing_us) timing[stage] = us;
   return {{"robot", {{"name", plan.robot_name}, {"source", plan.robot_source}, {"legs", plan.legs}}},
@@ -70,7 +79,9 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
           {"duration_s", plan.duration()},
           {"status", ToString(plan.status)},
           {"status_reason", plan.status_reason},
-          {"timing_us", timing}};
+          {"timing_us", timing},
+          {"controllers", controllers},
+          {"selected", plan.selected}};
 }
 
 }  // namespace stairplan

@@ -1,0 +1,167 @@
+// The step planner (seed 000 [0033]-[0035], [0070], claims 9-12): a set of fixed-cadence
+// controllers (swing duration x gait) each turns the body's velocity command into an unconstrained
+// step plan over a horizon; every cycle each plan is checked against hard rules (a target no leg
+// reaches, a step too high to clear), scored against the constrained map (distance of each
+// unconstrained footstep from the nearest step region dominates; soft terms for swing height, reach
+// and timing), and the lowest score wins. The chosen plan's targets are snapped into their step
+// regions, the trailing leg of each pair never ahead of its leading leg ([0070]).
+//
+// Built once from the robot, the map and the settings; Update() allocates nothing.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "geometry/constrained_map.h"
+#include "kinematics/robot_model.h"
+#include "planning/step/gait_pattern.h"
+#include "planning/step/ground_profile.h"
+#include "planning/step/reach_model.h"
+#include "planning/step/step_planner_settings.h"
+
+namespace stairplan {
+
+/// One controller: a fixed swing duration with a gait.
+struct FixedCadenceController {
+  double cadence_s = 0.0;  ///< swing duration [s]
+  Gait gait = Gait::kCrawl;
+};
+
+/// A leg as the planner sees it at the start of a cycle.
+struct StepLegState {
+  Eigen::Vector3d foot_W = Eigen::Vector3d::Zero();  ///< contact point [m]
+  int stair = -1;                 ///< the surface it stands on, -1 when unknown
+  double last_touchdown_s = 0.0;  ///< when it last landed [s]; the longest-standing leg swings first
+};
+
+/// The per-cycle input: where the body is, where it is told to go, where the feet are.
+struct StepPlannerInput {
+  double now_s = 0.0;
+  Eigen::Vector2d body_xy_W = Eigen::Vector2d::Zero();   ///< base origin, horizontal [m]
+  Eigen::Vector2d velocity_W = Eigen::Vector2d::Zero();  ///< commanded body velocity [m/s]
+  std::array<StepLegState, 4> legs{};                    ///< in the robot's leg order
+};
+
+/// Why a controller was ruled out before scoring.
+enum class RuleOut {
+  kNone,
+  kNoStepRegion,    ///< the map has no step region near a footstep
+  kStepTooHigh,     ///< a footstep needs a step higher than the leg can clear
+  kUnreachable,     ///< no target in reach of the leg (at touchdown or at the end of stance)
+  kTrailingAhead,   ///< the only targets would put a trailing leg ahead of its leading leg
+  kStepsBack,       ///< the only targets lie on a stair behind the leg's own
+};
+const char* ToString(RuleOut reason);
+
+/// One footstep of a controller's plan, unconstrained and snapped.
+struct PlannedStep {
+  int leg = -1;                 ///< index into the robot's legs
+  double t_liftoff = 0.0;
+  double t_touchdown = 0.0;
+  Eigen::Vector2d unconstrained_xy_W = Eigen::Vector2d::Zero();  ///< where the cadence puts the foot
+  double region_distance = 0.0; ///< from there to the nearest step region [m]
+  int nearest_stair = -1;
+  Eigen::Vector3d from_W = Eigen::Vector3d::Zero();
+  int from_stair = -1;
+  Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< snapped contact point in its step region
+  int target_stair = -1;
+  RuleOut rule_out = RuleOut::kNone;  ///< set on the footstep that ruled the controller out
+};
+
+/// One controller's result in the latest cycle.
+struct ControllerEvaluation {
+  bool admissible = false;
+  double score = std::numeric_limits<double>::infinity();  ///< total, switch cost included
+  RuleOut rule_out = RuleOut::kNone;
+  int rule_out_step = -1;       ///< the footstep that broke the rule
+  double rule_out_value = 0.0;  ///< the offending quantity (step height [m], reach fraction)
+  double region_cost = 0.0, snap_cost = 0.0, swing_height_cost = 0.0, reach_cost = 0.0, timing_cost = 0.0,
+         switch_cost = 0.0;
+  int step_count = 0;               ///< footsteps filled in `steps`
+  std::vector<PlannedStep> steps;   ///< sized to the horizon at construction
+};
+
+class StepPlanner {
+ public:
+  /// Throws std::invalid_argument naming the field for bad settings, an empty map or a robot whose
+  /// legs are not one per corner. `reach` defaults to the GeometricReachModel of the settings.
+  StepPlanner(const RobotModel& robot, const ConstrainedMap& map, const StepPlannerSettings& settings = {},
+              std::shared_ptr<const ReachModel> reach = nullptr);
+
+  /// One cycle: evaluates every controller from `input`, selects the lowest score (ties: the
+  /// current controller, then the lowest index) and returns its index, or -1 when none is
+  /// admissible (the evaluations say why). Allocation-free; throws std::invalid_argument on
+  /// non-finite input.
+  int Update(const StepPlannerInput& input);
+
+  /// The selected controller, -1 before the first Update or when none was admissible.
+  int selected() const { return selected_; }
+  const std::vector<FixedCadenceController>& controllers() const { return controllers_; }
+  const std::vector<ControllerEvaluation>& evaluations() const { return evaluations_; }
+  const ControllerEvaluation& evaluation(int index) const;
+  /// Why controller `index` was ruled out in the latest cycle, "" when it was not (allocates).
+  std::string RuleOutReason(int index) const;
+  /// Forgets the current controller (no hysteresis on the next Update).
+  void Reset() { selected_ = -1; }
+
+  /// The base pose the plans assume with the base origin above `body_xy_W`: hip height above the
+  /// stairs' pitch line, pitched along it, yawed to the map's facing.
+  Eigen::Isometry3d BodyPoseAt(const Eigen::Vector2d& body_xy_W) const;
+  /// Its pitch (nose-up negative, as in BodyState) [rad].
+  double BodyPitchAt(const Eigen::Vector2d& body_xy_W) const;
+  double yaw() const { return yaw_; }
+  /// Hip height above the pitch line [m].
+  double hip_height() const { return hip_height_; }
+  /// Where `leg` stands with the body at body_xy_W, before snapping (horizontal) [m].
+  Eigen::Vector2d NeutralFootXY(int leg, const Eigen::Vector2d& body_xy_W) const;
+  /// The leg in `role` for the map's facing.
+  int LegOfRole(TravelRole role) const { return leg_of_role_[static_cast<std::size_t>(role)]; }
+  const std::vector<LegModel>& legs() const { return legs_; }
+  const ConstrainedMap& map() const { return map_; }
+  const StepPlannerSettings& settings() const { return settings_; }
+  const ReachModel& reach_model() const { return *reach_; }
+  /// The target the planner would choose for a foot at p on stair `stair`, margin applied.
+  Eigen::Vector2d SnapIntoRegion(int stair, const Eigen::Vector2d& p) const;
+  /// Nearest stair with a step region to p (by planar distance), -1 when none; allocation-free.
+  int NearestRegion(const Eigen::Vector2d& p, double* distance) const;
+
+ private:
+  struct RegionInfo {
+    bool present = false;
+    bool rectangle = false;
+    double x_lo = 0.0, x_hi = 0.0, y_lo = 0.0, y_hi = 0.0;          // bounding box
+    double in_x_lo = 0.0, in_x_hi = 0.0, in_y_lo = 0.0, in_y_hi = 0.0;  // inset by the margin
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    double z = 0.0;
+  };
+
+  void Evaluate(int index, const StepPlannerInput& input);
+
+  std::vector<LegModel> legs_;
+  ConstrainedMap map_;
+  StepPlannerSettings settings_;
+  std::shared_ptr<const ReachModel> reach_;
+  GroundProfile ground_;
+  std::vector<RegionInfo> regions_;
+  std::vector<double> surface_x_end_;
+  std::vector<FixedCadenceController> controllers_;
+  std::vector<ControllerEvaluation> evaluations_;
+  std::array<int, 4> leg_of_role_{};
+  std::array<int, 4> role_of_leg_{};
+  std::array<Eigen::Vector2d, 4> neutral_offset_W_{};  // foot under the hip, stance width, yawed
+  std::array<double, 4> max_step_height_{};
+  double yaw_ = 0.0;
+  double hip_height_ = 0.0;
+  double mean_hip_z_ = 0.0;
+  double mean_foot_radius_ = 0.0;
+  double fore_hip_x_B_ = 0.0;
+  double hind_hip_x_B_ = 0.0;
+  int selected_ = -1;
+};
+
+}  // namespace stairplan

@@ -1,0 +1,55 @@
+// The geometric reach model and the ground profile the step planner's body follows.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "kinematics/builtin_robot.h"
+#include "planning/step/ground_profile.h"
+#include "planning/step/reach_model.h"
+
+using namespace stairplan;
+
+TEST_CASE("geometric reach: the band of hip-to-foot distances", "[step]") {
+  const LegModel& leg = BuiltinRobot().leg("LF");
+  const GeometricReachModel model(0.3, 0.95);
+  Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
+  base.translation() = Eigen::Vector3d(1.0, 0.5, 0.6);
+  const Eigen::Vector3d hip = base * leg.hip_B;
+  for (double f : {0.31, 0.5, 0.94}) CHECK(model.Reachable(leg, base, hip - Eigen::Vector3d(0, 0, f * leg.max_reach)));
+  for (double f : {0.0, 0.29, 0.96, 2.0}) CHECK_FALSE(model.Reachable(leg, base, hip - Eigen::Vector3d(0, 0, f * leg.max_reach)));
+  // Effort: 0 mid-band, 1 at the ends.
+  CHECK(model.Effort(leg, base, hip - Eigen::Vector3d(0, 0, 0.625 * leg.max_reach)) == Approx(0.0).margin(1e-12));
+  CHECK(model.Effort(leg, base, hip - Eigen::Vector3d(0, 0, 0.95 * leg.max_reach)) == Approx(1.0));
+  // The hip moves with the base's rotation.
+  base.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d hip_rotated = base * leg.hip_B;
+  CHECK(hip_rotated.x() == Approx(1.0 - leg.hip_B.x()));
+  CHECK(model.Reachable(leg, base, hip_rotated - Eigen::Vector3d(0, 0, 0.5 * leg.max_reach)));
+  CHECK_THROWS_AS(GeometricReachModel(0.5, 0.4), std::invalid_argument);
+  CHECK_THROWS_AS(GeometricReachModel(-0.1, 0.9), std::invalid_argument);
+}
+
+TEST_CASE("ground profile: through the tread middles, flat on the landings, continuous", "[step]") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> rise(0.10, 0.22), run(0.20, 0.35);
+  for (int i = 0; i < 50; ++i) {
+    StairSpec spec;
+    spec.rise = rise(rng);
+    spec.run = run(rng);
+    spec.direction = i % 2 ? TravelDirection::kDown : TravelDirection::kUp;
+    const Staircase stairs(spec);
+    const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
+    const GroundProfile g = GroundProfile::FromMap(map);
+    for (int k = 1; k < stairs.steps(); ++k) {
+      const StairSurface& s = stairs.surface(k);
+      CHECK(g.HeightAt(0.5 * (s.x_begin + s.x_end)) == Approx(s.z).margin(1e-12));
+      // Within a tread the line stays within one rise of the tread.
+      CHECK(std::abs(g.HeightAt(s.x_begin) - s.z) <= spec.rise + 1e-9);
+    }
+    CHECK(g.HeightAt(stairs.x_min()) == Approx(stairs.surface(0).z));
+    CHECK(g.HeightAt(stairs.x_max() + 5.0) == Approx(stairs.surface(stairs.steps()).z));
+    for (double x = stairs.x_min(); x < stairs.x_max(); x += 0.01) {
+      CHECK(std::abs(g.HeightAt(x + 0.01) - g.HeightAt(x)) <= 0.01 * std::tan(1.2) + 1e-9);
+    }
+  }
+}

@@ -1,0 +1,49 @@
+// Acceptance property: over 1,000 random staircases within building-code ranges (fixed seed),
+// every target of the chosen plan lies inside its step region and within reach of its leg.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "kinematics/builtin_robot.h"
+#include "planning/step/step_planner_driver.h"
+#include "step_test_util.h"
+
+using namespace stairplan;
+
+TEST_CASE("1000 random code-range staircases: targets in step regions and in reach", "[step][property]") {
+  std::mt19937 rng(20261122);
+  // Residential and commercial codes: rise 102-196 mm, going 254-356 mm, nosing 0-32 mm; a few
+  // stairs to a long flight, both directions, both facings.
+  std::uniform_real_distribution<double> rise(0.102, 0.196), run(0.254, 0.356), nosing(0.0, 0.032);
+  std::uniform_int_distribution<int> steps(2, 16), coin(0, 1);
+  const RobotModel& robot = BuiltinRobot();
+  const StepPlannerSettings settings;
+  int ok = 0, footsteps = 0;
+  for (int i = 0; i < 1000; ++i) {
+    StairSpec spec;
+    spec.steps = steps(rng);
+    spec.rise = rise(rng);
+    spec.run = run(rng);
+    spec.nosing = nosing(rng);
+    spec.direction = coin(rng) ? TravelDirection::kUp : TravelDirection::kDown;
+    const Facing facing = coin(rng) ? Facing::kForward : Facing::kBackward;
+    const Staircase stairs(spec);
+    const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, facing);
+    const Plan plan = PlanWithStepPlanner(robot, stairs, map, settings);
+    INFO("case " << i << ": steps " << spec.steps << " rise " << spec.rise << " run " << spec.run << " nosing "
+                 << spec.nosing << " " << ToString(spec.direction) << " facing " << ToString(facing) << ": "
+                 << plan.status_reason);
+    CHECK(plan.status == PlanStatus::kOk);
+    ok += plan.status == PlanStatus::kOk ? 1 : 0;
+    for (const Footstep& f : plan.footsteps) {
+      ++footsteps;
+      if (!map.InStepRegion(f.stair_index, f.position_W.head<2>())) FAIL_CHECK("footstep outside its step region: " << f.leg << " at t " << f.t_touchdown);
+      const double e = stairplan::testing::Extension(robot, plan, f, f.t_touchdown);
+      if (e > settings.reach_max_fraction + 1e-6 || e < settings.reach_min_fraction - 1e-6) {
+        FAIL_CHECK("footstep out of reach: " << f.leg << " at t " << f.t_touchdown << " extension " << e);
+      }
+    }
+  }
+  CHECK(ok == 1000);
+  CHECK(footsteps > 20000);
+}
