@@ -2,6 +2,7 @@
 // produces one; the validator, the JSON and SVG writers and the simulator consume it.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,8 @@ struct Footstep {
   Eigen::Vector3d from_W = Eigen::Vector3d::Zero();      ///< the foothold it left [m]
   int stair_index = -1;       ///< the surface it lands on
   bool in_step_region = false;
+  /// Top of the swing's contact-point path [m]; NaN: derived from the stairs (SwingTrajectory).
+  double swing_apex_z = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The body (base frame origin) at one instant. Pitch is about the body's y axis, right-hand
