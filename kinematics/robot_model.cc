@@ -1,5 +1,7 @@
 #include "kinematics/robot_model.h"
 
+#include "kinematics/urdf_parse.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -8,7 +10,6 @@
 #include <stdexcept>
 
 #include <urdf_model/model.h>
-#include <urdf_parser/urdf_parser.h>
 
 namespace stairplan {
 namespace {
@@ -43,45 +44,86 @@ int MovableJointsAbove(const LinkPtr& link) {
   return count;
 }
 
-bool HasSphereCollision(const urdf::Link& link) {
+const urdf::Collision* SphereCollision(const urdf::Link& link) {
   for (const auto& c : link.collision_array) {
-    if (c && c->geometry && c->geometry->type == urdf::Geometry::SPHERE) return true;
+    if (c && c->geometry && c->geometry->type == urdf::Geometry::SPHERE) return c.get();
   }
-  return false;
+  return nullptr;
 }
 
 double SphereRadius(const urdf::Link& link) {
-  for (const auto& c : link.collision_array) {
-    if (c && c->geometry && c->geometry->type == urdf::Geometry::SPHERE) {
-      return static_cast<const urdf::Sphere&>(*c->geometry).radius;
-    }
+  const urdf::Collision* sphere = SphereCollision(link);
+  return sphere ? static_cast<const urdf::Sphere&>(*sphere->geometry).radius : 0.0;
+}
+
+Eigen::Vector3d SphereCenter(const urdf::Link& link) {
+  const urdf::Collision* sphere = SphereCollision(link);
+  if (!sphere) return Eigen::Vector3d::Zero();
+  const urdf::Vector3& p = sphere->origin.position;
+  return {p.x, p.y, p.z};
+}
+
+// The first movable joint on the way down from the root to `link`, or null: it identifies the leg.
+const urdf::Joint* FirstMovableJoint(const LinkPtr& link) {
+  const urdf::Joint* first = nullptr;
+  for (LinkPtr l = link; l && l->parent_joint; l = l->getParent()) {
+    if (IsMovable(*l->parent_joint)) first = l->parent_joint.get();
   }
-  return 0.0;
+  return first;
+}
+
+// Distance from the leg's first movable joint to `link` at the zero configuration.
+double ZeroDistanceFromHip(const LinkPtr& link) {
+  Eigen::Isometry3d below_hip = Eigen::Isometry3d::Identity();
+  for (LinkPtr l = link; l && l->parent_joint; l = l->getParent()) {
+    below_hip = ToIsometry(l->parent_joint->parent_to_joint_origin_transform) * below_hip;
+    if (l->parent_joint.get() == FirstMovableJoint(link)) break;
+  }
+  return below_hip.translation().norm();
+}
+
+// True when `a` is a better foot than `b` for the same leg (see LegDetectionSettings).
+bool BetterFoot(const LinkPtr& a, const LinkPtr& b) {
+  const bool sa = SphereCollision(*a) != nullptr, sb = SphereCollision(*b) != nullptr;
+  if (sa != sb) return sa;
+  const int ma = MovableJointsAbove(a), mb = MovableJointsAbove(b);
+  if (ma != mb) return ma > mb;
+  return ZeroDistanceFromHip(a) > ZeroDistanceFromHip(b) + 1e-12;
 }
 
 std::vector<LinkPtr> FindFeet(const urdf::ModelInterface& model, const LegDetectionSettings& settings,
                               const std::string& source) {
-  std::vector<LinkPtr> candidates;
-  for (const auto& [name, link] : model.links_) {
-    if (!link->child_links.empty() || MovableJointsAbove(link) < 2) continue;
-    if (!settings.foot_name_contains.empty() && name.find(settings.foot_name_contains) == std::string::npos) continue;
-    candidates.push_back(link);
-  }
-  if (candidates.size() > 4) {
-    std::vector<LinkPtr> spheres;
-    for (const auto& c : candidates) {
-      if (HasSphereCollision(*c)) spheres.push_back(c);
+  std::vector<LinkPtr> feet;
+  if (!settings.foot_links.empty()) {
+    for (const std::string& name : settings.foot_links) {
+      const LinkPtr link = model.getLink(name);
+      if (!link) throw std::invalid_argument(source + ": <link name=\"" + name + "\">: no such link (foot_links)");
+      if (MovableJointsAbove(link) < 2) {
+        throw std::invalid_argument(source + ": <link name=\"" + name + "\">: a foot needs at least two movable joints above it");
+      }
+      feet.push_back(link);
     }
-    if (spheres.size() == 4) candidates = spheres;
+  } else {
+    // One candidate per leg: leaf links grouped by the first movable joint above them.
+    std::map<const urdf::Joint*, LinkPtr> best_per_leg;
+    for (const auto& [name, link] : model.links_) {
+      if (!link->child_links.empty() || MovableJointsAbove(link) < 2) continue;
+      if (!settings.foot_name_contains.empty() && name.find(settings.foot_name_contains) == std::string::npos) continue;
+      LinkPtr& best = best_per_leg[FirstMovableJoint(link)];
+      if (!best || BetterFoot(link, best)) best = link;
+    }
+    for (const auto& [joint, link] : best_per_leg) feet.push_back(link);
+    // Deterministic order regardless of pointer values: by link name.
+    std::sort(feet.begin(), feet.end(), [](const LinkPtr& a, const LinkPtr& b) { return a->name < b->name; });
   }
-  if (candidates.size() != 4) {
+  if (feet.size() != 4) {
     std::ostringstream msg;
-    msg << source << ": <link>: expected 4 feet (leaf links below at least two movable joints), found "
-        << candidates.size();
-    for (const auto& c : candidates) msg << (c == candidates.front() ? ": " : ", ") << c->name;
+    msg << source << ": <link>: expected 4 feet (leaf links below at least two movable joints, one per leg), found "
+        << feet.size();
+    for (const auto& c : feet) msg << (c == feet.front() ? ": " : ", ") << c->name;
     throw std::invalid_argument(msg.str());
   }
-  return candidates;
+  return feet;
 }
 
 // The deepest link that every foot hangs from.
@@ -100,6 +142,7 @@ LegModel BuildLeg(const LinkPtr& base, const LinkPtr& foot) {
   LegModel leg;
   leg.foot_link = foot->name;
   leg.foot_radius = SphereRadius(*foot);
+  leg.foot_sphere_center = SphereCenter(*foot);
   std::vector<LinkPtr> path = PathFromRoot(foot);
   path.erase(path.begin(), std::find(path.begin(), path.end(), base) + 1);
   Eigen::Isometry3d base_T = Eigen::Isometry3d::Identity();
@@ -167,13 +210,7 @@ RobotModel RobotModel::FromUrdfFile(const std::string& path, const LegDetectionS
 
 RobotModel RobotModel::FromUrdfString(const std::string& xml, const std::string& source_name,
                                       const LegDetectionSettings& settings) {
-  if (xml.find_first_not_of(" \t\r\n") == std::string::npos) {
-    throw std::invalid_argument(source_name + ": <robot>: the URDF is empty");
-  }
-  urdf::ModelInterfaceSharedPtr parsed = urdf::parseURDF(xml);
-  if (!parsed || !parsed->getRoot()) {
-    throw std::invalid_argument(source_name + ": <robot>: not a valid URDF (malformed XML, or a joint or link that does not resolve)");
-  }
+  const std::shared_ptr<const urdf::ModelInterface> parsed = ParseUrdf(xml, source_name);
   RobotModel model;
   model.urdf_ = parsed;
   model.name_ = parsed->getName();

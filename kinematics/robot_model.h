@@ -33,14 +33,23 @@ struct LegModel {
   Eigen::Vector3d hip_B = Eigen::Vector3d::Zero();       ///< first movable joint's origin in the base frame [m]
   Eigen::Vector3d foot_zero_B = Eigen::Vector3d::Zero(); ///< foot origin at zero joint angles, base frame [m]
   double foot_radius = 0.0;  ///< radius of the foot's sphere collision, 0 when it has none [m]
+  /// Centre of the foot's sphere collision in the foot link frame (ANYmal's sits above the link
+  /// origin, Go2's slightly behind it); zero when the foot has no sphere [m].
+  Eigen::Vector3d foot_sphere_center = Eigen::Vector3d::Zero();
   double max_reach = 0.0;    ///< upper bound on the hip-to-foot distance: sum of the chain's offsets [m]
   double mass = 0.0;         ///< mass of the leg's links [kg]
 };
 
-/// How feet are recognised when the automatic rule is not what a robot needs.
+/// How feet are recognised when the automatic rule is not what a robot needs. The automatic rule:
+/// a foot is a leaf link below at least two movable joints; leaf links are grouped by the first
+/// movable joint above them (one group per leg) and each group's foot is the link with a sphere
+/// collision, then the one below the most movable joints, then the one farthest from the hip at the
+/// zero configuration. Sensor boxes, rotors and covers hanging off a leg are thereby passed over.
 struct LegDetectionSettings {
   /// When non-empty, a foot is a link whose name contains this substring (case-sensitive).
   std::string foot_name_contains;
+  /// When non-empty, exactly these links are the feet (any order); overrides foot_name_contains.
+  std::vector<std::string> foot_links;
 };
 
 /// A robot model loaded from URDF. Immutable after loading; cheap to copy (shared URDF).

@@ -1,0 +1,52 @@
+// Clearances between the robot and the stairs, and between contralateral legs: the smallest
+// signed distance over all shape pairs with the closest points, in the world frame. Pairs whose
+// bounding-sphere lower bound cannot beat the current minimum are skipped, so a leg far from the
+// stairs costs a few box distances. No allocation for separated configurations.
+#pragma once
+
+#include <limits>
+
+#include <Eigen/Core>
+
+#include "collision/robot_collision_model.h"
+#include "collision/stair_collision_model.h"
+#include "kinematics/body_pose.h"
+#include "kinematics/robot_kinematics.h"
+
+namespace stairplan {
+
+/// The closest pair found.
+struct Clearance {
+  double distance = std::numeric_limits<double>::infinity();  ///< signed, negative inside [m]
+  Eigen::Vector3d point_robot_W = Eigen::Vector3d::Zero();  ///< on the robot shape (leg a for leg pairs)
+  Eigen::Vector3d point_other_W = Eigen::Vector3d::Zero();  ///< on the stair solid (or leg b)
+  int leg = -1;     ///< the robot shape's leg (-1: body)
+  int shape = -1;   ///< index into leg_shapes(leg) or body_shapes()
+  int other = -1;   ///< stair solid index, or shape index on leg b
+  StairPart part = StairPart::kOther;  ///< for stairs: what was closest
+  bool fallback = false;  ///< FCL failed on some pair; distance is a conservative bound
+};
+
+/// Options of the robot-versus-stairs queries.
+struct ClearanceOptions {
+  /// The foot's contact sphere touches the surface it stands on by design: skip the solids whose
+  /// top is within support_tolerance of the sphere's bottom (that surface and the nosing lip in
+  /// its plane); it still sees the risers and nosings above it.
+  bool skip_foot_support = true;
+  double support_tolerance = 2e-3;  ///< [m]
+};
+
+/// Clearance of leg `leg` at joint angles q, with the body at `body`, to every stair solid.
+Clearance LegStairClearance(const RobotKinematics& kinematics, const RobotCollisionModel& robot,
+                            const StairCollisionModel& stairs, int leg, const Eigen::Vector3d& q, const BodyPose& body,
+                            RobotWorkspace& ws, const ClearanceOptions& options = {});
+
+/// Clearance of the body's shapes to every stair solid.
+Clearance BodyStairClearance(const RobotCollisionModel& robot, const StairCollisionModel& stairs, const BodyPose& body);
+
+/// Clearance between leg a at q_a and leg b at q_b (e.g. LF and RF, the contralateral pair); points
+/// in the base frame (the body pose does not change it).
+Clearance LegLegClearance(const RobotKinematics& kinematics, const RobotCollisionModel& robot, int leg_a,
+                          const Eigen::Vector3d& q_a, int leg_b, const Eigen::Vector3d& q_b, RobotWorkspace& ws);
+
+}  // namespace stairplan

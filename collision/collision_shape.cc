@@ -1,0 +1,75 @@
+#include "collision/collision_shape.h"
+
+#include <stdexcept>
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <urdf_model/link.h>
+
+namespace stairplan {
+namespace {
+
+Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+                   .normalized()
+                   .toRotationMatrix();
+  t.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  return t;
+}
+
+}  // namespace
+
+std::shared_ptr<const fcl::CollisionGeometryd> MakeFclBox(const Eigen::Vector3d& size) {
+  auto box = std::make_shared<fcl::Boxd>(size);
+  box->computeLocalAABB();
+  return box;
+}
+
+std::vector<CollisionShape> LinkCollisionShapes(const urdf::Link& link, const std::string& source) {
+  std::vector<CollisionShape> shapes;
+  for (const auto& collision : link.collision_array) {
+    if (!collision || !collision->geometry) continue;
+    CollisionShape shape;
+    shape.link = link.name;
+    shape.local = ToIsometry(collision->origin);
+    switch (collision->geometry->type) {
+      case urdf::Geometry::BOX: {
+        const auto& box = static_cast<const urdf::Box&>(*collision->geometry);
+        shape.type = ShapeType::kBox;
+        shape.size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
+        shape.geometry = MakeFclBox(shape.size);
+        shape.bounding_radius = 0.5 * shape.size.norm();
+        break;
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& cylinder = static_cast<const urdf::Cylinder&>(*collision->geometry);
+        shape.type = ShapeType::kCylinder;
+        shape.size = Eigen::Vector3d(cylinder.radius, cylinder.radius, cylinder.length);
+        auto geometry = std::make_shared<fcl::Cylinderd>(cylinder.radius, cylinder.length);
+        geometry->computeLocalAABB();
+        shape.geometry = geometry;
+        shape.bounding_radius = std::hypot(cylinder.radius, 0.5 * cylinder.length);
+        break;
+      }
+      case urdf::Geometry::SPHERE: {
+        const auto& sphere = static_cast<const urdf::Sphere&>(*collision->geometry);
+        shape.type = ShapeType::kSphere;
+        shape.size = Eigen::Vector3d::Constant(sphere.radius);
+        auto geometry = std::make_shared<fcl::Sphered>(sphere.radius);
+        geometry->computeLocalAABB();
+        shape.geometry = geometry;
+        shape.bounding_radius = sphere.radius;
+        break;
+      }
+      default:
+        throw std::invalid_argument(source + ": <link name=\"" + link.name +
+                                    "\">: <collision> with a mesh is not supported; use boxes, cylinders and spheres");
+    }
+    shapes.push_back(std::move(shape));
+  }
+  return shapes;
+}
+
+}  // namespace stairplan

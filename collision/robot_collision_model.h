@@ -1,0 +1,31 @@
+// The robot's collision primitives grouped by leg and body. Every link hanging from a leg chain
+// link by fixed joints (Go1's rotors, Go2's lower calf, A1's shoulder) moves with that chain link;
+// links fixed to the base (trunk, head, sensors) form the body.
+#pragma once
+
+#include <vector>
+
+#include "collision/collision_shape.h"
+#include "kinematics/robot_kinematics.h"
+
+namespace stairplan {
+
+/// Const model: the shapes of each leg (in RobotKinematics leg order) and of the body.
+class RobotCollisionModel {
+ public:
+  /// Throws std::invalid_argument naming the link for unsupported geometry (meshes) and naming the
+  /// leg when a leg has no collision shape at all.
+  explicit RobotCollisionModel(const RobotKinematics& kinematics);
+
+  /// Shapes of leg `index`; each one's `segment` indexes that leg's LinkFrames().
+  const std::vector<CollisionShape>& leg_shapes(int index) const { return legs_.at(static_cast<std::size_t>(index)); }
+  /// Shapes fixed to the base frame (segment -1).
+  const std::vector<CollisionShape>& body_shapes() const { return body_; }
+  int leg_count() const { return static_cast<int>(legs_.size()); }
+
+ private:
+  std::vector<std::vector<CollisionShape>> legs_;
+  std::vector<CollisionShape> body_;
+};
+
+}  // namespace stairplan

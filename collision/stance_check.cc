@@ -1,0 +1,140 @@
+#include "collision/stance_check.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace stairplan {
+
+const char* ToString(StanceStatus status) {
+  switch (status) {
+    case StanceStatus::kOk: return "ok";
+    case StanceStatus::kOutOfReach: return "out_of_reach";
+    case StanceStatus::kJointLimits: return "joint_limits";
+    case StanceStatus::kCollision: return "collision";
+  }
+  return "unknown";
+}
+
+void StanceSettings::Validate() const {
+  ik.Validate();
+  if (!std::isfinite(min_clearance)) throw std::invalid_argument("StanceSettings.min_clearance: must be finite");
+  if (!std::isfinite(clearance.support_tolerance) || clearance.support_tolerance < 0.0) {
+    throw std::invalid_argument("StanceSettings.clearance.support_tolerance: must be a non-negative number");
+  }
+}
+
+Eigen::Vector3d FootOriginForContact(const LegModel& leg, const Eigen::Vector3d& contact_W,
+                                     const Eigen::Matrix3d& foot_rotation_W) {
+  const Eigen::Vector3d centre_W = contact_W + Eigen::Vector3d(0.0, 0.0, leg.foot_radius);
+  return centre_W - foot_rotation_W * leg.foot_sphere_center;
+}
+
+StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollisionModel& robot,
+                         const StairCollisionModel& stairs, const BodyPose& body,
+                         const std::array<Eigen::Vector3d, 4>& contacts_W, RobotWorkspace& ws,
+                         const StanceSettings& settings) {
+  if (kinematics.leg_count() != 4) throw std::invalid_argument("CheckStance: the robot must have 4 legs");
+  for (int l = 0; l < 4; ++l) {
+    if (!contacts_W[static_cast<std::size_t>(l)].allFinite()) {
+      throw std::invalid_argument("CheckStance: contacts_W[" + std::to_string(l) + "] is not finite");
+    }
+  }
+  const Eigen::Isometry3d body_W = body.ToIsometry();
+  const Eigen::Isometry3d W_body = body_W.inverse();
+  StanceResult result;
+  result.min_clearance = std::numeric_limits<double>::infinity();
+  bool out_of_reach = false, limits = false;
+  for (int l = 0; l < 4; ++l) {
+    const LegKinematics& leg = kinematics.leg(l);
+    LegStance& stance = result.legs[static_cast<std::size_t>(l)];
+    const Eigen::Vector3d& contact = contacts_W[static_cast<std::size_t>(l)];
+    // The sphere's offset from the foot origin turns with the foot: solve, re-aim with the foot's
+    // orientation, solve again from there (the offset is a couple of centimetres at most).
+    Eigen::Matrix3d foot_rotation_W = body_W.linear();
+    stance.ik = leg.SolveFootIk(W_body * FootOriginForContact(leg.model(), contact, foot_rotation_W), ws.leg(l), settings.ik);
+    if (!leg.model().foot_sphere_center.isZero()) {
+      for (int pass = 0; pass < 3 && stance.ik.ok(); ++pass) {
+        foot_rotation_W = body_W.linear() * leg.FootPose(stance.ik.q, ws.leg(l)).linear();
+        stance.ik = leg.SolveFootIk(W_body * FootOriginForContact(leg.model(), contact, foot_rotation_W), stance.ik.q,
+                                    ws.leg(l), settings.ik);
+      }
+    }
+    out_of_reach = out_of_reach || stance.ik.status == IkStatus::kOutOfReach;
+    limits = limits || stance.ik.status == IkStatus::kJointLimits;
+    stance.stairs = LegStairClearance(kinematics, robot, stairs, l, stance.ik.q, body, ws, settings.clearance);
+    if (stance.stairs.distance < result.min_clearance) {
+      result.min_clearance = stance.stairs.distance;
+      result.worst_leg = l;
+    }
+  }
+  result.body = BodyStairClearance(robot, stairs, body);
+  bool collision = !(result.min_clearance > settings.min_clearance) || !(result.body.distance > settings.min_clearance);
+  if (settings.check_contralateral) {
+    result.front_pair = LegLegClearance(kinematics, robot, 0, result.legs[0].ik.q, 1, result.legs[1].ik.q, ws);
+    result.hind_pair = LegLegClearance(kinematics, robot, 2, result.legs[2].ik.q, 3, result.legs[3].ik.q, ws);
+    collision = collision || !(result.front_pair.distance > settings.min_clearance) ||
+                !(result.hind_pair.distance > settings.min_clearance);
+  }
+  result.status = out_of_reach ? StanceStatus::kOutOfReach
+                  : limits     ? StanceStatus::kJointLimits
+                  : collision  ? StanceStatus::kCollision
+                               : StanceStatus::kOk;
+  return result;
+}
+
+StanceChecker::StanceChecker(const RobotModel& robot, const Staircase& stairs, const StanceSettings& settings)
+    : kinematics_(robot), collision_(kinematics_), stairs_(stairs), settings_(settings), ws_(kinematics_) {
+  settings_.Validate();
+}
+
+StanceResult StanceChecker::Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W) {
+  return CheckStance(kinematics_, collision_, stairs_, body, contacts_W, ws_, settings_);
+}
+
+Interval1 StanceChecker::FeasibleBodyHeights(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W,
+                                             double z_lo, double z_hi, double step) {
+  if (!(step > 0.0) || !(z_hi >= z_lo) || !std::isfinite(z_lo) || !std::isfinite(z_hi)) {
+    throw std::invalid_argument("StanceChecker::FeasibleBodyHeights: need finite z_lo <= z_hi and step > 0");
+  }
+  BodyPose probe = body;
+  const auto passes = [&](double z) {
+    probe.position_W.z() = z;
+    return Check(probe, contacts_W).ok();
+  };
+  double run_lo = 0.0, best_lo = 0.0, best_hi = -1.0;
+  bool in_run = false;
+  const int samples = static_cast<int>(std::floor((z_hi - z_lo) / step + 1e-9));
+  for (int i = 0; i <= samples; ++i) {
+    const double z = z_lo + i * step;
+    if (!passes(z)) {
+      in_run = false;
+      continue;
+    }
+    if (!in_run) run_lo = z;
+    in_run = true;
+    if (z - run_lo > best_hi - best_lo) {
+      best_lo = run_lo;
+      best_hi = z;
+    }
+  }
+  Interval1 result;
+  if (best_hi < best_lo) return result;
+  constexpr double kTolerance = 1e-3;
+  double in = best_lo, out = best_lo - step;
+  while (in - out > kTolerance && out >= z_lo - step) {
+    const double mid = 0.5 * (in + out);
+    (passes(mid) ? in : out) = mid;
+  }
+  result.lo = in;
+  in = best_hi;
+  out = best_hi + step;
+  while (out - in > kTolerance) {
+    const double mid = 0.5 * (in + out);
+    (passes(mid) ? in : out) = mid;
+  }
+  result.hi = in;
+  return result;
+}
+
+}  // namespace stairplan

@@ -1,0 +1,249 @@
+#include "kinematics/leg_kinematics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <kdl/chainfksolverpos_recursive.hpp>
+#include <kdl/chainjnttojacsolver.hpp>
+#include <kdl/tree.hpp>
+
+namespace stairplan {
+namespace {
+
+constexpr int kDof = 3;
+// Joint ranges wider than a turn (ANYmal's placeholder +/-3 pi) are sampled over one turn only.
+constexpr double kSampleRange = M_PI;
+
+Eigen::Isometry3d ToEigen(const KDL::Frame& f) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) t.linear()(r, c) = f.M(r, c);
+    t.translation()(r) = f.p(r);
+  }
+  return t;
+}
+
+double SampleLo(double lo) { return std::max(lo, -kSampleRange); }
+double SampleHi(double hi) { return std::min(hi, kSampleRange); }
+
+}  // namespace
+
+LegKinematics::LegKinematics(const LegModel& leg, const KDL::Tree& tree, const std::string& base_link) : leg_(leg) {
+  auto chain = std::make_shared<KDL::Chain>();
+  if (!tree.getChain(base_link, leg.foot_link, *chain)) {
+    throw std::invalid_argument("LegKinematics: leg " + leg.name + ": no KDL chain from '" + base_link + "' to '" +
+                                leg.foot_link + "'");
+  }
+  if (chain->getNrOfJoints() != kDof || leg.limits.size() != kDof) {
+    throw std::invalid_argument("LegKinematics: leg " + leg.name + " (foot '" + leg.foot_link + "') has " +
+                                std::to_string(chain->getNrOfJoints()) + " movable joints; 3 are supported");
+  }
+  chain_ = chain;
+  for (unsigned i = 0; i < chain_->getNrOfSegments(); ++i) {
+    const KDL::Segment& segment = chain_->getSegment(i);
+    segment_links_.push_back(segment.getName());
+    if (segment.getJoint().getType() != KDL::Joint::None) knee_segment_ = static_cast<int>(i);
+  }
+  for (int j = 0; j < kDof; ++j) {
+    lower_(j) = leg.limits[static_cast<std::size_t>(j)].lower;
+    upper_(j) = leg.limits[static_cast<std::size_t>(j)].upper;
+    if (!(lower_(j) <= upper_(j))) {
+      throw std::invalid_argument("LegKinematics: leg " + leg.name + ": joint '" + leg.joint_names[static_cast<std::size_t>(j)] +
+                                  "' has lower limit above upper limit");
+    }
+  }
+  hip_B_ = leg.hip_B;
+  LegWorkspace ws(*this);
+  ComputeReach(ws);
+  ComputeNominal(ws);
+}
+
+bool LegKinematics::WithinLimits(const Eigen::Vector3d& q, double tol) const {
+  return ((q.array() >= lower_.array() - tol) && (q.array() <= upper_.array() + tol)).all();
+}
+
+Eigen::Vector3d LegKinematics::Clamp(const Eigen::Vector3d& q) const { return q.cwiseMax(lower_).cwiseMin(upper_); }
+
+Eigen::Isometry3d LegKinematics::FootPose(const Eigen::Vector3d& q, LegWorkspace& ws) const {
+  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
+  ws.fk_->JntToCart(ws.q_, ws.frame_);
+  return ToEigen(ws.frame_);
+}
+
+Eigen::Vector3d LegKinematics::FootPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
+  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
+  ws.fk_->JntToCart(ws.q_, ws.frame_);
+  return {ws.frame_.p.x(), ws.frame_.p.y(), ws.frame_.p.z()};
+}
+
+Eigen::Vector3d LegKinematics::KneePosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
+  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
+  ws.fk_->JntToCart(ws.q_, ws.frame_, knee_segment_ + 1);
+  return {ws.frame_.p.x(), ws.frame_.p.y(), ws.frame_.p.z()};
+}
+
+const std::vector<Eigen::Isometry3d>& LegKinematics::LinkFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const {
+  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
+  ws.fk_->JntToCart(ws.q_, ws.frames_);
+  for (std::size_t i = 0; i < ws.frames_.size(); ++i) ws.frames_B_[i] = ToEigen(ws.frames_[i]);
+  return ws.frames_B_;
+}
+
+Eigen::Matrix3d LegKinematics::FootJacobian(const Eigen::Vector3d& q, LegWorkspace& ws) const {
+  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
+  ws.jac_->JntToJac(ws.q_, ws.jacobian_);
+  return ws.jacobian_.data.topRows<3>();
+}
+
+double LegKinematics::Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q, bool clamp, const IkSettings& settings,
+                              LegWorkspace& ws, int& iterations) const {
+  Eigen::Vector3d error = target - FootPosition(q, ws);
+  double norm = error.norm();
+  double lambda = 1e-6;
+  for (int it = 0; it < settings.max_iterations && norm > settings.tolerance; ++it) {
+    ++iterations;
+    const Eigen::Matrix3d J = FootJacobian(q, ws);
+    Eigen::Matrix3d normal = J.transpose() * J;
+    // Marquardt's scaling keeps the damping meaningful for joints of very different leverage.
+    normal.diagonal() += lambda * (Eigen::Vector3d::Ones() + normal.diagonal());
+    Eigen::Vector3d step = normal.inverse() * (J.transpose() * error);
+    const double step_norm = step.norm();
+    if (!std::isfinite(step_norm)) break;
+    if (step_norm > settings.max_step) step *= settings.max_step / step_norm;
+    Eigen::Vector3d trial = q + step;
+    if (clamp) trial = Clamp(trial);
+    const Eigen::Vector3d trial_error = target - FootPosition(trial, ws);
+    const double trial_norm = trial_error.norm();
+    if (trial_norm < norm) {
+      q = trial;
+      error = trial_error;
+      norm = trial_norm;
+      lambda = std::max(lambda * 0.1, 1e-12);
+    } else {
+      lambda *= 10.0;
+      if (lambda > 1e6) break;  // stalled: at a limit or at the edge of the workspace
+    }
+  }
+  return norm;
+}
+
+Eigen::Vector3d LegKinematics::RestartSeed(int k) const {
+  Eigen::Vector3d q;
+  for (int j = 0; j < kDof; ++j) {
+    const double lo = SampleLo(lower_(j)), hi = SampleHi(upper_(j));
+    const double fraction = ((k >> j) & 1) ? 0.8 : 0.2;
+    q(j) = lo + fraction * (hi - lo);
+  }
+  return q;
+}
+
+IkResult LegKinematics::SolveFootIk(const Eigen::Vector3d& foot_B, LegWorkspace& ws, const IkSettings& settings) const {
+  return SolveFootIk(foot_B, nominal_, ws, settings);
+}
+
+IkResult LegKinematics::SolveFootIk(const Eigen::Vector3d& foot_B, const Eigen::Vector3d& seed, LegWorkspace& ws,
+                                    const IkSettings& settings) const {
+  if (!foot_B.allFinite()) throw std::invalid_argument("LegKinematics::SolveFootIk: leg " + leg_.name + ": foot_B is not finite");
+  if (!seed.allFinite()) throw std::invalid_argument("LegKinematics::SolveFootIk: leg " + leg_.name + ": seed is not finite");
+  IkResult result;
+  result.q = Clamp(seed);
+  result.error = Descend(foot_B, result.q, true, settings, ws, result.iterations);
+  // A descent that stalls against a joint limit often has a solution on another branch: restart
+  // from spread-out seeds before giving up.
+  for (int k = 0; k < settings.max_restarts && result.error > settings.tolerance; ++k) {
+    Eigen::Vector3d q = RestartSeed(k);
+    const double error = Descend(foot_B, q, true, settings, ws, result.iterations);
+    if (error < result.error) {
+      result.q = q;
+      result.error = error;
+    }
+  }
+  if (result.error <= settings.tolerance) {
+    result.status = IkStatus::kSolved;
+    return result;
+  }
+  // Tell "beyond the leg" from "only beyond the limits" by solving again without the limits.
+  Eigen::Vector3d free_q = result.q;
+  int unused = 0;
+  const double free_error = Descend(foot_B, free_q, false, settings, ws, unused);
+  result.status = free_error <= std::max(settings.tolerance, 1e-7) ? IkStatus::kJointLimits : IkStatus::kOutOfReach;
+  return result;
+}
+
+void LegKinematics::ComputeReach(LegWorkspace& ws) {
+  constexpr int kSamples = 15;
+  reach_.lo = std::numeric_limits<double>::infinity();
+  reach_.hi = 0.0;
+  Eigen::Vector3d q;
+  for (int a = 0; a < kSamples; ++a) {
+    for (int b = 0; b < kSamples; ++b) {
+      for (int c = 0; c < kSamples; ++c) {
+        const int index[3] = {a, b, c};
+        for (int j = 0; j < kDof; ++j) {
+          const double lo = SampleLo(lower_(j)), hi = SampleHi(upper_(j));
+          q(j) = lo + (hi - lo) * index[j] / (kSamples - 1);
+        }
+        const double d = (FootPosition(q, ws) - hip_B_).norm();
+        reach_.lo = std::min(reach_.lo, d);
+        reach_.hi = std::max(reach_.hi, d);
+      }
+    }
+  }
+}
+
+void LegKinematics::ComputeNominal(LegWorkspace& ws) {
+  // Target: the foot under the hip at 3/4 of the reach, as a standing robot has it.
+  const Eigen::Vector3d target(hip_B_.x(), leg_.foot_zero_B.y(), hip_B_.z() - 0.75 * reach_.hi);
+  const double inward = hip_B_.x() >= 0.0 ? -1.0 : 1.0;  // direction of the body centre along x
+  // Abduction stays near zero (ANYmal B's +/-3 pi limits would otherwise allow a leg folded over
+  // itself); flexion and knee are searched over their whole (one-turn) range.
+  double haa_lo = std::max(lower_(0), -0.5), haa_hi = std::min(upper_(0), 0.5);
+  if (haa_lo > haa_hi) {
+    haa_lo = SampleLo(lower_(0));
+    haa_hi = SampleHi(upper_(0));
+  }
+  constexpr int kAbduction = 5, kSamples = 25;
+  double best_cost = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d q, best = Clamp(Eigen::Vector3d::Zero());
+  for (int a = 0; a < kAbduction; ++a) {
+    q(0) = haa_lo + (haa_hi - haa_lo) * a / (kAbduction - 1);
+    for (int b = 0; b < kSamples; ++b) {
+      q(1) = SampleLo(lower_(1)) + (SampleHi(upper_(1)) - SampleLo(lower_(1))) * b / (kSamples - 1);
+      for (int c = 0; c < kSamples; ++c) {
+        q(2) = SampleLo(lower_(2)) + (SampleHi(upper_(2)) - SampleLo(lower_(2))) * c / (kSamples - 1);
+        const Eigen::Vector3d foot = FootPosition(q, ws);
+        const Eigen::Vector3d knee = KneePosition(q, ws);
+        // The knee should point to the body centre: ahead of the hip-foot line for hind legs,
+        // behind it for front legs. A wrong bend costs as much as 5 cm of foot error; a small
+        // pull towards the URDF's zero pose breaks ties between equivalent folded poses.
+        const double bend = (knee.x() - 0.5 * (hip_B_.x() + foot.x())) * inward;
+        const double cost = (foot - target).norm() + (bend > 0.01 ? 0.0 : 0.05) + 0.005 * q.norm();
+        if (cost < best_cost) {
+          best_cost = cost;
+          best = q;
+        }
+      }
+    }
+  }
+  IkSettings settings;
+  int iterations = 0;
+  Descend(target, best, true, settings, ws, iterations);
+  nominal_ = best;
+}
+
+LegWorkspace::LegWorkspace(const LegKinematics& leg)
+    : chain_(leg.chain_ptr()),
+      fk_(std::make_unique<KDL::ChainFkSolverPos_recursive>(*chain_)),
+      jac_(std::make_unique<KDL::ChainJntToJacSolver>(*chain_)),
+      q_(chain_->getNrOfJoints()),
+      jacobian_(chain_->getNrOfJoints()),
+      frames_(chain_->getNrOfSegments()),
+      frames_B_(chain_->getNrOfSegments(), Eigen::Isometry3d::Identity()) {}
+
+LegWorkspace::~LegWorkspace() = default;
+LegWorkspace::LegWorkspace(LegWorkspace&&) noexcept = default;
+LegWorkspace& LegWorkspace::operator=(LegWorkspace&&) noexcept = default;
+
+}  // namespace stairplan

@@ -1,0 +1,123 @@
+// The kinematics of one leg as a KDL chain from the base link to the foot link: forward
+// kinematics of the foot, the knee and every link frame, the foot Jacobian, position-only IK with
+// joint limits, and reach. Model/workspace split as in Pinocchio: LegKinematics is const and
+// shareable; each thread keeps a LegWorkspace, and no query allocates once the workspace exists.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <kdl/chain.hpp>
+#include <kdl/frames.hpp>
+#include <kdl/jacobian.hpp>
+#include <kdl/jntarray.hpp>
+
+#include "kinematics/leg_ik.h"
+#include "kinematics/robot_model.h"
+
+namespace KDL {
+class Tree;
+class ChainFkSolverPos_recursive;
+class ChainJntToJacSolver;
+}  // namespace KDL
+
+namespace stairplan {
+
+class LegWorkspace;
+
+/// Closed interval [lo, hi]; empty when lo > hi.
+struct Interval1 {
+  double lo = 1.0;
+  double hi = 0.0;
+  bool empty() const { return lo > hi; }
+};
+
+/// One leg's kinematics. All positions are in the base link's frame (suffix _B) and in metres.
+class LegKinematics {
+ public:
+  /// Takes the chain base -> leg.foot_link out of `tree`. Throws std::invalid_argument naming the
+  /// leg when the chain is missing or the leg does not have exactly 3 movable joints.
+  LegKinematics(const LegModel& leg, const KDL::Tree& tree, const std::string& base_link);
+
+  const LegModel& model() const { return leg_; }
+  const std::string& name() const { return leg_.name; }
+  const KDL::Chain& chain() const { return *chain_; }
+  std::shared_ptr<const KDL::Chain> chain_ptr() const { return chain_; }
+  /// Number of chain segments (fixed and movable), i.e. of link frames.
+  int segment_count() const { return static_cast<int>(segment_links_.size()); }
+  /// The link whose frame is the tip of segment i.
+  const std::string& segment_link(int i) const { return segment_links_.at(static_cast<std::size_t>(i)); }
+  /// Index of the segment whose frame sits on the knee (the last movable joint).
+  int knee_segment() const { return knee_segment_; }
+
+  const Eigen::Vector3d& lower() const { return lower_; }
+  const Eigen::Vector3d& upper() const { return upper_; }
+  /// A standing configuration: foot below the hip at 3/4 of reach().hi, knee pointing towards the
+  /// body centre where the limits allow (ANYmal's front and hind knees bend opposite ways).
+  const Eigen::Vector3d& nominal() const { return nominal_; }
+  /// The first movable joint's origin (fixed in the base frame).
+  const Eigen::Vector3d& hip_B() const { return hip_B_; }
+  /// Sampled range of hip-to-foot distance over the joint limits [m].
+  const Interval1& reach() const { return reach_; }
+
+  /// True when every joint is within [lower - tol, upper + tol].
+  bool WithinLimits(const Eigen::Vector3d& q, double tol = 1e-9) const;
+  /// q clamped into the limits.
+  Eigen::Vector3d Clamp(const Eigen::Vector3d& q) const;
+
+  /// Foot link origin.
+  Eigen::Vector3d FootPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+  /// Foot link pose.
+  Eigen::Isometry3d FootPose(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+  /// Knee position (origin of the last movable joint's child frame).
+  Eigen::Vector3d KneePosition(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+  /// Every segment's tip frame (link frame), index as segment_link(); the reference lives in `ws`.
+  const std::vector<Eigen::Isometry3d>& LinkFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+  /// d(foot position)/dq, 3x3.
+  Eigen::Matrix3d FootJacobian(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+
+  /// Joint angles putting the foot link origin at `foot_B`, starting from nominal().
+  IkResult SolveFootIk(const Eigen::Vector3d& foot_B, LegWorkspace& ws, const IkSettings& settings = {}) const;
+  /// The same from `seed` (clamped into the limits first). Throws std::invalid_argument on NaN input.
+  IkResult SolveFootIk(const Eigen::Vector3d& foot_B, const Eigen::Vector3d& seed, LegWorkspace& ws,
+                       const IkSettings& settings = {}) const;
+
+ private:
+  // One damped Gauss-Newton descent; `clamp` keeps the iterate within limits.
+  double Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q, bool clamp, const IkSettings& settings,
+                 LegWorkspace& ws, int& iterations) const;
+  Eigen::Vector3d RestartSeed(int k) const;
+  void ComputeNominal(LegWorkspace& ws);
+  void ComputeReach(LegWorkspace& ws);
+
+  LegModel leg_;
+  std::shared_ptr<const KDL::Chain> chain_;
+  std::vector<std::string> segment_links_;
+  int knee_segment_ = 0;
+  Eigen::Vector3d lower_, upper_, nominal_, hip_B_;
+  Interval1 reach_;
+};
+
+/// Mutable scratch space of one leg's queries: KDL solvers and buffers, sized once.
+class LegWorkspace {
+ public:
+  explicit LegWorkspace(const LegKinematics& leg);
+  ~LegWorkspace();
+  LegWorkspace(LegWorkspace&&) noexcept;
+  LegWorkspace& operator=(LegWorkspace&&) noexcept;
+
+ private:
+  friend class LegKinematics;
+  std::shared_ptr<const KDL::Chain> chain_;  // keeps the chain alive for the solvers
+  std::unique_ptr<KDL::ChainFkSolverPos_recursive> fk_;
+  std::unique_ptr<KDL::ChainJntToJacSolver> jac_;
+  KDL::JntArray q_;
+  KDL::Jacobian jacobian_;
+  KDL::Frame frame_;
+  std::vector<KDL::Frame> frames_;
+  std::vector<Eigen::Isometry3d> frames_B_;
+};
+
+}  // namespace stairplan

@@ -1,0 +1,92 @@
+#include "kinematics/urdf_parse.h"
+
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include <console_bridge/console.h>
+#include <tinyxml.h>
+#include <urdf_model/model.h>
+#include <urdf_parser/urdf_parser.h>
+
+namespace stairplan {
+namespace {
+
+// Collects console_bridge messages instead of printing them (the library never prints).
+class CapturingHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) return;
+    if (!errors_.empty()) errors_ += "; ";
+    errors_ += text;
+  }
+  const std::string& errors() const { return errors_; }
+
+ private:
+  std::string errors_;
+};
+
+// console_bridge's handler is process-global: one parse at a time swaps it.
+std::mutex& ParseMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+std::string Attribute(const TiXmlElement& element, const char* name) {
+  const char* value = element.Attribute(name);
+  return value ? value : "";
+}
+
+// urdfdom 3.0.1 knows no <capsule>: it then discards the link's whole collision list, which would
+// make a foot or a leg link vanish from collision checks without a word. Refuse such links.
+void RejectCapsules(const TiXmlElement& robot, const std::string& source) {
+  for (const TiXmlElement* link = robot.FirstChildElement("link"); link; link = link->NextSiblingElement("link")) {
+    for (const TiXmlElement* collision = link->FirstChildElement("collision"); collision;
+         collision = collision->NextSiblingElement("collision")) {
+      const TiXmlElement* geometry = collision->FirstChildElement("geometry");
+      if (geometry && geometry->FirstChildElement("capsule")) {
+        throw std::invalid_argument(source + ": <link name=\"" + Attribute(*link, "name") + "\"> line " +
+                                    std::to_string(geometry->Row()) +
+                                    ": <capsule> collision geometry is not supported (urdfdom 3.0.1 drops every "
+                                    "collision of this link); use a cylinder and two spheres");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const std::string& source_name) {
+  if (xml.find_first_not_of(" \t\r\n") == std::string::npos) {
+    throw std::invalid_argument(source_name + ": <robot>: the URDF is empty");
+  }
+  TiXmlDocument document;
+  document.Parse(xml.c_str());
+  if (document.Error()) {
+    throw std::invalid_argument(source_name + ": line " + std::to_string(document.ErrorRow()) +
+                                ": malformed XML: " + document.ErrorDesc());
+  }
+  const TiXmlElement* robot = document.FirstChildElement("robot");
+  if (!robot) throw std::invalid_argument(source_name + ": <robot>: no <robot> root element");
+  RejectCapsules(*robot, source_name);
+
+  std::lock_guard<std::mutex> lock(ParseMutex());
+  CapturingHandler handler;
+  console_bridge::OutputHandler* previous = console_bridge::getOutputHandler();
+  console_bridge::useOutputHandler(&handler);
+  urdf::ModelInterfaceSharedPtr parsed;
+  try {
+    parsed = urdf::parseURDF(xml);
+  } catch (...) {
+    console_bridge::useOutputHandler(previous);
+    throw;
+  }
+  console_bridge::useOutputHandler(previous);
+  if (!parsed || !parsed->getRoot()) {
+    const std::string why = handler.errors().empty() ? "not a valid URDF" : handler.errors();
+    throw std::invalid_argument(source_name + ": <robot name=\"" + Attribute(*robot, "name") + "\">: " + why);
+  }
+  return parsed;
+}
+
+}  // namespace stairplan
