@@ -58,7 +58,9 @@ StepPlanner::StepPlanner(const RobotModel& robot, const ConstrainedMap& map, con
   if (!reach_) reach_ = std::make_shared<GeometricReachModel>(settings_.reach_min_fraction, settings_.reach_max_fraction);
   ground_ = GroundProfile::FromMap(map_);
   yaw_ = map_.facing() == Facing::kForward ? 0.0 : M_PI;
-  const double c = std::cos(yaw_);
+  cos_yaw_ = std::cos(yaw_);
+  sin_yaw_ = std::sin(yaw_);
+  const double c = cos_yaw_;
 
   // Roles relative to travel: facing backwards, the body's front legs are the rear ones.
   leg_of_role_.fill(-1);
@@ -174,18 +176,34 @@ double StepPlanner::BodyPitchAt(const Eigen::Vector2d& body_xy_W) const {
 }
 
 Eigen::Isometry3d StepPlanner::BodyPoseAt(const Eigen::Vector2d& body_xy_W) const {
-  const double c = std::cos(yaw_);
-  const double g_fore = ground_.HeightAt(body_xy_W.x() + c * fore_hip_x_B_);
-  const double g_hind = ground_.HeightAt(body_xy_W.x() + c * hind_hip_x_B_);
-  const double pitch = -std::atan2(g_fore - g_hind, fore_hip_x_B_ - hind_hip_x_B_);
+  const double cy = cos_yaw_, sy = sin_yaw_;
+  const double g_fore = ground_.HeightAt(body_xy_W.x() + cy * fore_hip_x_B_);
+  const double g_hind = ground_.HeightAt(body_xy_W.x() + cy * hind_hip_x_B_);
+  // pitch = -atan2(rise, length) along the hips; its sine and cosine without trigonometry, since
+  // this runs for every footstep of every controller. R = Rz(yaw) * Ry(pitch), written out.
+  const double rise = g_fore - g_hind, length = fore_hip_x_B_ - hind_hip_x_B_;
+  const double hyp = std::sqrt(rise * rise + length * length);
+  const double sp = -rise / hyp, cp = length / hyp;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = (Eigen::AngleAxisd(yaw_, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY())).toRotationMatrix();
+  pose.linear() << cy * cp, -sy, cy * sp,
+                   sy * cp, cy, sy * sp,
+                   -sp, 0.0, cp;
   pose.translation() = Eigen::Vector3d(body_xy_W.x(), body_xy_W.y(), 0.5 * (g_fore + g_hind) + hip_height_ - mean_hip_z_);
   return pose;
 }
 
 Eigen::Vector2d StepPlanner::NeutralFootXY(int leg, const Eigen::Vector2d& body_xy_W) const {
   return body_xy_W + neutral_offset_W_.at(static_cast<std::size_t>(leg));
+}
+
+double StepPlanner::RegionDistance(int k, const Eigen::Vector2d& p) const {
+  const RegionInfo& r = regions_[static_cast<std::size_t>(k)];
+  if (r.rectangle) {
+    const double dx = std::max({r.x_lo - p.x(), 0.0, p.x() - r.x_hi});
+    const double dy = std::max({r.y_lo - p.y(), 0.0, p.y() - r.y_hi});
+    return std::sqrt(dx * dx + dy * dy);
+  }
+  return map_.stairs()[static_cast<std::size_t>(k)].step_region.Distance(p);
 }
 
 int StepPlanner::NearestRegion(const Eigen::Vector2d& p, double* distance) const {
@@ -199,7 +217,7 @@ int StepPlanner::NearestRegion(const Eigen::Vector2d& p, double* distance) const
   const auto consider = [&](int k) {
     const RegionInfo& r = regions_[static_cast<std::size_t>(k)];
     if (!r.present) return;
-    const double d = map_.stairs()[static_cast<std::size_t>(k)].step_region.Distance(p);
+    const double d = RegionDistance(k, p);
     if (d < best_d - kTieTolerance || (std::abs(d - best_d) <= kTieTolerance && k < best)) {
       best_d = d;
       best = k;
@@ -328,10 +346,14 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
     for (int dk = -settings_.candidate_stairs; dk <= settings_.candidate_stairs; ++dk) {
       const int c = s.nearest_stair + dk;
       if (c < 0 || c >= n_stairs || !regions_[static_cast<std::size_t>(c)].present) continue;
-      const double d = dk == 0 ? s.region_distance : map_.stairs()[static_cast<std::size_t>(c)].step_region.Distance(s.unconstrained_xy_W);
+      const double d = dk == 0 ? s.region_distance : RegionDistance(c, s.unconstrained_xy_W);
       candidates[static_cast<std::size_t>(n_candidates++)] = {d, c};
     }
-    std::sort(candidates.begin(), candidates.begin() + n_candidates);
+    for (int i = 1; i < n_candidates; ++i) {  // insertion sort: at most 2 * candidate_stairs + 1
+      for (int j = i; j > 0 && candidates[static_cast<std::size_t>(j)] < candidates[static_cast<std::size_t>(j - 1)]; --j) {
+        std::swap(candidates[static_cast<std::size_t>(j)], candidates[static_cast<std::size_t>(j - 1)]);
+      }
+    }
 
     // Leading and trailing legs ([0070]): a trailing leg never lands on a stair ahead of its leading
     // leg, and a leading leg never lands behind its trailing leg.
@@ -342,6 +364,9 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
                                               : (role == TravelRole::kForeRight ? TravelRole::kForeLeft : TravelRole::kForeRight);
     const int partner_stair = stair[static_cast<std::size_t>(leg_of_role_[static_cast<std::size_t>(partner_role)])];
 
+    // The base at touchdown and at the end of the stance this controller gives the leg.
+    const Eigen::Isometry3d base_td = BodyPoseAt(body_td);
+    const Eigen::Isometry3d base_end = BodyPoseAt(body_end);
     RuleOut first_reason = RuleOut::kNone;
     double first_value = 0.0;
     bool placed = false;
@@ -361,8 +386,6 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
         value = step_height;
       } else {
         const Eigen::Vector3d foot_centre = target + Eigen::Vector3d(0.0, 0.0, model.foot_radius);
-        const Eigen::Isometry3d base_td = BodyPoseAt(body_td);
-        const Eigen::Isometry3d base_end = BodyPoseAt(body_end);
         if (!reach_->Reachable(model, base_td, foot_centre)) {
           reason = RuleOut::kUnreachable;
           value = GeometricReachModel::Extension(model, base_td, foot_centre);

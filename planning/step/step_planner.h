@@ -141,6 +141,8 @@ class StepPlanner {
   };
 
   void Evaluate(int index, const StepPlannerInput& input);
+  // Planar distance from p to the step region of stair k (which must have one).
+  double RegionDistance(int k, const Eigen::Vector2d& p) const;
 
   std::vector<LegModel> legs_;
   ConstrainedMap map_;
@@ -156,6 +158,8 @@ class StepPlanner {
   std::array<Eigen::Vector2d, 4> neutral_offset_W_{};  // foot under the hip, stance width, yawed
   std::array<double, 4> max_step_height_{};
   double yaw_ = 0.0;
+  double cos_yaw_ = 1.0;
+  double sin_yaw_ = 0.0;
   double hip_height_ = 0.0;
   double mean_hip_z_ = 0.0;
   double mean_foot_radius_ = 0.0;
