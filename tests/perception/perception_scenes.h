@@ -1,0 +1,29 @@
+// Synthetic scenes shared by the perception tests: stairs seen by a camera standing on the bottom
+// landing, placed in the world with a yaw and an offset, plus random building-code staircases.
+#pragma once
+
+#include <random>
+
+#include "geometry/depth_sensor.h"
+#include "geometry/point_cloud.h"
+#include "geometry/staircase.h"
+
+namespace stairplan::testing {
+
+/// A camera 0.5 m above the bottom landing, 0.8 m before the first riser, looking up the flight.
+SensorPose CameraOnBottomLanding();
+/// The test camera: 128 x 96 rays, so a hundred scans stay fast.
+PinholeCamera SmallCamera();
+
+/// A scan of `stairs` (in its own frame) moved into the world by yaw and offset.
+struct Scene {
+  PointCloud cloud;     ///< world frame
+  double yaw = 0.0;     ///< the stairs' ascending heading in the world
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+};
+Scene ScanFromBottom(const Staircase& stairs, double yaw, const Eigen::Vector3d& offset, double sigma, std::uint32_t seed);
+
+/// A random staircase within building-code ranges (rise 0.10-0.20, run 0.22-0.35, 3-9 steps).
+StairSpec RandomCodeStairs(std::mt19937& rng);
+
+}  // namespace stairplan::testing
