@@ -152,7 +152,7 @@ bool ActiveSetQpSolver::AddConstraint(int k, int side) {
   for (int j = n_ - 1; j > q_; --j) {
     const double a = d_[j - 1], b = d_[j];
     if (b == 0.0) continue;
-    const double h = std::hypot(a, b);
+    const double h = std::sqrt(a * a + b * b);  // no overflow at our magnitudes; hypot is slow
     const double c = a / h, s = b / h;
     d_[j - 1] = h;
     d_[j] = 0.0;
@@ -178,7 +178,7 @@ void ActiveSetQpSolver::DropConstraint(int position) {
   for (int j = position; j < q_; ++j) {
     const double a = R_(j, j), b = R_(j + 1, j);
     if (b == 0.0) continue;
-    const double h = std::hypot(a, b);
+    const double h = std::sqrt(a * a + b * b);  // no overflow at our magnitudes; hypot is slow
     const double c = a / h, s = b / h;
     R_(j, j) = h;
     R_(j + 1, j) = 0.0;
@@ -385,6 +385,10 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
     }
     if (status != SolveStatus::kSolved || !regularized) break;
     const double step = (x_ - x_prox_).lpNorm<Eigen::Infinity>();
+    if (IsUnboundedRay()) {
+      status = SolveStatus::kUnbounded;
+      break;
+    }
     x_prox_ = x_;
     // x solves the original problem up to a dual residual of rho * step (the proximal term's
     // gradient); stop when that residual can change the objective by a negligible amount, or when
@@ -405,6 +409,26 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
   }
   result->info.outer_iterations = outer;
   FillResult(program, status, result);
+}
+
+bool ActiveSetQpSolver::IsUnboundedRay() {
+  // d = x_{k+1} - x_k certifies unboundedness when H d = 0, g'd < 0 and d moves away from (or
+  // along) every finite bound: then x + s d stays feasible and the objective falls without end.
+  d_ = x_ - x_prox_;
+  const double norm = d_.lpNorm<Eigen::Infinity>();
+  if (!(norm > 1e-6 * (1.0 + x_.lpNorm<Eigen::Infinity>()))) return false;
+  d_ /= norm;
+  const Eigen::VectorXd& g = program_->linear_cost();
+  if (!(g.dot(d_) < -1e-9 * (1.0 + g.lpNorm<Eigen::Infinity>()))) return false;
+  hx_.noalias() = program_->hessian() * d_;
+  if (hx_.lpNorm<Eigen::Infinity>() > 1e-9 * (1.0 + program_->hessian().diagonal().cwiseAbs().maxCoeff())) return false;
+  for (int k = 0; k < m_ + n_; ++k) {
+    const double rate = k < m_ ? program_->constraint_matrix().row(k).dot(d_) : d_[k - m_];
+    const double tol = 1e-9 * (k < m_ ? row_norm_[k] : 1.0);
+    if (std::isfinite(Lower(k)) && rate < -tol) return false;
+    if (std::isfinite(Upper(k)) && rate > tol) return false;
+  }
+  return true;
 }
 
 void ActiveSetQpSolver::FillResult(const Program& program, SolveStatus status, SolveResult* result) {

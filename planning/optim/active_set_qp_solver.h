@@ -101,6 +101,8 @@ class ActiveSetQpSolver final : public Solver {
   double RowValue(int k) const;
   bool IsEquality(int k) const { return Lower(k) == Upper(k); }
   bool OverLimits();
+  // After a proximal step: does the step direction prove the problem unbounded?
+  bool IsUnboundedRay();
   void FillResult(const Program& program, SolveStatus status, SolveResult* result);
 
   ActiveSetQpSettings settings_;

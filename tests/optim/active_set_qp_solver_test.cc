@@ -145,6 +145,36 @@ TEST_CASE("a linear program (H = 0) solves to its vertex", "[active_set]") {
   CHECK(r.objective == Approx(-2.8).margin(1e-9));
 }
 
+TEST_CASE("an unbounded linear program is reported as unbounded", "[active_set]") {
+  // min -x - y s.t. x - y <= 1, x, y >= 0: the ray (1, 1) is feasible and descends forever.
+  Program p;
+  const VariableBlock v = p.AddVariables("xy", 2);
+  p.AddLinearCost(v, Eigen::Vector2d(-1, -1));
+  p.AddLinearConstraint({{v, Eigen::RowVector2d(1, -1)}}, Eigen::VectorXd::Constant(1, -kInf), Eigen::VectorXd::Ones(1), "row");
+  p.SetVariableBounds(v, Eigen::Vector2d::Zero(), Eigen::Vector2d::Constant(kInf));
+  CHECK(ActiveSetQpSolver().Solve(p).status == SolveStatus::kUnbounded);
+  // Closing the ray with y <= 3 makes it bounded: optimum (4, 3).
+  p.SetVariableBounds(v, Eigen::Vector2d::Zero(), Eigen::Vector2d(kInf, 3));
+  const SolveResult r = ActiveSetQpSolver().Solve(p);
+  REQUIRE(r.status == SolveStatus::kSolved);
+  CHECK(r.x[0] == Approx(4.0).margin(1e-9));
+  CHECK(r.x[1] == Approx(3.0).margin(1e-9));
+}
+
+TEST_CASE("one solver handles programs of different sizes in turn", "[active_set]") {
+  ActiveSetQpSolver solver;
+  for (int n : {3, 5, 3}) {
+    Program p;
+    const VariableBlock v = p.AddVariables("v", n);
+    p.AddQuadraticCost(v, Eigen::MatrixXd::Identity(n, n), -Eigen::VectorXd::Ones(n));
+    p.SetVariableBounds(v, Eigen::VectorXd::Constant(n, -kInf), Eigen::VectorXd::Constant(n, 0.5));
+    const SolveResult r = solver.Solve(p);
+    REQUIRE(r.status == SolveStatus::kSolved);
+    CHECK((r.x - Eigen::VectorXd::Constant(n, 0.5)).lpNorm<Eigen::Infinity>() < 1e-12);
+    CHECK(r.bound_duals[0] == Approx(0.5));  // x + dual = 1 at the upper bound
+  }
+}
+
 TEST_CASE("dependent equality rows are tolerated, contradictory ones are infeasible", "[active_set]") {
   Program p;
   const VariableBlock v = p.AddVariables("v", 3);
