@@ -34,6 +34,7 @@ int RunGaitDesign(const std::vector<std::string>& args) {
   CLI::App app("The 2012 paper's stair-climbing gait design (lengths in m)", "gait-design");
   GaitDesignInput in;
   std::optional<double> hip_clearance;
+  std::vector<double> tread_errors;
   bool json = false;
   app.add_option("--rise", in.rise, "Stair rise H [m]")->required();
   app.add_option("--run", in.run, "Tread depth W [m]")->required();
@@ -42,6 +43,9 @@ int RunGaitDesign(const std::vector<std::string>& args) {
   app.add_option("--body-width", in.body_width, "Body width BW, left to right foot [m], default 0.36");
   app.add_option("--buffer", in.buffer, "Buffer fraction p of D_s between right and left swings, default 0.42");
   app.add_option("--hip-clearance", hip_clearance, "Hip clearance d above the edge line [m], default rise / 2");
+  app.add_option("--tread-errors", tread_errors,
+                 "Per-step tread depth errors dW_i [m], comma separated: checks the cumulative error (eq. (19))")
+      ->delimiter(',');
   app.add_flag("--json", json, "Print one JSON object instead of the summary");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("gait-design", [&] {
@@ -68,6 +72,18 @@ int RunGaitDesign(const std::vector<std::string>& args) {
         {"D_s", Number(g.d_s)}, {"D_i", Number(g.d_i)}, {"D_o", Number(g.d_o)}, {"rem", g.rem},
         {"conditions", conditions}, {"feasible", g.feasible}, {"binding", g.binding},
         {"error_tolerance", {{"dW_min", Number(tolerance.lower)}, {"dW_max", Number(tolerance.upper)}}}};
+    out["cumulative_error"] = nullptr;
+    std::optional<CumulativeTreadError> cumulative;
+    if (!tread_errors.empty()) {
+      try {
+        cumulative = CheckCumulativeTreadError(tread_errors, tolerance);
+      } catch (const std::invalid_argument& e) {
+        throw BadInput(std::string("--tread-errors: ") + e.what());
+      }
+      out["cumulative_error"] = {{"dW_t", cumulative->cumulative},
+                                 {"first_violation", cumulative->first_violation},
+                                 {"within", cumulative->within()}};
+    }
     out["swing_sequence"] = nullptr;
     out["stability"] = nullptr;
     if (g.d_s > 0.0) {
@@ -90,6 +106,12 @@ int RunGaitDesign(const std::vector<std::string>& args) {
       }
       std::cout << "  verdict: " << (g.feasible ? "feasible" : "infeasible") << ", binding " << g.binding << "\n"
                 << "  tread error tolerance: " << tolerance.lower << " < dW < " << tolerance.upper << " m\n";
+      if (cumulative) {
+        std::cout << "  cumulative tread error over " << tread_errors.size() << " steps: "
+                  << (cumulative->within() ? "within the tolerance"
+                                           : "leaves the tolerance at step " + std::to_string(cumulative->first_violation + 1))
+                  << "\n";
+      }
       if (!out["stability"].is_null()) {
         std::cout << "  COM outside the support triangle: case 1 " << out["stability"]["case1"]["fraction_outside"].get<double>() * 100
                   << " %, case 2 " << out["stability"]["case2"]["fraction_outside"].get<double>() * 100 << " %\n";

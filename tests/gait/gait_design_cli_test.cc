@@ -54,3 +54,19 @@ TEST_CASE("gait-design: bad input exits 2 naming the flag", "[gait][cli]") {
   CHECK(Run("--rise 0.17 --run 0.27 --body-length 0.444", &out, &err) == 2);
   CHECK_THAT(err, Catch::Contains("--lmax"));
 }
+
+TEST_CASE("gait-design --tread-errors: the cumulative error of eq. (19)", "[gait][cli]") {
+  std::string out, err;
+  const std::string base = "--rise 0.17 --run 0.27 --lmax 0.21 --body-length 0.444 --json --tread-errors ";
+  REQUIRE(Run(base + "0.01,0.01,0.01,0.01", &out, &err) == 0);  // the design itself stays feasible
+  auto j = nlohmann::json::parse(out);
+  CHECK(j["cumulative_error"]["first_violation"] == 2);
+  CHECK_FALSE(j["cumulative_error"]["within"].get<bool>());
+  CHECK(j["cumulative_error"]["dW_t"][3].get<double>() == Approx(0.04));
+  REQUIRE(Run(base + "0.02,-0.02,0.02", &out, &err) == 0);
+  j = nlohmann::json::parse(out);
+  CHECK(j["cumulative_error"]["within"].get<bool>());
+  CHECK(j["cumulative_error"]["first_violation"] == -1);
+  CHECK(Run(base + "0.01,abc", &out, &err) == 2);
+  CHECK_THAT(err, Catch::Contains("--tread-errors"));
+}

@@ -121,3 +121,27 @@ TEST_CASE("driver: plan.json carries the controllers and the selection", "[step]
   // Body samples are continuous in height (the pitch line, not the stairs' steps).
   for (std::size_t k = 1; k < plan.body.size(); ++k) CHECK(std::abs(plan.body[k].z - plan.body[k - 1].z) < 0.05);
 }
+
+TEST_CASE("driver: on shallow treads a leg passes over intermediate stairs ([0070])", "[step]") {
+  StairSpec spec;
+  spec.steps = 12;
+  spec.rise = 0.08;
+  spec.run = 0.13;
+  spec.nosing = 0.0;
+  const Staircase stairs(spec);
+  ConstrainedMapSettings m;
+  m.edge_margin = 0.02;
+  m.riser_margin = 0.03;
+  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward, m);
+  const Plan plan = PlanWithStepPlanner(BuiltinRobot(), stairs, map);
+  INFO(plan.status_reason);
+  REQUIRE(plan.status == PlanStatus::kOk);
+  int skips = 0;
+  for (const Footstep& f : plan.footsteps) {
+    CHECK(map.InStepRegion(f.stair_index, f.position_W.head<2>()));
+    const int from = map.StairAt(f.from_W.head<2>());
+    CHECK(f.stair_index >= from);  // never back down the flight
+    skips += f.stair_index - from >= 2 ? 1 : 0;
+  }
+  CHECK(skips > 0);
+}

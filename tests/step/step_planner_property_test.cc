@@ -12,9 +12,11 @@ using namespace stairplan;
 
 TEST_CASE("1000 random code-range staircases: targets in step regions and in reach", "[step][property]") {
   std::mt19937 rng(20261122);
-  // Residential and commercial codes: rise 102-196 mm, going 254-356 mm, nosing 0-32 mm; a few
-  // stairs to a long flight, both directions, both facings.
-  std::uniform_real_distribution<double> rise(0.102, 0.196), run(0.254, 0.356), nosing(0.0, 0.032);
+  // Residential and commercial codes: rise 102-196 mm, going 254-356 mm, nosing 0-32 mm, at most
+  // 9.5 mm variation within a flight (every third staircase is irregular); a few stairs to a long
+  // flight, both directions, both facings.
+  std::uniform_real_distribution<double> rise(0.102, 0.196), run(0.254, 0.356), nosing(0.0, 0.032),
+      variation(-0.00475, 0.00475);
   std::uniform_int_distribution<int> steps(2, 16), coin(0, 1);
   const RobotModel& robot = BuiltinRobot();
   const StepPlannerSettings settings;
@@ -26,6 +28,10 @@ TEST_CASE("1000 random code-range staircases: targets in step regions and in rea
     spec.run = run(rng);
     spec.nosing = nosing(rng);
     spec.direction = coin(rng) ? TravelDirection::kUp : TravelDirection::kDown;
+    if (i % 3 == 2) {
+      for (int k = 0; k < spec.steps; ++k) spec.rises.push_back(std::min(0.196, spec.rise + variation(rng)));
+      for (int k = 0; k + 1 < spec.steps; ++k) spec.runs.push_back(std::max(0.254, spec.run + variation(rng)));
+    }
     const Facing facing = coin(rng) ? Facing::kForward : Facing::kBackward;
     const Staircase stairs(spec);
     const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, facing);
