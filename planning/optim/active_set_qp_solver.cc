@@ -95,6 +95,11 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     row_norm_.resize(m);
     llt_ = Eigen::LLT<Eigen::MatrixXd>(n);
     q_ = 0;
+    has_previous_ = false;
+    if (!pending_warm_start_) {
+      warm_start_.rows.assign(m, 0);
+      warm_start_.bounds.assign(n, 0);
+    }
   }
   if (program.matrix_revision() != matrix_revision_) {
     matrix_revision_ = program.matrix_revision();
@@ -348,16 +353,28 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
   }
   const bool regularized = rho_ > 0.0;
   // The proximal centre starts at the previous solution when warm, else at the initial guess.
-  const bool warm = settings_.warm_start && factorization_valid_ && !pending_warm_start_;
-  if (!warm) x_prox_ = program.initial_guess();
-  if (pending_warm_start_) {
-    StartFromActiveSet(warm_start_);
-    pending_warm_start_ = false;
-  } else if (!warm) {
-    StartCold();
-  } else {
+  // Hot: the kept factorisation is valid (H and A unchanged). Warm: H or A changed, so the
+  // factorisation is rebuilt from the previous (or a given) active set. Cold: from nothing.
+  const bool hot = settings_.warm_start && factorization_valid_ && !pending_warm_start_;
+  if (hot) {
     x_prox_ = x_;
+  } else {
+    x_prox_ = program.initial_guess();
+    if (!pending_warm_start_ && settings_.warm_start && has_previous_) {
+      warm_start_.rows.resize(m_);  // no-op unless a caller's warm start had other sizes
+      warm_start_.bounds.resize(n_);
+      for (int k = 0; k < m_; ++k) warm_start_.rows[k] = state_[k];
+      for (int i = 0; i < n_; ++i) warm_start_.bounds[i] = state_[m_ + i];
+      pending_warm_start_ = true;
+    }
+    if (pending_warm_start_) {
+      StartFromActiveSet(warm_start_);
+      pending_warm_start_ = false;
+    } else {
+      StartCold();
+    }
   }
+  has_previous_ = true;
   const Eigen::VectorXd& g = program.linear_cost();
   SolveStatus status = SolveStatus::kIterationLimit;
   int outer = 0;

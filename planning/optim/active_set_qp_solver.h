@@ -11,7 +11,9 @@
 //   SolveResult result;
 //   solver.Solve(program, &result);       // first solve: factorises H, sizes the workspace
 //   program.SetVariableBounds(block, lo, hi);
-//   solver.Solve(program, &result);       // warm: starts from the last active set, no allocation
+//   solver.Solve(program, &result);       // hot: last active set and factorisation, no allocation
+//   program.SetConstraintCoefficients(rows, block, coeffs);
+//   solver.Solve(program, &result);       // warm: A changed, refactorised from the last active set
 //   solver.SetWarmStart(saved.active_set); // or start from any stored active set
 //   solver.ResetWarmStart();              // or cold
 //
@@ -120,6 +122,7 @@ class ActiveSetQpSolver final : public Solver {
   // Active-set state: J = L^{-T} Q, upper triangular R, active constraints with their multipliers.
   bool factorization_valid_ = false;
   bool pending_warm_start_ = false;
+  bool has_previous_ = false;  // state_ holds the last solve's active set for this size
   ActiveSet warm_start_;
   Eigen::MatrixXd J_, R_;
   std::vector<int> active_;

@@ -13,17 +13,22 @@
 //   const ConstraintRows smooth = prog.AddLinearConstraint({{z, D}}, -slope, slope);
 //   ActiveSetQpSolver solver;                    // holds its workspace and factorizations
 //   SolveResult result;                          // reused: sized by the first solve
+//   Eigen::VectorXd linear(40);                  // sized once
 //   for (;;) {                                   // every 3 ms cycle
 //     prog.SetVariableBounds(z, z_min, z_max);   // in place, no allocation
-//     prog.SetLinearCost(z, -weights.cwiseProduct(z_ref));
+//     linear = -weights.cwiseProduct(z_ref);     // evaluate into storage: no temporary
+//     prog.SetLinearCost(z, linear);
 //     solver.Solve(prog, &result);               // warm-started from the last active set
 //     if (result.status != SolveStatus::kSolved) { /* keep the last plan */ }
 //     Use(result.x.segment(z.start, z.size));
 //   }
 //
 // Setters check sizes and finiteness and throw std::invalid_argument naming the block or rows.
-// The Mutable*() accessors are unchecked (for readers that fill whole matrices); Solve() checks
-// the data again and reports SolveStatus::kInvalidInput for NaN.
+// Pass plain vectors or segments to the setters: an expression would be evaluated into a
+// temporary (an allocation). The Mutable*() accessors are unchecked (for readers that fill whole
+// matrices); Solve() checks the data again and reports SolveStatus::kInvalidInput for NaN.
+// MutableHessian() and MutableConstraintMatrix() mark the matrix as changed when called, so call
+// them again for every change rather than keeping the reference across solves.
 #pragma once
 
 #include <cstdint>

@@ -271,6 +271,32 @@ TEST_CASE("warm starts reproduce the cold solution with fewer iterations", "[act
   CHECK((again.x - rw.x).lpNorm<Eigen::Infinity>() < 1e-9);
 }
 
+TEST_CASE("changed constraint rows re-solve from the previous active set", "[active_set]") {
+  // The rate rows get slightly different coefficients each cycle (as a planner that relinearises
+  // would do): the factorisation is rebuilt from the last active set instead of from nothing.
+  BodyQpExample e = MakeBodyQpExample(40);
+  ActiveSetQpSettings cold_settings;
+  cold_settings.warm_start = false;
+  ActiveSetQpSolver warm, cold(cold_settings);
+  SolveResult rw, rc;
+  int warm_iterations = 0, cold_iterations = 0;
+  Eigen::MatrixXd coefficients = e.program.constraint_matrix().block(e.rates.start, e.height.start, e.rates.size, e.height.size);
+  for (int cycle = 0; cycle < 20; ++cycle) {
+    UpdateBodyQpExample(cycle, &e);
+    e.program.SetConstraintCoefficients(e.rates, e.height, (1.0 + 0.01 * cycle) * coefficients);
+    warm.Solve(e.program, &rw);
+    cold.Solve(e.program, &rc);
+    REQUIRE(rw.status == SolveStatus::kSolved);
+    REQUIRE(rc.status == SolveStatus::kSolved);
+    CHECK((rw.x - rc.x).lpNorm<Eigen::Infinity>() < 1e-9);
+    if (cycle > 0) {
+      warm_iterations += rw.info.iterations;
+      cold_iterations += rc.info.iterations;
+    }
+  }
+  CHECK(warm_iterations < cold_iterations);
+}
+
 TEST_CASE("the automatic choice sends QPs to the active-set solver and NLPs to Ipopt", "[active_set]") {
   Program p;
   const VariableBlock v = p.AddVariables("v", 1);
