@@ -54,6 +54,35 @@ void RejectCapsules(const TiXmlElement& robot, const std::string& source) {
   }
 }
 
+// The text of line `row` (1-based), trimmed and shortened, to show where the XML breaks.
+std::string LineText(const std::string& text, int row) {
+  std::size_t begin = 0;
+  for (int r = 1; r < row && begin != std::string::npos; ++r) {
+    begin = text.find('\n', begin);
+    if (begin != std::string::npos) ++begin;
+  }
+  if (begin == std::string::npos) return "";
+  std::string line = text.substr(begin, text.find('\n', begin) - begin);
+  line.erase(0, line.find_first_not_of(" \t\r"));
+  line.erase(line.find_last_not_of(" \t\r") + 1);
+  return line.size() > 80 ? line.substr(0, 77) + "..." : line;
+}
+
+// urdfdom names the culprit as "joint [name]" or "link [name]"; turn that into the element.
+std::string ElementOf(const std::string& message, const std::string& robot_name) {
+  for (const char* kind : {"joint", "link"}) {
+    const std::string key = std::string(kind) + " [";
+    const std::size_t at = message.find(key);
+    if (at == std::string::npos) continue;
+    const std::size_t end = message.find(']', at);
+    if (end == std::string::npos) continue;
+    // "child link [x] of joint [y]": the joint is the element that is wrong.
+    if (std::string(kind) == "link" && message.find("joint [") != std::string::npos) continue;
+    return "<" + std::string(kind) + " name=\"" + message.substr(at + key.size(), end - at - key.size()) + "\">";
+  }
+  return "<robot name=\"" + robot_name + "\">";
+}
+
 }  // namespace
 
 std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const std::string& source_name) {
@@ -63,8 +92,8 @@ std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const st
   TiXmlDocument document;
   document.Parse(xml.c_str());
   if (document.Error()) {
-    throw std::invalid_argument(source_name + ": line " + std::to_string(document.ErrorRow()) +
-                                ": malformed XML: " + document.ErrorDesc());
+    throw std::invalid_argument(source_name + ": line " + std::to_string(document.ErrorRow()) + " (" +
+                                LineText(xml, document.ErrorRow()) + "): malformed XML: " + document.ErrorDesc());
   }
   const TiXmlElement* robot = document.FirstChildElement("robot");
   if (!robot) throw std::invalid_argument(source_name + ": <robot>: no <robot> root element");
@@ -84,7 +113,7 @@ std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const st
   console_bridge::useOutputHandler(previous);
   if (!parsed || !parsed->getRoot()) {
     const std::string why = handler.errors().empty() ? "not a valid URDF" : handler.errors();
-    throw std::invalid_argument(source_name + ": <robot name=\"" + Attribute(*robot, "name") + "\">: " + why);
+    throw std::invalid_argument(source_name + ": " + ElementOf(why, Attribute(*robot, "name")) + ": " + why);
   }
   return parsed;
 }
