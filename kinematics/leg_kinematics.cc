@@ -41,10 +41,14 @@ LegKinematics::LegKinematics(const LegModel& leg, const KDL::Tree& tree, const s
                                 std::to_string(chain->getNrOfJoints()) + " movable joints; 3 are supported");
   }
   chain_ = chain;
+  int joint = 0;
   for (unsigned i = 0; i < chain_->getNrOfSegments(); ++i) {
     const KDL::Segment& segment = chain_->getSegment(i);
     segment_links_.push_back(segment.getName());
-    if (segment.getJoint().getType() != KDL::Joint::None) knee_segment_ = static_cast<int>(i);
+    if (segment.getJoint().getType() != KDL::Joint::None) {
+      knee_segment_ = static_cast<int>(i);
+      joint_segment_[static_cast<std::size_t>(joint++)] = static_cast<int>(i);
+    }
   }
   for (int j = 0; j < kDof; ++j) {
     lower_(j) = leg.limits[static_cast<std::size_t>(j)].lower;
@@ -56,6 +60,7 @@ LegKinematics::LegKinematics(const LegModel& leg, const KDL::Tree& tree, const s
   }
   hip_B_ = leg.hip_B;
   LegWorkspace ws(*this);
+  BuildKneeTable(ws);
   ComputeReach(ws);
   ComputeNominal(ws);
 }
@@ -102,15 +107,41 @@ double LegKinematics::Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q,
   Eigen::Vector3d error = target - FootPosition(q, ws);
   double norm = error.norm();
   double lambda = 1e-6;
+  bool need_jacobian = true;
+  Eigen::Matrix3d J;
   for (int it = 0; it < settings.max_iterations && norm > settings.tolerance; ++it) {
     ++iterations;
-    const Eigen::Matrix3d J = FootJacobian(q, ws);
-    Eigen::Matrix3d normal = J.transpose() * J;
-    // Marquardt's scaling keeps the damping meaningful for joints of very different leverage.
-    normal.diagonal() += lambda * (Eigen::Vector3d::Ones() + normal.diagonal());
-    Eigen::Vector3d step = normal.inverse() * (J.transpose() * error);
+    if (need_jacobian) J = FootJacobian(q, ws);
+    // Joints resting on a limit that the unconstrained step would push further out are frozen
+    // for this step (an active set), so the others still make full Gauss-Newton progress instead
+    // of the whole step being clipped.
+    Eigen::Vector3d step = Eigen::Vector3d::Zero();
+    Eigen::Matrix<bool, 3, 1> frozen = Eigen::Matrix<bool, 3, 1>::Constant(false);
+    for (int pass = 0; pass < 2; ++pass) {
+      Eigen::Matrix3d Jf = J;
+      for (int j = 0; j < kDof; ++j) {
+        if (frozen(j)) Jf.col(j).setZero();
+      }
+      Eigen::Matrix3d normal = Jf.transpose() * Jf;
+      // Marquardt's scaling keeps the damping meaningful for joints of very different leverage.
+      normal.diagonal() += lambda * (Eigen::Vector3d::Ones() + normal.diagonal());
+      step = normal.inverse() * (Jf.transpose() * error);
+      if (!clamp) break;
+      bool changed = false;
+      for (int j = 0; j < kDof; ++j) {
+        const bool out = (q(j) <= lower_(j) && step(j) < 0.0) || (q(j) >= upper_(j) && step(j) > 0.0);
+        if (out && !frozen(j)) {
+          frozen(j) = true;
+          changed = true;
+        }
+      }
+      if (!changed) break;
+    }
+    for (int j = 0; j < kDof; ++j) {
+      if (frozen(j)) step(j) = 0.0;
+    }
     const double step_norm = step.norm();
-    if (!std::isfinite(step_norm)) break;
+    if (!std::isfinite(step_norm) || step_norm < 1e-15) break;
     if (step_norm > settings.max_step) step *= settings.max_step / step_norm;
     Eigen::Vector3d trial = q + step;
     if (clamp) trial = Clamp(trial);
@@ -120,10 +151,12 @@ double LegKinematics::Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q,
       q = trial;
       error = trial_error;
       norm = trial_norm;
-      lambda = std::max(lambda * 0.1, 1e-12);
+      lambda = std::max(lambda * 0.1, 1e-9);
+      need_jacobian = true;
     } else {
-      lambda *= 10.0;
-      if (lambda > 1e6) break;  // stalled: at a limit or at the edge of the workspace
+      lambda *= 100.0;
+      need_jacobian = false;  // same q, same Jacobian
+      if (lambda > 1e4) break;  // stalled: against a limit or at the edge of the workspace
     }
   }
   return norm;
@@ -148,7 +181,7 @@ IkResult LegKinematics::SolveFootIk(const Eigen::Vector3d& foot_B, const Eigen::
   if (!foot_B.allFinite()) throw std::invalid_argument("LegKinematics::SolveFootIk: leg " + leg_.name + ": foot_B is not finite");
   if (!seed.allFinite()) throw std::invalid_argument("LegKinematics::SolveFootIk: leg " + leg_.name + ": seed is not finite");
   IkResult result;
-  result.q = Clamp(seed);
+  result.q = AimedSeed(foot_B, Clamp(seed), ws);
   result.error = Descend(foot_B, result.q, true, settings, ws, result.iterations);
   // A descent that stalls against a joint limit often has a solution on another branch: restart
   // from spread-out seeds before giving up.
@@ -170,6 +203,64 @@ IkResult LegKinematics::SolveFootIk(const Eigen::Vector3d& foot_B, const Eigen::
   const double free_error = Descend(foot_B, free_q, false, settings, ws, unused);
   result.status = free_error <= std::max(settings.tolerance, 1e-7) ? IkStatus::kJointLimits : IkStatus::kOutOfReach;
   return result;
+}
+
+void LegKinematics::BuildKneeTable(LegWorkspace& ws) {
+  const double lo = SampleLo(lower_(2)), hi = SampleHi(upper_(2));
+  for (int i = 0; i < kKneeTable; ++i) {
+    const Eigen::Vector3d q(0.0, 0.0, lo + (hi - lo) * i / (kKneeTable - 1));
+    const std::vector<Eigen::Isometry3d>& frames = LinkFrames(q, ws);
+    knee_q_[static_cast<std::size_t>(i)] = q(2);
+    knee_distance_[static_cast<std::size_t>(i)] =
+        (frames.back().translation() - frames[static_cast<std::size_t>(joint_segment_[1])].translation()).norm();
+  }
+}
+
+Eigen::Vector3d LegKinematics::AimedSeed(const Eigen::Vector3d& target, const Eigen::Vector3d& seed, LegWorkspace& ws) const {
+  Eigen::Vector3d q = seed;
+  // Knee: the flexion joint's origin does not move with flexion or knee, and for the usual leg
+  // (parallel flexion and knee axes) the foot's distance from it depends on the knee alone.
+  {
+    const std::vector<Eigen::Isometry3d>& frames = LinkFrames(q, ws);
+    const double want = (target - frames[static_cast<std::size_t>(joint_segment_[1])].translation()).norm();
+    double best = q(2), best_gap = std::numeric_limits<double>::infinity();
+    for (int i = 0; i + 1 < kKneeTable; ++i) {
+      const double d0 = knee_distance_[static_cast<std::size_t>(i)] - want;
+      const double d1 = knee_distance_[static_cast<std::size_t>(i + 1)] - want;
+      if (d0 * d1 > 0.0 || d0 == d1) continue;
+      const double a = d0 / (d0 - d1);
+      const double knee = knee_q_[static_cast<std::size_t>(i)] + a * (knee_q_[static_cast<std::size_t>(i + 1)] - knee_q_[static_cast<std::size_t>(i)]);
+      if (std::abs(knee - seed(2)) < best_gap) {
+        best_gap = std::abs(knee - seed(2));
+        best = knee;
+      }
+    }
+    q(2) = best;
+  }
+  // Flexion then abduction, twice: turn each about its axis to point the foot at the target.
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    for (int j : {1, 0}) {
+      const std::vector<Eigen::Isometry3d>& frames = LinkFrames(q, ws);
+      const int segment = joint_segment_[static_cast<std::size_t>(j)];
+      const KDL::Joint& kdl_joint = chain_->getSegment(static_cast<unsigned>(segment)).getJoint();
+      const Eigen::Isometry3d parent =
+          segment == 0 ? Eigen::Isometry3d::Identity() : frames[static_cast<std::size_t>(segment - 1)];
+      const KDL::Vector o = kdl_joint.JointOrigin(), ax = kdl_joint.JointAxis();
+      const Eigen::Vector3d origin = parent * Eigen::Vector3d(o.x(), o.y(), o.z());
+      const Eigen::Vector3d axis = (parent.linear() * Eigen::Vector3d(ax.x(), ax.y(), ax.z())).normalized();
+      Eigen::Vector3d u = frames.back().translation() - origin, v = target - origin;
+      u -= u.dot(axis) * axis;
+      v -= v.dot(axis) * axis;
+      if (u.norm() < 1e-9 || v.norm() < 1e-9) continue;
+      q(j) += std::atan2(axis.dot(u.cross(v)), u.dot(v));
+      // The same direction a turn away may be within limits (Unitree thighs span 5.2 rad).
+      for (const double turn : {2.0 * M_PI, -2.0 * M_PI}) {
+        if ((q(j) < lower_(j) || q(j) > upper_(j)) && q(j) + turn >= lower_(j) && q(j) + turn <= upper_(j)) q(j) += turn;
+      }
+    }
+    q = Clamp(q);
+  }
+  return q;
 }
 
 void LegKinematics::ComputeReach(LegWorkspace& ws) {

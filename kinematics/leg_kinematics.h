@@ -4,6 +4,7 @@
 // shareable; each thread keeps a LegWorkspace, and no query allocates once the workspace exists.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -89,6 +90,11 @@ class LegKinematics {
   double Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q, bool clamp, const IkSettings& settings,
                  LegWorkspace& ws, int& iterations) const;
   Eigen::Vector3d RestartSeed(int k) const;
+  // Moves `seed` into the basin of `target`: the knee angle whose hip-to-foot distance matches the
+  // target's (from a table, the branch nearest the seed), then cyclic-coordinate-descent turns of
+  // the flexion and abduction joints that point the foot at the target.
+  Eigen::Vector3d AimedSeed(const Eigen::Vector3d& target, const Eigen::Vector3d& seed, LegWorkspace& ws) const;
+  void BuildKneeTable(LegWorkspace& ws);
   void ComputeNominal(LegWorkspace& ws);
   void ComputeReach(LegWorkspace& ws);
 
@@ -98,6 +104,9 @@ class LegKinematics {
   int knee_segment_ = 0;
   Eigen::Vector3d lower_, upper_, nominal_, hip_B_;
   Interval1 reach_;
+  std::array<int, 3> joint_segment_{};  // chain segment of each movable joint
+  static constexpr int kKneeTable = 97;
+  std::array<double, kKneeTable> knee_q_{}, knee_distance_{};  // foot distance from the flexion joint
 };
 
 /// Mutable scratch space of one leg's queries: KDL solvers and buffers, sized once.
