@@ -6,6 +6,7 @@
 
 #include "collision/robot_collision_regions.h"
 #include "kinematics/builtin_robot.h"
+#include "test_paths.h"
 
 using namespace stairplan;
 
@@ -106,4 +107,26 @@ TEST_CASE("robot regions merge into the constrained map and trim its step region
     }
   }
   CHECK(robot_regions == static_cast<int>(regions.size()));
+}
+
+TEST_CASE("ANYmal C ascending: its forward-bent hind knees reach the nosings", "[robot_regions]") {
+  const std::string path = testing::SharedPath("data/robots/anymal_c.urdf");
+  if (path.empty()) {
+    WARN("shared robots skipped: ../shared not found");
+    return;
+  }
+  const RobotKinematics kinematics(RobotModel::FromUrdfFile(path));
+  const RobotCollisionModel robot(kinematics);
+  const Staircase stairs{StairSpec{}};
+  const auto regions = FindRobotCollisionRegions(kinematics, robot, stairs, Facing::kForward);
+  int treads = 0;
+  for (const RobotRegion& r : regions) {
+    CHECK_FALSE(CoversMiddle(r, stairs));
+    if (r.stair_index < 1 || r.stair_index >= stairs.steps()) continue;
+    ++treads;
+    CHECK(r.part == StairPart::kNosing);
+    CHECK(kinematics.leg(r.leg).model().hip_B.x() < 0.0);  // a hind leg
+    CHECK(r.x1 - r.x0 > 0.05);
+  }
+  CHECK(treads == stairs.steps() - 1);
 }
