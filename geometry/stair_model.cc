@@ -68,4 +68,26 @@ Eigen::Vector3d StairModel::WorldToStair(const Eigen::Vector3d& p_W, TravelDirec
   return Eigen::Vector3d(d.dot(x_axis), d.dot(Left(x_axis)), p_W.z() - base);
 }
 
+StairModel ModelOfStaircase(const Staircase& stairs, const Eigen::Vector3d& origin_W, double yaw) {
+  const Eigen::Vector2d x_axis(std::cos(yaw), std::sin(yaw));
+  const bool up = stairs.direction() == TravelDirection::kUp;
+  const auto world = [&](double x, double y) { return Eigen::Vector2d(origin_W.head<2>() + x * x_axis + y * Left(x_axis)); };
+  StairModel m;
+  m.direction = up ? x_axis : Eigen::Vector2d(-x_axis);
+  m.steps = stairs.steps();
+  m.width = stairs.spec().width;
+  std::vector<StairEdge> edges = stairs.edges();
+  std::vector<StairSurface> surfaces = stairs.surfaces();
+  if (!up) {
+    std::reverse(edges.begin(), edges.end());
+    std::reverse(surfaces.begin(), surfaces.end());
+  }
+  for (const StairSurface& s : surfaces) m.levels.push_back(origin_W.z() + s.z);
+  m.center = world(edges.front().x_nose, 0.0);
+  for (const StairEdge& e : edges) m.edge_offsets.push_back((world(e.x_nose, 0.0) - m.center).dot(m.direction));
+  m.rise = (m.levels.back() - m.levels.front()) / m.steps;
+  m.run = m.steps > 1 ? m.edge_offsets.back() / (m.steps - 1) : stairs.spec().run;
+  return m;
+}
+
 }  // namespace stairplan

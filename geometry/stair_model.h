@@ -41,4 +41,8 @@ struct StairModel {
   Eigen::Vector3d WorldToStair(const Eigen::Vector3d& p_W, TravelDirection travel, double nosing = 0.0) const;
 };
 
+/// The model of `stairs` placed in the world: p_W = origin_W + Rz(yaw) p_S (e.g. the ground truth
+/// of a synthetic scene). Per-step rises and runs are averaged into `rise` and `run`.
+StairModel ModelOfStaircase(const Staircase& stairs, const Eigen::Vector3d& origin_W, double yaw);
+
 }  // namespace stairplan
