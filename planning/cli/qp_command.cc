@@ -1,5 +1,5 @@
 // `stairplan qp`: solve a QP file with a chosen solver, or benchmark solvers over QP files.
-//   stairplan qp solve FILE [--solver active-set|ipopt|nlopt] [--json]
+//   stairplan qp solve FILE [--solver active-set|ipopt|nlopt] [--json] [--time-limit S]
 //   stairplan qp bench FILES_OR_DIRS... [--solvers a,b] [--csv OUT] [--repeat N]
 // Exit codes: 0 solved, 3 infeasible or unbounded, 2 bad input (file errors, NaN, bad flags),
 // 1 when the solver stops otherwise (limits, numerical trouble).
@@ -16,6 +16,8 @@
 
 #include "planning/cli/cli_common.h"
 #include "planning/optim/active_set_qp_solver.h"
+#include "planning/optim/ipopt_solver.h"
+#include "planning/optim/nlopt_solver.h"
 #include "planning/optim/oqp_reader.h"
 #include "planning/optim/qps_reader.h"
 #include "planning/optim/solver.h"
@@ -49,8 +51,16 @@ optim::QpsProblem LoadQps(const std::string& path) {
   return optim::ReadQpsFile(path);  // std::invalid_argument names the file and line
 }
 
-int RunSolve(const std::string& file, const std::string& solver_name, bool json) {
+void SetTimeLimit(optim::Solver& solver, double seconds) {
+  if (!(seconds > 0)) throw BadInput("--time-limit: must be a positive number of seconds");
+  if (auto* s = dynamic_cast<optim::ActiveSetQpSolver*>(&solver)) s->settings().time_limit_s = seconds;
+  if (auto* s = dynamic_cast<optim::IpoptSolver*>(&solver)) s->settings().time_limit_s = seconds;
+  if (auto* s = dynamic_cast<optim::NloptSolver*>(&solver)) s->settings().time_limit_s = seconds;
+}
+
+int RunSolve(const std::string& file, const std::string& solver_name, bool json, double time_limit) {
   const auto solver = SolverNamed(solver_name, "--solver");
+  SetTimeLimit(*solver, time_limit);
   const optim::QpsProblem qp = LoadQps(file);
   const SolveResult r = solver->Solve(qp.program);
   const double violation = r.x.allFinite() ? qp.program.MaxViolation(r.x) : NAN;
@@ -258,6 +268,8 @@ int RunQp(const std::vector<std::string>& args) {
   solve->add_option("file", file, "QPS file (Maros-Meszaros format)")->required();
   solve->add_option("--solver", solver, "active-set (default), ipopt or nlopt");
   solve->add_flag("--json", json, "Print one JSON object (status, objective, iterations, solve_time_us, max_violation, x)");
+  double time_limit = optim::kInf;
+  solve->add_option("--time-limit", time_limit, "Wall-clock limit for the solve [s] (default none)");
   CLI::App* bench = app.add_subcommand("bench", "Benchmark solvers over QP files and folders");
   std::vector<std::string> inputs;
   std::string solvers = "active-set,ipopt", csv;
@@ -267,7 +279,7 @@ int RunQp(const std::vector<std::string>& args) {
   bench->add_option("--csv", csv, "Write one CSV row per problem and solver here");
   bench->add_option("--repeat", repeat, "Solves per problem (default: repeat until 20 ms, at most 1000)");
   if (const int code = Parse(app, args); code >= 0) return code;
-  if (solve->parsed()) return Guarded("qp solve", [&] { return RunSolve(file, solver, json); });
+  if (solve->parsed()) return Guarded("qp solve", [&] { return RunSolve(file, solver, json, time_limit); });
   return Guarded("qp bench", [&] { return RunBench(inputs, solvers, csv, repeat); });
 }
 

@@ -80,6 +80,19 @@ TEST_CASE("qp solve exits 3 on an infeasible QP and 2 on bad input", "[cli]") {
   CHECK_THAT(ReadFile(dir + "/err"), Catch::Contains("cplex"));
 }
 
+TEST_CASE("qp solve honours --time-limit", "[cli]") {
+  const std::string dir = MakeTempDir("qp_cli_time");
+  const std::string qps = SharedPath("data/qp/maros_meszaros/QISRAEL.SIF");
+  if (qps.empty()) {
+    WARN("qp solve --time-limit skipped: ../shared not found");
+    return;
+  }
+  CHECK(RunCommand(BinDir() + "/stairplan qp solve " + qps + " --json --time-limit 1e-6", dir + "/out", dir + "/err") == 1);
+  CHECK(nlohmann::json::parse(ReadFile(dir + "/out"))["status"] == "time_limit");
+  CHECK(RunCommand(BinDir() + "/stairplan qp solve " + qps + " --time-limit -1", dir + "/out", dir + "/err") == 2);
+  CHECK_THAT(ReadFile(dir + "/err"), Catch::Contains("--time-limit"));
+}
+
 TEST_CASE("qp bench reports each solver and writes CSV", "[cli]") {
   const std::string dir = MakeTempDir("qp_bench");
   WriteFile(dir, "a.qps", kFeasible);
