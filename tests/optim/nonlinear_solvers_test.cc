@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <memory>
 
 #include "planning/optim/ipopt_solver.h"
 #include "planning/optim/nlopt_solver.h"
@@ -168,4 +169,52 @@ TEST_CASE("Ipopt options pass through; a bad option is invalid input", "[nonline
   IpoptSettings bad;
   bad.string_options["no_such_option"] = "yes";
   CHECK(IpoptSolver(bad).Solve(Hs71()).status == SolveStatus::kInvalidInput);
+}
+
+TEST_CASE("costs and constraints over several blocks map their Jacobians to the right columns", "[nonlinear]") {
+  // Blocks a (2) and b (2); the constraint uses a[0] and b[1] only, a linear row couples a[1], b[0].
+  // min |a - (1, 2)|^2 + |b - (0, 1)|^2 s.t. a0^2 + b1^2 <= 1, a1 + b0 = 1.
+  // Optimum: the disc constraint pulls (a0, b1) from (1, 1) to (1/sqrt2, 1/sqrt2); the row gives
+  // a1 = 1.5, b0 = -0.5. Objective 2 (1 - 1/sqrt2)^2 + 0.5.
+  Program p;
+  const VariableBlock a = p.AddVariables("a", 2);
+  const VariableBlock b = p.AddVariables("b", 2);
+  p.AddNonlinearCost({"distance", {a, b},
+                      [a, b](const Eigen::VectorXd& x) {
+                        return (a.Of(x) - Eigen::Vector2d(1, 2)).squaredNorm() + (b.Of(x) - Eigen::Vector2d(0, 1)).squaredNorm();
+                      },
+                      [a, b](const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::VectorXd> g) {
+                        g = block == 0 ? Eigen::VectorXd(2 * (a.Of(x) - Eigen::Vector2d(1, 2)))
+                                       : Eigen::VectorXd(2 * (b.Of(x) - Eigen::Vector2d(0, 1)));
+                      }});
+  NonlinearConstraint disc;
+  disc.name = "disc";
+  disc.blocks = {b, a};  // deliberately not in variable order
+  disc.lower = Eigen::VectorXd::Constant(1, -kInf);
+  disc.upper = Eigen::VectorXd::Constant(1, 1.0);
+  disc.value = [a, b](const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> out) {
+    out[0] = a.Of(x)[0] * a.Of(x)[0] + b.Of(x)[1] * b.Of(x)[1];
+  };
+  disc.jacobian = [a, b](const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::MatrixXd> J) {
+    if (block == 0) J << 0, 2 * b.Of(x)[1];  // d/db
+    else J << 2 * a.Of(x)[0], 0;            // d/da
+  };
+  p.AddNonlinearConstraint(disc);
+  p.AddLinearConstraint({{a, Eigen::RowVector2d(0, 1)}, {b, Eigen::RowVector2d(1, 0)}}, Eigen::VectorXd::Ones(1),
+                        Eigen::VectorXd::Ones(1), "couple");
+  const double s = 1.0 / std::sqrt(2.0);
+  const double expected = 2 * (1 - s) * (1 - s) + 0.5;
+  for (int which = 0; which < 2; ++which) {
+    std::unique_ptr<Solver> solver = which == 0 ? MakeSolver("ipopt") : MakeSolver("nlopt");
+    const SolveResult r = solver->Solve(p);
+    INFO(solver->name());
+    REQUIRE(r.status == SolveStatus::kSolved);
+    CHECK(r.objective == Approx(expected).epsilon(1e-6));
+    // SLSQP stops on the objective's progress, so its x is less exact than Ipopt's.
+    const double tol = which == 0 ? 1e-6 : 1e-3;
+    CHECK(r.x[0] == Approx(s).margin(tol));
+    CHECK(r.x[1] == Approx(1.5).margin(tol));
+    CHECK(r.x[2] == Approx(-0.5).margin(tol));
+    CHECK(r.x[3] == Approx(s).margin(tol));
+  }
 }
