@@ -99,7 +99,20 @@ SignedDistanceResult SignedDistance(const fcl::CollisionGeometryd& a, const Eige
       r.point_b = result.nearest_points[1];
       return r;
     }
-    // Touching or penetrating: the depth comes from the contact computation.
+    // Touching or penetrating. Cylinders against stair boxes: FCL's EPA is unreliable there, the
+    // separating axes are exact for face contacts (and never call into EPA, which may throw).
+    if (hints.box_b && a.getNodeType() == fcl::GEOM_CYLINDER) {
+      Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+      const double depth = std::max(0.0, SeparatingAxisDepth(a, pose_a, *hints.box_b, &axis));
+      if (std::isfinite(depth)) {
+        // The deepest point of a along -axis, and where it must get to on the box's face.
+        r.distance = -depth;
+        r.point_a = pose_a.translation() - Support(a, pose_a.linear(), axis) * axis;
+        r.point_b = r.point_a + depth * axis;
+        return r;
+      }
+    }
+    // Otherwise the depth comes from FCL's contact computation (exact for box-box, sphere-box).
     fcl::CollisionRequestd collision_request(1, true);
     collision_request.gjk_solver_type = fcl::GST_INDEP;
     fcl::CollisionResultd collision_result;
@@ -111,18 +124,6 @@ SignedDistanceResult SignedDistance(const fcl::CollisionGeometryd& a, const Eige
       return r;
     }
     const fcl::Contactd& contact = collision_result.getContact(0);
-    // Cylinders against stair boxes: FCL's EPA is unreliable, the separating axes are exact enough.
-    if (hints.box_b && a.getNodeType() == fcl::GEOM_CYLINDER) {
-      Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
-      const double depth = SeparatingAxisDepth(a, pose_a, *hints.box_b, &axis);
-      if (std::isfinite(depth) && depth >= 0.0) {
-        // The deepest point of a along -axis, and where it must get to on the box's face.
-        r.distance = -depth;
-        r.point_a = pose_a.translation() - Support(a, pose_a.linear(), axis) * axis;
-        r.point_b = r.point_a + depth * axis;
-        return r;
-      }
-    }
     if (!std::isfinite(contact.penetration_depth) || !contact.normal.allFinite() || !contact.pos.allFinite() ||
         contact.penetration_depth < 0.0) {
       return Fallback(pose_a, pose_b, hints);

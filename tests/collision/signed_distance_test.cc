@@ -79,10 +79,15 @@ TEST_CASE("penetrations have the known depth, negative", "[signed_distance]") {
   auto r = SignedDistance(thigh, At({0.10, 0.0, 0.17 + 0.13 - 0.01}), *step_geometry, At(step.Center()), hints);
   CHECK(r.distance == Approx(-0.01).margin(1e-6));
   CHECK_FALSE(r.fallback);
+  INFO("points " << r.point_a.transpose() << " / " << r.point_b.transpose());
+  CHECK(r.point_a.z() - r.point_b.z() == Approx(-0.01).margin(1e-6));  // a's deepest point, 1 cm below b's face
+  CHECK(r.point_b.z() == Approx(0.17).margin(1e-3));
   // A foot sphere 1 cm into the tread.
   const fcl::Sphered foot(0.03);
   r = SignedDistance(foot, At({0.10, 0.0, 0.17 + 0.02}), *step_geometry, At(step.Center()), hints);
   CHECK(r.distance == Approx(-0.01).margin(1e-6));
+  CHECK(r.point_a.z() == Approx(0.16).margin(1e-3));
+  CHECK(r.point_b.z() == Approx(0.17).margin(1e-3));
   // A foot sphere 2 cm clear of the tread.
   r = SignedDistance(foot, At({0.10, 0.0, 0.17 + 0.05}), *step_geometry, At(step.Center()), hints);
   CHECK(r.distance == Approx(0.02).margin(1e-6));
@@ -102,4 +107,13 @@ TEST_CASE("deep penetration gives a finite, clearly negative answer", "[signed_d
   REQUIRE(std::isfinite(r.distance));
   CHECK(r.distance < -0.04);
   CHECK(r.distance > -0.3);
+  // A thigh box entirely inside: the cheapest way out is along -x, 0.155 m (its far face at
+  // x = 0.155 must pass the block's face at x = 0).
+  const fcl::Boxd thigh(0.05, 0.04, 0.26);
+  const auto box_inside = SignedDistance(thigh, At({0.13, 0.0, -0.10}), *step_geometry, At(step.Center()), hints);
+  CHECK(box_inside.distance == Approx(-0.155).margin(1e-6));
+  // A foot sphere entirely inside: 0.13 to the face at x = 0, plus its radius.
+  const fcl::Sphered foot(0.03);
+  const auto sphere_inside = SignedDistance(foot, At({0.13, 0.0, 0.0}), *step_geometry, At(step.Center()), hints);
+  CHECK(sphere_inside.distance == Approx(-0.16).margin(1e-6));
 }
