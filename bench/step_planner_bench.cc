@@ -29,11 +29,14 @@ std::vector<StepPlannerInput> RecordInputs(StepPlanner& planner, const Constrain
     inputs.push_back(in);
     const int chosen = planner.Update(in);
     if (chosen < 0) break;
-    const PlannedStep& s = planner.evaluation(chosen).steps[0];
-    auto& leg = in.legs[static_cast<std::size_t>(s.leg)];
-    leg.foot_W = s.target_W;
-    leg.stair = s.target_stair;
-    leg.last_touchdown_s = s.t_touchdown;
+    const ControllerEvaluation& e = planner.evaluation(chosen);
+    for (int k = 0; k < e.step_count && e.steps[static_cast<std::size_t>(k)].t_liftoff <= in.now_s; ++k) {
+      const PlannedStep& s = e.steps[static_cast<std::size_t>(k)];
+      auto& leg = in.legs[static_cast<std::size_t>(s.leg)];
+      leg.foot_W = s.target_W;
+      leg.stair = s.target_stair;
+      leg.last_touchdown_s = s.t_touchdown;
+    }
     const double T = planner.controllers()[static_cast<std::size_t>(chosen)].cadence_s;
     in.now_s += T;
     in.body_xy_W.x() += in.velocity_W.x() * T;

@@ -43,7 +43,7 @@ const char* ToString(RuleOut reason) {
     case RuleOut::kNoStepRegion: return "no step region";
     case RuleOut::kStepTooHigh: return "step too high";
     case RuleOut::kUnreachable: return "unreachable";
-    case RuleOut::kTrailingAhead: return "trailing leg ahead";
+    case RuleOut::kLeaderBehind: return "leading leg behind";
     case RuleOut::kStepsBack: return "steps back";
   }
   return "unknown";
@@ -136,6 +136,11 @@ StepPlanner::StepPlanner(const RobotModel& robot, const ConstrainedMap& map, con
     for (double cadence : settings_.cadences_s) controllers_.push_back({cadence, gait});
   }
   evaluations_.resize(controllers_.size());
+  poses_.resize(static_cast<std::size_t>(settings_.horizon_steps + 8 + 1));
+  end_poses_.resize(static_cast<std::size_t>(settings_.horizon_steps));
+  for (const FixedCadenceController& controller : controllers_) {
+    longest_stance_s_ = std::max(longest_stance_s_, PatternOf(controller.gait).stance_in_swings() * controller.cadence_s);
+  }
   for (ControllerEvaluation& e : evaluations_) e.steps.resize(static_cast<std::size_t>(settings_.horizon_steps));
 }
 
@@ -161,7 +166,7 @@ std::string StepPlanner::RuleOutReason(int index) const {
     case RuleOut::kUnreachable:
       std::snprintf(value, sizeof value, "%.2f", e.rule_out_value);
       return where + ": no target in reach (hip-to-foot " + value + " of max_reach)";
-    case RuleOut::kTrailingAhead: return where + ": the trailing leg would pass its leading leg";
+    case RuleOut::kLeaderBehind: return where + ": the leading leg would land behind its trailing leg";
     case RuleOut::kStepsBack: return where + ": the only targets lie behind the leg's stair";
     case RuleOut::kNone: break;
   }
@@ -288,7 +293,7 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
   e.rule_out = RuleOut::kNone;
   e.rule_out_step = -1;
   e.rule_out_value = 0.0;
-  e.region_cost = e.snap_cost = e.swing_height_cost = e.reach_cost = e.timing_cost = e.switch_cost = 0.0;
+  e.region_cost = e.snap_cost = e.trailing_cost = e.swing_height_cost = e.reach_cost = e.timing_cost = e.switch_cost = 0.0;
   e.step_count = 0;
 
   // The first phase swings the leg that has stood longest (ties: the earlier phase), so that
@@ -304,6 +309,17 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
         first_phase = p;
       }
     }
+  }
+
+  // Every event of this plan happens a whole number of swings from now: liftoff after p swings,
+  // touchdown after p + 1, the end of that stance after p + phases. One base pose per instant.
+  const int phase_steps = (settings_.horizon_steps + pattern.legs_per_phase - 1) / pattern.legs_per_phase;
+  const int instants = phase_steps + pattern.phases + 1;
+  for (int j = 0; j < instants; ++j) poses_[static_cast<std::size_t>(j)] = BodyPoseAt(input.body_xy_W + input.velocity_W * (j * T));
+  // A foot placed now must stay in reach however long the controllers chosen later keep it down:
+  // the longest stance any of them gives, counted from its touchdown.
+  for (int p = 0; p < phase_steps; ++p) {
+    end_poses_[static_cast<std::size_t>(p)] = BodyPoseAt(input.body_xy_W + input.velocity_W * ((p + 1) * T + longest_stance_s_));
   }
 
   std::array<Eigen::Vector3d, 4> foot;
@@ -327,15 +343,25 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
     s.from_W = foot[l];
     s.from_stair = stair[l];
     s.rule_out = RuleOut::kNone;
+    const Eigen::Isometry3d& base_lift = poses_[static_cast<std::size_t>(phase_step)];
+    const Eigen::Isometry3d& base_td = poses_[static_cast<std::size_t>(phase_step + 1)];
+    const Eigen::Isometry3d& base_end = end_poses_[static_cast<std::size_t>(phase_step)];
     // The unconstrained footstep: under the hip at mid-stance of the coming stance phase.
-    const Eigen::Vector2d body_td = input.body_xy_W + input.velocity_W * (s.t_touchdown - input.now_s);
-    const Eigen::Vector2d body_end = body_td + input.velocity_W * stance;
+    const Eigen::Vector2d body_td = base_td.translation().head<2>();
     s.unconstrained_xy_W = body_td + neutral_offset_W_[l] + input.velocity_W * (0.5 * stance);
     s.nearest_stair = NearestRegion(s.unconstrained_xy_W, &s.region_distance);
     e.step_count = k + 1;
     if (s.nearest_stair < 0) {
       e.rule_out = s.rule_out = RuleOut::kNoStepRegion;
       e.rule_out_step = k;
+      break;
+    }
+    // The foot it stands on must stay in reach until this controller lifts it.
+    const Eigen::Vector3d stance_centre = foot[l] + Eigen::Vector3d(0.0, 0.0, model.foot_radius);
+    if (!reach_->Reachable(model, base_lift, stance_centre)) {
+      e.rule_out = s.rule_out = RuleOut::kUnreachable;
+      e.rule_out_step = k;
+      e.rule_out_value = GeometricReachModel::Extension(model, base_lift, stance_centre);
       break;
     }
 
@@ -355,8 +381,9 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
       }
     }
 
-    // Leading and trailing legs ([0070]): a trailing leg never lands on a stair ahead of its leading
-    // leg, and a leading leg never lands behind its trailing leg.
+    // Leading and trailing legs ([0070]): when a leading leg lands on a stair, its trailing leg
+    // stands on that stair or one below it in travel order (hard); a trailing leg prefers not to
+    // pass its leading leg, and does so (at trailing_cost) only when nothing else is in reach.
     const int pair = PairOf(role);
     const TravelRole leader_role = leaders[static_cast<std::size_t>(pair)];
     const bool leading = role == leader_role;
@@ -364,54 +391,57 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
                                               : (role == TravelRole::kForeRight ? TravelRole::kForeLeft : TravelRole::kForeRight);
     const int partner_stair = stair[static_cast<std::size_t>(leg_of_role_[static_cast<std::size_t>(partner_role)])];
 
-    // The base at touchdown and at the end of the stance this controller gives the leg.
-    const Eigen::Isometry3d base_td = BodyPoseAt(body_td);
-    const Eigen::Isometry3d base_end = BodyPoseAt(body_end);
     RuleOut first_reason = RuleOut::kNone;
     double first_value = 0.0;
     bool placed = false;
-    for (int ci = 0; ci < n_candidates && !placed; ++ci) {
-      const int c = candidates[static_cast<std::size_t>(ci)].second;
-      RuleOut reason = RuleOut::kNone;
-      double value = 0.0;
-      const Eigen::Vector2d xy = SnapIntoRegion(c, s.unconstrained_xy_W);
-      const Eigen::Vector3d target(xy.x(), xy.y(), regions_[static_cast<std::size_t>(c)].z);
-      const double step_height = std::abs(target.z() - foot[l].z());
-      if (stair[l] >= 0 && c < stair[l]) {
-        reason = RuleOut::kStepsBack;  // stepping back down the flight is never planned
-      } else if (partner_stair >= 0 && (leading ? c < partner_stair : c > partner_stair)) {
-        reason = RuleOut::kTrailingAhead;
-      } else if (step_height > max_step_height_[l]) {
-        reason = RuleOut::kStepTooHigh;
-        value = step_height;
-      } else {
-        const Eigen::Vector3d foot_centre = target + Eigen::Vector3d(0.0, 0.0, model.foot_radius);
-        if (!reach_->Reachable(model, base_td, foot_centre)) {
-          reason = RuleOut::kUnreachable;
-          value = GeometricReachModel::Extension(model, base_td, foot_centre);
-        } else if (!reach_->Reachable(model, base_end, foot_centre)) {
-          reason = RuleOut::kUnreachable;
-          value = GeometricReachModel::Extension(model, base_end, foot_centre);
+    for (int pass = 0; pass < 2 && !placed; ++pass) {
+      const bool keep_behind = pass == 0 && !leading && partner_stair >= 0;
+      for (int ci = 0; ci < n_candidates && !placed; ++ci) {
+        const int c = candidates[static_cast<std::size_t>(ci)].second;
+        if (keep_behind && c > partner_stair) continue;
+        RuleOut reason = RuleOut::kNone;
+        double value = 0.0;
+        double effort = 0.0;
+        const Eigen::Vector2d xy = SnapIntoRegion(c, s.unconstrained_xy_W);
+        const Eigen::Vector3d target(xy.x(), xy.y(), regions_[static_cast<std::size_t>(c)].z);
+        const double step_height = std::abs(target.z() - foot[l].z());
+        if (stair[l] >= 0 && c < stair[l]) {
+          reason = RuleOut::kStepsBack;  // stepping back down the flight is never planned
+        } else if (leading && partner_stair >= 0 && c < partner_stair) {
+          reason = RuleOut::kLeaderBehind;
+        } else if (step_height > max_step_height_[l]) {
+          reason = RuleOut::kStepTooHigh;
+          value = step_height;
         } else {
-          const double effort = reach_->Effort(model, base_td, foot_centre);
-          e.reach_cost += settings_.reach_weight * effort * effort;
+          const Eigen::Vector3d foot_centre = target + Eigen::Vector3d(0.0, 0.0, model.foot_radius);
+          if (!reach_->Reachable(model, base_td, foot_centre)) {
+            reason = RuleOut::kUnreachable;
+            value = GeometricReachModel::Extension(model, base_td, foot_centre);
+          } else if (!reach_->Reachable(model, base_end, foot_centre)) {
+            reason = RuleOut::kUnreachable;
+            value = GeometricReachModel::Extension(model, base_end, foot_centre);
+          } else {
+            effort = reach_->Effort(model, base_td, foot_centre);
+          }
         }
+        if (pass == 1 && ci == 0) {
+          first_reason = reason;
+          first_value = value;
+        }
+        if (reason != RuleOut::kNone) continue;
+        placed = true;
+        s.target_W = target;
+        s.target_stair = c;
+        const double snap = (xy - s.unconstrained_xy_W).norm();
+        e.region_cost += settings_.region_weight * s.region_distance;
+        e.snap_cost += settings_.snap_weight * std::max(0.0, snap - s.region_distance);
+        if (!leading && partner_stair >= 0 && c > partner_stair) e.trailing_cost += settings_.trailing_cost;
+        e.reach_cost += settings_.reach_weight * effort * effort;
+        const double height_ratio = step_height / max_step_height_[l];
+        e.swing_height_cost += settings_.swing_height_weight * height_ratio * height_ratio;
+        const double excess = std::max(0.0, (target - foot[l]).norm() / T - settings_.max_foot_speed);
+        e.timing_cost += settings_.timing_weight * excess * excess;
       }
-      if (ci == 0) {
-        first_reason = reason;
-        first_value = value;
-      }
-      if (reason != RuleOut::kNone) continue;
-      placed = true;
-      s.target_W = target;
-      s.target_stair = c;
-      const double snap = (xy - s.unconstrained_xy_W).norm();
-      e.region_cost += settings_.region_weight * s.region_distance;
-      e.snap_cost += settings_.snap_weight * std::max(0.0, snap - s.region_distance);
-      const double height_ratio = step_height / max_step_height_[l];
-      e.swing_height_cost += settings_.swing_height_weight * height_ratio * height_ratio;
-      const double excess = std::max(0.0, (target - foot[l]).norm() / T - settings_.max_foot_speed);
-      e.timing_cost += settings_.timing_weight * excess * excess;
     }
     if (!placed) {
       e.rule_out = s.rule_out = first_reason == RuleOut::kNone ? RuleOut::kUnreachable : first_reason;
@@ -433,7 +463,7 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
     e.switch_cost = settings_.switch_cost;
     if (controllers_[static_cast<std::size_t>(selected_)].gait != controller.gait) e.switch_cost += settings_.gait_switch_cost;
   }
-  e.score = e.region_cost + e.snap_cost + e.swing_height_cost + e.reach_cost + e.timing_cost + e.switch_cost;
+  e.score = e.region_cost + e.snap_cost + e.trailing_cost + e.swing_height_cost + e.reach_cost + e.timing_cost + e.switch_cost;
 }
 
 }  // namespace stairplan

@@ -4,7 +4,8 @@
 // reaches, a step too high to clear), scored against the constrained map (distance of each
 // unconstrained footstep from the nearest step region dominates; soft terms for swing height, reach
 // and timing), and the lowest score wins. The chosen plan's targets are snapped into their step
-// regions, the trailing leg of each pair never ahead of its leading leg ([0070]).
+// regions; a leading leg never lands behind its trailing leg, and a trailing leg passes its leading
+// leg only at a cost, when nothing else is in reach ([0070]).
 //
 // Built once from the robot, the map and the settings; Update() allocates nothing.
 #pragma once
@@ -52,8 +53,9 @@ enum class RuleOut {
   kNone,
   kNoStepRegion,    ///< the map has no step region near a footstep
   kStepTooHigh,     ///< a footstep needs a step higher than the leg can clear
-  kUnreachable,     ///< no target in reach of the leg (at touchdown or at the end of stance)
-  kTrailingAhead,   ///< the only targets would put a trailing leg ahead of its leading leg
+  kUnreachable,     ///< a foot out of reach: no target reachable through the coming stance, or
+                    ///< the foot it stands on lost before the plan lifts it
+  kLeaderBehind,    ///< the only targets would land a leading leg behind its trailing leg ([0070])
   kStepsBack,       ///< the only targets lie on a stair behind the leg's own
 };
 const char* ToString(RuleOut reason);
@@ -80,7 +82,7 @@ struct ControllerEvaluation {
   RuleOut rule_out = RuleOut::kNone;
   int rule_out_step = -1;       ///< the footstep that broke the rule
   double rule_out_value = 0.0;  ///< the offending quantity (step height [m], reach fraction)
-  double region_cost = 0.0, snap_cost = 0.0, swing_height_cost = 0.0, reach_cost = 0.0, timing_cost = 0.0,
+  double region_cost = 0.0, snap_cost = 0.0, trailing_cost = 0.0, swing_height_cost = 0.0, reach_cost = 0.0, timing_cost = 0.0,
          switch_cost = 0.0;
   int step_count = 0;               ///< footsteps filled in `steps`
   std::vector<PlannedStep> steps;   ///< sized to the horizon at construction
@@ -153,6 +155,9 @@ class StepPlanner {
   std::vector<double> surface_x_end_;
   std::vector<FixedCadenceController> controllers_;
   std::vector<ControllerEvaluation> evaluations_;
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> poses_;      // Evaluate's workspace:
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> end_poses_;  // base poses at events
+  double longest_stance_s_ = 0.0;  // the longest stance any controller gives a leg [s]
   std::array<int, 4> leg_of_role_{};
   std::array<int, 4> role_of_leg_{};
   std::array<Eigen::Vector2d, 4> neutral_offset_W_{};  // foot under the hip, stance width, yawed

@@ -42,6 +42,7 @@ void StepPlannerSettings::Validate() const {
   }
   Check("region_weight", region_weight, 0.0, 1e9, false);
   Check("snap_weight", snap_weight, 0.0, 1e9, false);
+  Check("trailing_cost", trailing_cost, 0.0, 1e9, false);
   Check("swing_height_weight", swing_height_weight, 0.0, 1e9, false);
   Check("reach_weight", reach_weight, 0.0, 1e9, false);
   Check("timing_weight", timing_weight, 0.0, 1e9, false);

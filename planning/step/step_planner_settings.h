@@ -39,6 +39,7 @@ struct StepPlannerSettings {
   // --- Cost weights ([0035]: the distance to the step regions dominates).
   double region_weight = 1000.0;   ///< per m of distance from the nearest step region
   double snap_weight = 100.0;      ///< per m the chosen target lies beyond that distance (rules)
+  double trailing_cost = 20.0;     ///< per footstep that puts a trailing leg ahead of its leading leg
   double swing_height_weight = 1.0;  ///< times (needed step height / the robot's)^2
   double reach_weight = 1.0;       ///< times the reach model's effort^2, at touchdown
   double timing_weight = 1.0;      ///< times (swing speed above max_foot_speed [m/s])^2 per (m/s)^2

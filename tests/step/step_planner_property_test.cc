@@ -1,5 +1,6 @@
 // Acceptance property: over 1,000 random staircases within building-code ranges (fixed seed),
-// every target of the chosen plan lies inside its step region and within reach of its leg.
+// every target of the chosen plan lies inside its step region and within reach of its leg, from
+// touchdown until the leg lifts it again.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -47,6 +48,11 @@ TEST_CASE("1000 random code-range staircases: targets in step regions and in rea
       const double e = stairplan::testing::Extension(robot, plan, f, f.t_touchdown);
       if (e > settings.reach_max_fraction + 1e-6 || e < settings.reach_min_fraction - 1e-6) {
         FAIL_CHECK("footstep out of reach: " << f.leg << " at t " << f.t_touchdown << " extension " << e);
+      }
+      const double lift = stairplan::testing::LiftoffAfter(plan, f);
+      const double e_lift = stairplan::testing::Extension(robot, plan, f, lift);
+      if (e_lift > settings.reach_max_fraction + 1e-6) {
+        FAIL_CHECK("foot out of reach before liftoff: " << f.leg << " at t " << lift << " extension " << e_lift);
       }
     }
   }

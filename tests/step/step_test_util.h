@@ -45,4 +45,17 @@ inline double Extension(const RobotModel& robot, const Plan& plan, const Footste
   return GeometricReachModel::Extension(leg, BasePose(BodyAt(plan, t)), centre);
 }
 
+/// When the foot placed by footstep f lifts off again: the leg's next liftoff, or the plan's end.
+inline double LiftoffAfter(const Plan& plan, const Footstep& f) {
+  bool seen = false;
+  for (const Footstep& g : plan.footsteps) {
+    if (&g == &f) {
+      seen = true;
+    } else if (seen && g.leg == f.leg) {
+      return g.t_liftoff;
+    }
+  }
+  return plan.duration();
+}
+
 }  // namespace stairplan::testing
