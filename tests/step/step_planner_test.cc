@@ -8,6 +8,7 @@
 #include "kinematics/builtin_robot.h"
 #include "planning/step/step_planner.h"
 #include "planning/step/step_planner_driver.h"
+#include "step_test_util.h"
 
 using namespace stairplan;
 
@@ -248,4 +249,44 @@ TEST_CASE("bad settings and input throw naming the field", "[step]") {
   StepPlannerInput in;
   in.velocity_W = {std::nan(""), 0.0};
   CHECK_THROWS_WITH(planner.Update(in), Catch::Contains("velocity_W"));
+}
+
+namespace {
+
+// Stands in for an IK-based reach check: a geometric band narrower than the default, counting
+// its queries.
+class NarrowReach final : public ReachModel {
+ public:
+  explicit NarrowReach(double max_fraction) : band_(0.30, max_fraction) {}
+  bool Reachable(const LegModel& leg, const Eigen::Isometry3d& base_W, const Eigen::Vector3d& foot_W) const override {
+    ++queries;
+    return band_.Reachable(leg, base_W, foot_W);
+  }
+  mutable long queries = 0;
+
+ private:
+  GeometricReachModel band_;
+};
+
+}  // namespace
+
+TEST_CASE("a reach model plugs in without changing the planner", "[step]") {
+  const Staircase stairs{StairSpec{}};
+  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
+  // A tighter reach than the default still plans, and every foot respects it.
+  auto tight = std::make_shared<NarrowReach>(0.85);
+  const Plan plan = PlanWithStepPlanner(BuiltinRobot(), stairs, map, {}, tight);
+  INFO(plan.status_reason);
+  REQUIRE(plan.status == PlanStatus::kOk);
+  CHECK(tight->queries > 1000);
+  for (const Footstep& f : plan.footsteps) {
+    CHECK(stairplan::testing::Extension(BuiltinRobot(), plan, f, f.t_touchdown) <= 0.85 + 1e-9);
+  }
+  // One that reaches nothing rules out every controller as unreachable.
+  auto none = std::make_shared<NarrowReach>(0.31);
+  StepPlanner planner(BuiltinRobot(), map, {}, none);
+  const StepPlannerInput in = InputAt(planner, -0.8, 0.15);
+  CHECK(planner.Update(in) == -1);
+  for (const auto& e : planner.evaluations()) CHECK(e.rule_out == RuleOut::kUnreachable);
+  CHECK_THAT(planner.RuleOutReason(0), Catch::Contains("reach"));
 }
