@@ -162,7 +162,7 @@ TEST_CASE("Ipopt's time limit holds on every solve, not only the first", "[nonli
   CHECK(relaxed.Solve(Hs100()).status == SolveStatus::kSolved);
 }
 
-TEST_CASE("Ipopt options pass through; a bad option is invalid input", "[nonlinear]") {
+TEST_CASE("Ipopt options pass through and a bad option is invalid input", "[nonlinear]") {
   IpoptSettings s;
   s.integer_options["max_iter"] = 2;
   CHECK(IpoptSolver(s).Solve(Hs100()).status == SolveStatus::kIterationLimit);
