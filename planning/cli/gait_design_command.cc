@@ -27,7 +27,8 @@ nlohmann::json StabilityJson(const CrawlStability& s) {
   for (std::size_t i = 0; i < 4; ++i) by_leg[names[i]] = s.fraction_outside_by_leg[i];
   nlohmann::json sequence = nlohmann::json::array();
   for (const char* leg : s.swing_sequence) sequence.push_back(leg);
-  return {{"swing_sequence", sequence}, {"fraction_outside", s.fraction_outside}, {"fraction_outside_by_leg", by_leg}};
+  return {{"swing_sequence", sequence}, {"fraction_outside", s.fraction_outside}, {"fraction_outside_by_leg", by_leg},
+          {"min_margin", Number(s.min_margin)}};
 }
 
 int RunGaitDesign(const std::vector<std::string>& args) {

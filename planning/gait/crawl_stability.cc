@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/Core>
@@ -20,9 +21,11 @@ double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Ve
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 
-// True when c lies inside the convex hull of `points` (n <= 4), boundary included.
-bool InsideHull(std::array<Eigen::Vector2d, 4> points, int n, const Eigen::Vector2d& c) {
-  if (n < 3 || n > 4) return false;
+// The distance from c to the nearest edge line of the convex hull of `points` (n <= 4), positive
+// inside, negative outside; -infinity when the hull is degenerate.
+double HullMargin(std::array<Eigen::Vector2d, 4> points, int n, const Eigen::Vector2d& c) {
+  constexpr double kNone = -std::numeric_limits<double>::infinity();
+  if (n < 3 || n > 4) return kNone;
   // Insertion sort by (x, y): n is at most four.
   for (int i = 1; i < n; ++i) {
     for (int j = i; j > 0; --j) {
@@ -47,11 +50,14 @@ bool InsideHull(std::array<Eigen::Vector2d, 4> points, int n, const Eigen::Vecto
     hull[static_cast<std::size_t>(k++)] = points[static_cast<std::size_t>(i)];
   }
   const int m = k - 1;
-  if (m < 3) return false;
+  if (m < 3) return kNone;
+  double margin = std::numeric_limits<double>::infinity();
   for (int i = 0; i < m; ++i) {
-    if (Cross(hull[static_cast<std::size_t>(i)], hull[static_cast<std::size_t>((i + 1) % m)], c) < -1e-12) return false;
+    const Eigen::Vector2d& a = hull[static_cast<std::size_t>(i)];
+    const Eigen::Vector2d& b = hull[static_cast<std::size_t>((i + 1) % m)];
+    margin = std::min(margin, Cross(a, b, c) / (b - a).norm());
   }
-  return true;
+  return margin;
 }
 
 }  // namespace
@@ -101,7 +107,9 @@ CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDe
       feet[static_cast<std::size_t>(stance++)] = {(j + 1.0) * input.run + legs[i].a, legs[i].side * 0.5 * input.body_width};
     }
     const Eigen::Vector2d com((s + 0.5 * input.body_length) * cos_phi - g.d * sin_phi, 0.0);
-    if (swinging > 1 || !InsideHull(feet, stance, com)) {
+    const double margin = swinging > 1 ? -std::numeric_limits<double>::infinity() : HullMargin(feet, stance, com);
+    result.min_margin = k == 0 ? margin : std::min(result.min_margin, margin);
+    if (margin < -1e-12) {
       ++outside;
       if (swing_leg >= 0) ++by_leg[static_cast<std::size_t>(swing_leg)];
     }

@@ -28,6 +28,10 @@ struct CrawlStability {
   double fraction_outside = 0.0;
   /// The same split by the swinging leg, in the order HR, HL, FR, FL.
   std::array<double, 4> fraction_outside_by_leg{};
+  /// The smallest stability margin over the cycle: the COM's distance to the nearest edge line of
+  /// the support polygon, negative when outside [m]. Unlike the fraction, it scales with the body
+  /// width (with the COM on the mid-line, the inside/outside verdict does not).
+  double min_margin = 0.0;
 };
 
 /// Evaluates one arrangement by sampling `samples` hip positions evenly over one CL. Needs a

@@ -64,8 +64,14 @@ TEST_CASE("stability: the lateral scale does not change the verdict (COM on the 
   GaitDesignInput in = Paper();
   const GaitDesign g = DesignGait(in);
   const double narrow = EvaluateCrawlStability(in, g, CrawlCase::kRightFirst).fraction_outside;
-  in.body_width = 0.9;
-  CHECK(EvaluateCrawlStability(in, g, CrawlCase::kRightFirst).fraction_outside == Approx(narrow).margin(1e-12));
+  const double narrow_margin = EvaluateCrawlStability(in, g, CrawlCase::kRightFirst).min_margin;
+  in.body_width = 0.72;
+  const CrawlStability wide = EvaluateCrawlStability(in, g, CrawlCase::kRightFirst);
+  CHECK(wide.fraction_outside == Approx(narrow).margin(1e-12));
+  // The margin does scale with the width: the COM is outside by a distance to a slanted edge.
+  CHECK(narrow_margin < 0.0);
+  CHECK(wide.min_margin < 0.0);
+  CHECK(std::abs(wide.min_margin) > std::abs(narrow_margin));
 }
 
 TEST_CASE("stability needs condition (10)", "[gait]") {
