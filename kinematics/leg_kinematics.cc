@@ -180,6 +180,7 @@ IkResult LegKinematics::SolveFootIk(const Eigen::Vector3d& foot_B, const Eigen::
                                     const IkSettings& settings) const {
   if (!foot_B.allFinite()) throw std::invalid_argument("LegKinematics::SolveFootIk: leg " + leg_.name + ": foot_B is not finite");
   if (!seed.allFinite()) throw std::invalid_argument("LegKinematics::SolveFootIk: leg " + leg_.name + ": seed is not finite");
+  settings.Validate();
   IkResult result;
   result.q = AimedSeed(foot_B, Clamp(seed), ws);
   result.error = Descend(foot_B, result.q, true, settings, ws, result.iterations);

@@ -80,4 +80,5 @@ TEST_CASE("IK refuses NaN targets and bad settings", "[leg_ik]") {
   stairplan::IkSettings settings;
   settings.tolerance = -1.0;
   CHECK_THROWS_WITH(settings.Validate(), Catch::Contains("tolerance"));
+  CHECK_THROWS_WITH(leg.SolveFootIk(leg.hip_B(), ws, settings), Catch::Contains("IkSettings.tolerance"));
 }
