@@ -14,7 +14,7 @@ struct GapFillSettings {
   /// Holes are bridged only between measured cells at most this far apart [m].
   double max_gap = 1.0;
   /// Smoothly filled cells whose nearest bridge is longer than this are marked kPoor [m].
-  double poor_span = 0.12;
+  double poor_span = 0.2;
   /// Relaxation sweeps that smooth the filled values (a discrete Laplace equation).
   int smoothing_sweeps = 30;
 

@@ -112,8 +112,8 @@ StairFit FitAlong(const PointCloud& cloud, double best_theta, const StairTracker
   const Eigen::Vector2d dir(std::cos(best_theta), std::sin(best_theta));
   const Eigen::Vector2d left(-dir.y(), dir.x());
 
-  // 2. The profile along the direction: per bin, the top of the points (the mean of the highest
-  // three) so treads and the tops of risers and nosings show and faces below them do not.
+  // 2. The profile along the direction: per bin, the top of the points, so treads and the tops of
+  // risers and nosings show and faces below them do not.
   std::vector<double> u(cloud.size()), v(cloud.size());
   double u_min = std::numeric_limits<double>::infinity(), u_max = -u_min;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -123,28 +123,35 @@ StairFit FitAlong(const PointCloud& cloud, double best_theta, const StairTracker
     u_max = std::max(u_max, u[i]);
   }
   const auto nbins = static_cast<std::size_t>((u_max - u_min) / settings.bin) + 1;
+  // Per bin, the top is taken in slices across the width and the median slice wins, so an object
+  // narrower than half the width (a box on a tread) does not lift the profile.
+  constexpr double kSlice = 0.08;
+  double v_min = std::numeric_limits<double>::infinity(), v_max = -v_min;
+  for (double value : v) {
+    v_min = std::min(v_min, value);
+    v_max = std::max(v_max, value);
+  }
+  const auto slices = static_cast<std::size_t>((v_max - v_min) / kSlice) + 1;
   const double lowest = -std::numeric_limits<double>::infinity();
-  std::vector<std::array<double, 3>> top(nbins, {lowest, lowest, lowest});
+  std::vector<double> slice_top(nbins * slices, lowest);
+  std::vector<int> bin_count(nbins, 0);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    auto& t = top[static_cast<std::size_t>((u[i] - u_min) / settings.bin)];
-    double z = cloud.points[i].z();
-    for (double& slot : t) {
-      if (z > slot) std::swap(z, slot);
-    }
+    const auto b = static_cast<std::size_t>((u[i] - u_min) / settings.bin);
+    const auto sl = static_cast<std::size_t>((v[i] - v_min) / kSlice);
+    double& t = slice_top[b * slices + sl];
+    t = std::max(t, cloud.points[i].z());
+    ++bin_count[b];
   }
   std::vector<double> envelope(nbins, std::numeric_limits<double>::quiet_NaN());
   std::vector<std::size_t> occupied;
+  std::vector<double> tops;
   for (std::size_t b = 0; b < nbins; ++b) {
-    double sum = 0.0;
-    int count = 0;
-    for (double z : top[b]) {
-      if (z > lowest) {
-        sum += z;
-        ++count;
-      }
+    if (bin_count[b] < 3) continue;  // a bin with a point or two is noise leaking off a riser face
+    tops.clear();
+    for (std::size_t sl = 0; sl < slices; ++sl) {
+      if (slice_top[b * slices + sl] > lowest) tops.push_back(slice_top[b * slices + sl]);
     }
-    if (count < 3) continue;  // a bin with a point or two is noise leaking off a riser face
-    envelope[b] = sum / count;
+    envelope[b] = Percentile(tops, 0.5);
     occupied.push_back(b);
   }
 
@@ -201,8 +208,47 @@ StairFit FitAlong(const PointCloud& cloud, double best_theta, const StairTracker
   std::vector<double> gaps;
   for (std::size_t j = 1; j < level_height.size(); ++j) gaps.push_back(level_height[j] - level_height[j - 1]);
   const double rise0 = Percentile(gaps, 0.5);
+  if (!(rise0 > 0.0)) return Reject("levels are not a regular rise");
+  // The offset most levels agree with, then each level's index; a level off the regular rise (the
+  // top of an object on a tread) or sharing an index with a better one is dropped, if few are.
+  double offset = level_height.front();
+  std::vector<int> index(level_height.size());
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<double> offsets;
+    for (std::size_t j = 0; j < level_height.size(); ++j) {
+      index[j] = static_cast<int>(std::lround((level_height[j] - offset) / rise0));
+      offsets.push_back(level_height[j] - index[j] * rise0);
+    }
+    offset = Percentile(offsets, 0.5);
+  }
+  std::vector<char> keep(level_height.size(), 1);
+  for (std::size_t j = 0; j < level_height.size(); ++j) {
+    const double r = std::abs(level_height[j] - (offset + index[j] * rise0));
+    if (r > settings.max_level_residual) keep[j] = 0;
+    for (std::size_t i = 0; i < j; ++i) {
+      if (!keep[i] || index[i] != index[j]) continue;
+      const double ri = std::abs(level_height[i] - (offset + index[i] * rise0));
+      keep[ri <= r ? j : i] = 0;
+    }
+  }
+  const auto dropped = std::count(keep.begin(), keep.end(), 0);
+  if (dropped > std::max<long>(1, static_cast<long>(level_height.size()) / 4)) return Reject("levels are not a regular rise");
+  std::vector<int> relabel(level_height.size(), -1);
+  std::vector<double> kept_height;
+  std::vector<bool> kept_seen;
   std::vector<int> level_index;
-  for (double h : level_height) level_index.push_back(static_cast<int>(std::lround((h - level_height.front()) / rise0)));
+  for (std::size_t j = 0; j < level_height.size(); ++j) {
+    if (!keep[j]) continue;
+    relabel[j] = static_cast<int>(kept_height.size());
+    kept_height.push_back(level_height[j]);
+    kept_seen.push_back(level_seen[j]);
+    level_index.push_back(index[j]);
+  }
+  for (int& l : label) l = l < 0 ? -1 : relabel[static_cast<std::size_t>(l)];
+  level_height.swap(kept_height);
+  level_seen.swap(kept_seen);
+  if (static_cast<int>(level_height.size()) < settings.min_risers + 1) return Reject("levels are not a regular rise");
+  for (int& i : level_index) i -= index[static_cast<std::size_t>(std::find(keep.begin(), keep.end(), 1) - keep.begin())];
   for (std::size_t j = 1; j < level_index.size(); ++j) {
     if (level_index[j] <= level_index[j - 1]) return Reject("levels are not a regular rise");
   }

@@ -1,0 +1,44 @@
+// A ConstrainedMap from data (seed 000 [0043]-[0048], claim 1): the stairs the tracker fitted give
+// each stair's surface and its step region; the height map then adds what the data says: height
+// discontinuities become edge and riser collision regions (dilated for the nosing and the cell
+// size), poorly seen cells and cells off their surface become data collision regions, and each
+// step region is trimmed so it stays convex. The map is in the fitted Staircase's frame.
+#pragma once
+
+#include "geometry/constrained_map.h"
+#include "geometry/height_map.h"
+#include "geometry/stair_model.h"
+#include "geometry/staircase.h"
+
+namespace stairplan {
+
+struct MapFromHeightMapSettings {
+  TravelDirection travel = TravelDirection::kUp;  ///< which way the robot will traverse the stairs
+  Facing facing = Facing::kForward;               ///< and facing which way ([0047])
+  ConstrainedMapSettings margins;                 ///< the analytic margins
+  double nosing = 0.0;          ///< nosing assumed in the Staircase (the data shows walking edges) [m]
+  double jump = 0.05;           ///< a height step between neighbouring cells above this is an edge [m]
+  /// Edge cells grow by half a cell, and towards the lower side by this more (a nosing's depth) [m].
+  double edge_dilation = 0.02;
+  double surface_tolerance = 0.04;  ///< a cell further than this off its surface's height is an obstacle [m]
+  double min_landing = 0.4;     ///< shortest landing put before and after the flight [m]
+  double max_landing = 3.0;     ///< longest landing [m]
+
+  /// Throws FieldError naming the field.
+  void Validate() const;
+};
+
+/// The fitted stairs as a Staircase and their constrained map from data.
+struct PerceivedStairs {
+  Staircase stairs;         ///< in its own frame: model.StairToWorld(p, travel, nosing) places it
+  ConstrainedMap map;       ///< in the same frame
+  int edge_bands = 0;       ///< collision bands added for data edges inside step regions
+  int data_bands = 0;       ///< collision bands added for poor, unknown-in-region or off-surface data
+};
+
+/// Builds the constrained map of `model` refined by `map` (filled or not). Landings extend as far
+/// as the data does (within the settings' limits). Throws std::invalid_argument for a model
+/// without steps.
+PerceivedStairs ConstrainedMapFromHeightMap(const HeightMap& map, const StairModel& model, const MapFromHeightMapSettings& settings = {});
+
+}  // namespace stairplan

@@ -1,0 +1,34 @@
+// Perception end to end (seed 000 claim 1, step regions from image data): a point cloud becomes a
+// height map with its gaps filled, the stair tracker's model, and the constrained map the planners
+// use. One call for `stairplan plan --cloud` and `stairplan map`.
+#pragma once
+
+#include <optional>
+
+#include "geometry/gap_fill.h"
+#include "geometry/height_map.h"
+#include "geometry/map_from_height_map.h"
+#include "geometry/point_cloud.h"
+#include "geometry/stair_tracker.h"
+
+namespace stairplan {
+
+struct StairPerceptionSettings {
+  HeightMapSettings height_map;
+  GapFillSettings gap_fill;
+  StairTrackerSettings tracker;
+  MapFromHeightMapSettings regions;
+};
+
+struct StairPerception {
+  HeightMap height_map;                  ///< with gaps filled
+  GapFillReport gap_fill;
+  StairFit fit;                          ///< the tracker's answer (found or why not)
+  std::optional<PerceivedStairs> stairs; ///< the Staircase and ConstrainedMap, when stairs were found
+};
+
+/// Runs the whole pipeline. Throws std::invalid_argument for an empty cloud or bad settings;
+/// a cloud that is not stairs gives `stairs` empty and `fit.reason` says why.
+StairPerception PerceiveStairs(const PointCloud& cloud, const StairPerceptionSettings& settings = {});
+
+}  // namespace stairplan
