@@ -136,8 +136,10 @@ StepPlanner::StepPlanner(const RobotModel& robot, const ConstrainedMap& map, con
     for (double cadence : settings_.cadences_s) controllers_.push_back({cadence, gait});
   }
   evaluations_.resize(controllers_.size());
-  poses_.resize(static_cast<std::size_t>(settings_.horizon_steps + 8 + 1));
-  end_poses_.resize(static_cast<std::size_t>(settings_.horizon_steps));
+  // Liftoff and touchdown instants: up to horizon_steps + 1 swings from now.
+  pose_stride_ = static_cast<std::size_t>(settings_.horizon_steps) + 1;
+  poses_.resize(settings_.cadences_s.size() * pose_stride_);
+  end_poses_.resize(settings_.cadences_s.size() * static_cast<std::size_t>(settings_.horizon_steps));
   for (const FixedCadenceController& controller : controllers_) {
     longest_stance_s_ = std::max(longest_stance_s_, PatternOf(controller.gait).stance_in_swings() * controller.cadence_s);
   }
@@ -263,6 +265,19 @@ int StepPlanner::Update(const StepPlannerInput& input) {
       throw std::invalid_argument("StepPlanner::Update: input.legs: foot_W and last_touchdown_s must be finite");
     }
   }
+  // Base poses at the instants the plans use, shared by the gaits of one cadence: after j swings
+  // (liftoffs and touchdowns), and after a touchdown plus the longest stance any controller gives
+  // (a foot placed now must stay in reach however long later choices keep it down).
+  const std::size_t horizon = static_cast<std::size_t>(settings_.horizon_steps);
+  for (std::size_t c = 0; c < settings_.cadences_s.size(); ++c) {
+    const double T = settings_.cadences_s[c];
+    for (std::size_t j = 0; j < pose_stride_; ++j) {
+      poses_[c * pose_stride_ + j] = BodyPoseAt(input.body_xy_W + input.velocity_W * (static_cast<double>(j) * T));
+    }
+    for (std::size_t p = 0; p < horizon; ++p) {
+      end_poses_[c * horizon + p] = BodyPoseAt(input.body_xy_W + input.velocity_W * (static_cast<double>(p + 1) * T + longest_stance_s_));
+    }
+  }
   const int count = static_cast<int>(controllers_.size());
   for (int i = 0; i < count; ++i) Evaluate(i, input);
   int best = -1;
@@ -312,15 +327,10 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
   }
 
   // Every event of this plan happens a whole number of swings from now: liftoff after p swings,
-  // touchdown after p + 1, the end of that stance after p + phases. One base pose per instant.
-  const int phase_steps = (settings_.horizon_steps + pattern.legs_per_phase - 1) / pattern.legs_per_phase;
-  const int instants = phase_steps + pattern.phases + 1;
-  for (int j = 0; j < instants; ++j) poses_[static_cast<std::size_t>(j)] = BodyPoseAt(input.body_xy_W + input.velocity_W * (j * T));
-  // A foot placed now must stay in reach however long the controllers chosen later keep it down:
-  // the longest stance any of them gives, counted from its touchdown.
-  for (int p = 0; p < phase_steps; ++p) {
-    end_poses_[static_cast<std::size_t>(p)] = BodyPoseAt(input.body_xy_W + input.velocity_W * ((p + 1) * T + longest_stance_s_));
-  }
+  // touchdown after p + 1 (poses computed once per cadence in Update).
+  const std::size_t cadence = static_cast<std::size_t>(index) % settings_.cadences_s.size();
+  const Eigen::Isometry3d* poses = &poses_[cadence * pose_stride_];
+  const Eigen::Isometry3d* end_poses = &end_poses_[cadence * static_cast<std::size_t>(settings_.horizon_steps)];
 
   std::array<Eigen::Vector3d, 4> foot;
   std::array<int, 4> stair;
@@ -343,9 +353,9 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
     s.from_W = foot[l];
     s.from_stair = stair[l];
     s.rule_out = RuleOut::kNone;
-    const Eigen::Isometry3d& base_lift = poses_[static_cast<std::size_t>(phase_step)];
-    const Eigen::Isometry3d& base_td = poses_[static_cast<std::size_t>(phase_step + 1)];
-    const Eigen::Isometry3d& base_end = end_poses_[static_cast<std::size_t>(phase_step)];
+    const Eigen::Isometry3d& base_lift = poses[phase_step];
+    const Eigen::Isometry3d& base_td = poses[phase_step + 1];
+    const Eigen::Isometry3d& base_end = end_poses[phase_step];
     // The unconstrained footstep: under the hip at mid-stance of the coming stance phase.
     const Eigen::Vector2d body_td = base_td.translation().head<2>();
     s.unconstrained_xy_W = body_td + neutral_offset_W_[l] + input.velocity_W * (0.5 * stance);

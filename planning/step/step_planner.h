@@ -155,9 +155,11 @@ class StepPlanner {
   std::vector<double> surface_x_end_;
   std::vector<FixedCadenceController> controllers_;
   std::vector<ControllerEvaluation> evaluations_;
-  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> poses_;      // Evaluate's workspace:
-  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> end_poses_;  // base poses at events
+  // Update's workspace: base poses per cadence at liftoffs/touchdowns and at the ends of stances.
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> poses_;
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> end_poses_;
   double longest_stance_s_ = 0.0;  // the longest stance any controller gives a leg [s]
+  std::size_t pose_stride_ = 0;    // poses per cadence in poses_
   std::array<int, 4> leg_of_role_{};
   std::array<int, 4> role_of_leg_{};
   std::array<Eigen::Vector2d, 4> neutral_offset_W_{};  // foot under the hip, stance width, yawed
