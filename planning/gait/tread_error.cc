@@ -1,6 +1,7 @@
 #include "planning/gait/tread_error.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,10 @@ TreadErrorTolerance TreadDepthTolerance(const GaitDesign& g, double W, double H)
   const double cos_phi = std::cos(g.phi);
   const double b = g.a_max;
   TreadErrorTolerance t;
+  if (!(g.d_s > 0.0)) {  // without condition (10) there is no gait to tolerate errors
+    t.upper = t.lower = std::numeric_limits<double>::quiet_NaN();
+    return t;
+  }
   t.upper = g.a_min;
   t.lower = (g.d_s * H * cos_phi + g.d_s * b * sin_phi - g.d_s * W * sin_phi - g.d / sin_phi * H) /
             (H + g.d_s * sin_phi);

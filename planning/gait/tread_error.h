@@ -18,7 +18,8 @@ struct TreadErrorTolerance {
 };
 
 /// Eq. (17) for the design's stairs, leg and hip clearance. The paper's example (W = 27 cm,
-/// H = 17 cm, l_max = 21 cm, d = 8.5 cm) gives 2.9 > dW > -12.05 cm.
+/// H = 17 cm, l_max = 21 cm, d = 8.5 cm) gives 2.9 > dW > -12.05 cm. Both bounds are NaN when the
+/// design has no D_s > 0 (condition (10) fails).
 TreadErrorTolerance TreadDepthTolerance(const GaitDesign& design, double run, double rise);
 
 /// The cumulative check of eq. (19) over a flight.

@@ -22,6 +22,16 @@ TEST_CASE("eq. (17): the paper's example tolerates 2.9 > dW > -12.05 cm", "[gait
   CHECK(t.upper == Approx(g.a_min));
 }
 
+TEST_CASE("eq. (17): no tolerance without a gait (condition (10) fails)", "[gait]") {
+  GaitDesignInput in;
+  in.max_leg_length = 0.18;
+  const TreadErrorTolerance t = TreadDepthTolerance(DesignGait(in), in.run, in.rise);
+  CHECK(std::isnan(t.lower));
+  CHECK(std::isnan(t.upper));
+  // Nothing lies within a NaN range.
+  CHECK_FALSE(CheckCumulativeTreadError({0.0}, t).within());
+}
+
 TEST_CASE("eq. (17): a larger hip clearance narrows the tolerance", "[gait]") {
   GaitDesignInput in;
   double previous_upper = 1e9;
