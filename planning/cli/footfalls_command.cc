@@ -1,0 +1,68 @@
+// `stairplan footfalls FILE.csv`: the staircases a robot walked, from its footfalls (seed 001).
+#include <cmath>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/footfall_stairs.h"
+#include "planning/cli/cli_common.h"
+
+namespace stairplan::cli {
+namespace {
+
+nlohmann::json Xy(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
+nlohmann::json Xyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+nlohmann::json StaircaseJson(const FootfallStaircase& s) {
+  nlohmann::json edges = nlohmann::json::array();
+  const std::vector<EdgeLine> lines = s.model.Edges();
+  for (std::size_t k = 0; k < s.edges.size(); ++k) {
+    edges.push_back({{"midpoint", Xyz(s.edges[k].midpoint)}, {"along", Xy(s.edges[k].along)}, {"a", Xyz(lines[k].a)}, {"b", Xyz(lines[k].b)}});
+  }
+  return {{"steps", s.model.steps}, {"rise", s.model.rise}, {"run", s.model.run}, {"direction", Xy(s.model.direction)},
+          {"yaw_rad", s.model.yaw()}, {"traversal", ToString(s.traversal)}, {"width", s.model.width},
+          {"center", Xy(s.model.center)}, {"tread_heights", s.tread_heights}, {"levels", s.model.levels},
+          {"cluster_sizes", s.cluster_sizes}, {"edges", edges}, {"t_begin", s.t_begin}, {"t_end", s.t_end}};
+}
+
+int RunFootfalls(const std::vector<std::string>& args) {
+  CLI::App app("Find the staircases a robot walked from its footfalls (CSV columns t,leg,x,y,z)", "footfalls");
+  std::string path;
+  bool json = false;
+  FootfallStairsSettings settings;
+  app.add_option("file", path, "Footfall CSV with the header t,leg,x,y,z")->required();
+  app.add_option("--min-rise", settings.min_rise, "Smallest riser height [m] (default 0.08)");
+  app.add_option("--max-rise", settings.max_rise, "Largest riser height [m] (default 0.30)");
+  app.add_option("--min-depth", settings.min_depth, "Smallest horizontal step between treads [m] (default 0.12)");
+  app.add_option("--max-depth", settings.max_depth, "Largest horizontal step between treads [m] (default 0.60)");
+  app.add_flag("--json", json, "Print JSON (key staircases) instead of the summary");
+  if (const int code = Parse(app, args); code >= 0) return code;
+  return Guarded("footfalls", [&] {
+    try {
+      settings.Validate();
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(std::string("--") + e.what());
+    }
+    const std::vector<Footfall> footfalls = ReadFootfallCsv(path);
+    const std::vector<FootfallStaircase> found = StairsFromFootfalls(footfalls, settings);
+    if (json) {
+      nlohmann::json list = nlohmann::json::array();
+      for (const auto& s : found) list.push_back(StaircaseJson(s));
+      std::cout << nlohmann::json{{"file", path}, {"footfalls", footfalls.size()}, {"staircases", list}}.dump(2) << "\n";
+      return kExitOk;
+    }
+    std::cout << "stairplan footfalls: " << path << ": " << footfalls.size() << " footfalls, " << found.size() << " staircases\n";
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      const FootfallStaircase& s = found[i];
+      std::cout << "  " << i + 1 << ": " << s.model.steps << " steps walked " << ToString(s.traversal) << ", rise " << s.model.rise
+                << " m, run " << s.model.run << " m, heading " << s.model.yaw() * 180.0 / M_PI << " deg, from t = " << s.t_begin
+                << " s to " << s.t_end << " s\n";
+    }
+    return kExitOk;
+  });
+}
+
+const CommandRegistrar kRegistrar({"footfalls", "find the staircases walked from a footfall CSV", RunFootfalls});
+
+}  // namespace
+}  // namespace stairplan::cli
