@@ -1,11 +1,13 @@
 #include "planning/body_path.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <urdf_model/model.h>
 
 #include "geometry/field_error.h"
+#include "planning/com_model.h"
 
 namespace stairplan {
 namespace {
@@ -59,6 +61,27 @@ Eigen::Vector2d ComAt(const std::vector<Keyframe>& keys, double t) {
   return a.com_xy + Smooth(u) * (next->com_xy - a.com_xy);
 }
 
+// Moves the body horizontally until the COM of the posture (legs through IK) is at `target`.
+void CorrectCom(const RobotKinematics& kinematics, const ComModel& com_model, RobotWorkspace& ws,
+                const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& feet,
+                const Eigen::Vector2d& target, int passes, BodyState& b) {
+  for (int pass = 0; pass < passes; ++pass) {
+    BodyPose pose;
+    pose.position_W = {b.x, b.y, b.z};
+    pose.pitch = b.pitch;
+    pose.yaw = b.yaw;
+    std::array<Eigen::Vector3d, 4> q;
+    for (std::size_t i = 0; i < legs.size() && i < 4; ++i) {
+      const int l = kinematics.LegIndex(legs[i]);
+      const Eigen::Vector3d foot = feet[i] + Eigen::Vector3d(0.0, 0.0, kinematics.leg(l).model().foot_radius);
+      q[static_cast<std::size_t>(l)] = kinematics.SolveFootIkWorld(l, foot, pose, ws).q;
+    }
+    const Eigen::Vector3d com = com_model.Com(pose, q, ws);
+    b.x -= com.x() - target.x();
+    b.y -= com.y() - target.y();
+  }
+}
+
 }  // namespace
 
 void BodyPathSettings::Validate() const {
@@ -68,6 +91,8 @@ void BodyPathSettings::Validate() const {
   check("hip_height_fraction", hip_height_fraction, 0.05, 1.0);
   check("sample_period", sample_period, 1e-3, 1.0);
   check("stability_shift", stability_shift, 0.0, 1.0);
+  check("pitch_fraction", pitch_fraction, 0.0, 1.0);
+  if (com_passes < 0 || com_passes > 10) throw FieldError("com_passes", "must be from 0 to 10");
 }
 
 Eigen::Vector3d ApproximateComOffset(const RobotModel& robot) {
@@ -123,6 +148,9 @@ std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::
   const std::vector<Keyframe> keys = ComKeyframes(legs, initial_feet, footsteps, settings.stability_shift);
   const double duration = footsteps.empty() ? 0.0 : footsteps.back().t_touchdown;
   const int samples = static_cast<int>(std::ceil(duration / settings.sample_period - 1e-9));
+  const RobotKinematics kinematics(robot);
+  const ComModel com_model(kinematics);
+  RobotWorkspace ws(kinematics);
   std::vector<BodyState> body;
   for (int s = 0; s <= samples; ++s) {
     const double t = std::min(duration, s * settings.sample_period);
@@ -143,8 +171,9 @@ std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::
     b.y = com.y() - com_offset_W.y();
     b.z = sum_z + foot_radius + hip_height - hip_z;
     b.yaw = yaw;
-    b.pitch = -std::atan2(front_z - hind_z, (front_x - hind_x) * std::cos(yaw));
+    b.pitch = -settings.pitch_fraction * std::atan2(front_z - hind_z, (front_x - hind_x) * std::cos(yaw));
     b.com_shift = (com - feet_xy).dot(Eigen::Vector2d(std::cos(yaw), std::sin(yaw)));
+    CorrectCom(kinematics, com_model, ws, legs, feet, com, settings.com_passes, b);
     body.push_back(b);
   }
   return body;

@@ -15,10 +15,17 @@
 namespace stairplan {
 
 struct BodyPathSettings {
-  double hip_height_fraction = 0.75;  ///< hip above the feet, as a fraction of the leg's reach
+  /// Hip above the feet, as a fraction of the leg's reach: 0.6 leaves the legs room to pitch with
+  /// the flight and to lift the swing foot over a nosing (0.75 overextends stairbot's front legs).
+  double hip_height_fraction = 0.6;
   double sample_period = 0.05;        ///< sampling of the body trajectory [s]
   /// How far toward the support triangle's centroid the COM moves while a leg swings (1: all the way).
   double stability_shift = 1.0;
+  /// Share of the feet's slope (hind to front) the body pitches by; less keeps legs upright.
+  double pitch_fraction = 0.75;
+  /// Correct the body so the COM computed through each leg's IK (not the lumped estimate) sits
+  /// where the support polygon wants it; this many fixed-point passes per sample (0: off).
+  int com_passes = 2;
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;

@@ -6,6 +6,7 @@
 #include <deque>
 
 #include "geometry/field_error.h"
+#include "planning/swing_trajectory.h"
 
 namespace stairplan {
 namespace {
@@ -82,6 +83,7 @@ void CrawlSettings::Validate() const {
   check("shift_duration", shift_duration, -1e-12, 5.0);
   check("start_gap", start_gap, -1.0, 5.0);
   body.Validate();
+  swing.Validate();
 }
 
 Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const CrawlSettings& settings) {
@@ -122,9 +124,11 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   int cycles = 0;
   for (LegTrack& track : tracks) {
     const double want = body_x0 + track.foot_offset_W.x();
-    const auto it = std::upper_bound(lattice.begin(), lattice.end(), want + 1e-9);
+    // The nearest foothold, so feet start as close under their hips as the lattice allows.
+    const auto it = std::upper_bound(lattice.begin(), lattice.end(), want);
     if (it == lattice.begin()) return Infeasible(plan, "landing_before is too short for the robot's " + track.name + " foot");
-    track.start_index = static_cast<int>(it - lattice.begin()) - 1;
+    const bool next_is_nearer = it != lattice.end() && *it - want < want - *(it - 1) && map.StairAt({*it, 0.0}) == 0;
+    track.start_index = static_cast<int>(it - lattice.begin()) - (next_is_nearer ? 0 : 1);
     cycles = std::max(cycles, first_top - track.start_index);
   }
   for (const LegTrack& track : tracks) {
@@ -153,6 +157,7 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
       step.position_W = foothold(*leg, leg->start_index + c + 1);
       step.stair_index = map.StairAt(step.position_W.head<2>());
       step.in_step_region = step.stair_index >= 0 && map.InStepRegion(step.stair_index, step.position_W.head<2>());
+      step.swing_apex_z = SwingTrajectory(step.from_W, step.position_W, stairs, settings.swing).apex_z();
       plan.footsteps.push_back(step);
     }
   }

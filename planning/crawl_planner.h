@@ -9,6 +9,7 @@
 #include "kinematics/robot_model.h"
 #include "planning/body_path.h"
 #include "planning/plan.h"
+#include "planning/swing_trajectory.h"
 
 namespace stairplan {
 
@@ -17,6 +18,7 @@ struct CrawlSettings {
   double shift_duration = 0.25;       ///< four feet down between swings, moving the COM [s]
   double start_gap = 0.10;            ///< front feet this far before the first step region [m]
   BodyPathSettings body;              ///< how the body follows the feet
+  SwingSettings swing;                ///< how high the feet swing over the stairs
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;

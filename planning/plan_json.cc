@@ -41,12 +41,24 @@ nlohmann::json StairsToJson(const Staircase& stairs) {
           {"surfaces", surfaces}};
 }
 
+nlohmann::json ValidationToJson(const ValidationReport& report) {
+  nlohmann::json violations = nlohmann::json::array();
+  for (const Violation& v : report.violations) {
+    violations.push_back({{"t", v.t}, {"leg", v.leg}, {"kind", ToString(v.kind)}, {"value", v.value}, {"detail", v.detail}});
+  }
+  const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"ok", report.ok}, {"min_clearance_m", finite(report.min_clearance_m)},
+          {"min_stability_margin_m", finite(report.min_stability_margin_m)}, {"samples", report.samples},
+          {"violations", violations}};
+}
+
 nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map) {
   nlohmann::json footsteps = nlohmann::json::array();
   for (const Footstep& f : plan.footsteps) {
     footsteps.push_back({{"leg", f.leg}, {"t_liftoff", f.t_liftoff}, {"t_touchdown", f.t_touchdown},
                          {"x", f.position_W.x()}, {"y", f.position_W.y()}, {"z", f.position_W.z()},
-                         {"stair_index", f.stair_index}, {"in_step_region", f.in_step_region}});
+                         {"stair_index", f.stair_index}, {"in_step_region", f.in_step_region},
+                         {"swing_apex_z", std::isfinite(f.swing_apex_z) ? nlohmann::json(f.swing_apex_z) : nlohmann::json(nullptr)}});
   }
   nlohmann::json initial = nlohmann::json::array();
   for (std::size_t i = 0; i < plan.initial_feet_W.size(); ++i) {

@@ -8,11 +8,14 @@
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
 #include "planning/plan.h"
+#include "planning/validation/traversal_validator.h"
 
 namespace stairplan {
 
 /// The resolved staircase as JSON (spec fields plus per-surface geometry).
 nlohmann::json StairsToJson(const Staircase& stairs);
+/// The validator's report: ok, min_clearance_m, min_stability_margin_m, violations [{t, leg, kind, value, detail}].
+nlohmann::json ValidationToJson(const ValidationReport& report);
 /// The whole plan: robot, stairs, map regions, footsteps, body, cadence, status, timings.
 nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map);
 

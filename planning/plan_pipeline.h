@@ -2,24 +2,37 @@
 // run the same thing: constrained map -> footsteps -> body -> (validation), with stage timings.
 #pragma once
 
+#include "collision/robot_collision_regions.h"
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
 #include "kinematics/robot_model.h"
 #include "planning/crawl_planner.h"
 #include "planning/plan.h"
+#include "planning/validation/traversal_validator.h"
 
 namespace stairplan {
 
 struct PipelineOptions {
   Facing facing = Facing::kForward;
   ConstrainedMapSettings map;
+  /// Trim step regions where this robot's legs would hit a riser or nosing (collision module).
+  bool robot_regions = true;
+  RobotRegionSettings regions;
   CrawlSettings crawl;
+  bool validate = true;  ///< replay the plan through the validator
+  ValidationSettings validation;
 };
 
 struct PipelineResult {
   ConstrainedMap map;
   Plan plan;
+  bool validated = false;
+  ValidationReport validation;  ///< meaningful when validated
 };
+
+/// The constrained map the pipeline plans on: analytic margins plus, when asked, the robot's own
+/// collision regions.
+ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options);
 
 /// Plans `stairs` for `robot`. Throws std::invalid_argument only for invalid options; a staircase
 /// the robot cannot traverse gives a plan with status kInfeasible.

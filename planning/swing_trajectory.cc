@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "geometry/field_error.h"
 
@@ -42,6 +43,15 @@ SwingTrajectory::SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vec
   settings_.Validate();
   const double obstacle = HighestObstacleBetween(stairs, from_W.head<2>(), to_W.head<2>());
   apex_z_ = std::max(obstacle + settings_.clearance, std::max(from_W.z(), to_W.z()) + settings_.min_lift);
+}
+
+SwingTrajectory::SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, double apex_z,
+                                 const SwingSettings& settings)
+    : from_(from_W), to_(to_W), apex_z_(apex_z), settings_(settings) {
+  settings_.Validate();
+  if (!std::isfinite(apex_z) || !from_W.allFinite() || !to_W.allFinite()) {
+    throw std::invalid_argument("SwingTrajectory: non-finite footholds or apex");
+  }
 }
 
 Eigen::Vector3d SwingTrajectory::At(double s) const {

@@ -24,6 +24,9 @@ class SwingTrajectory {
  public:
   SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, const Staircase& stairs,
                   const SwingSettings& settings = {});
+  /// A swing with its apex given (as a plan states it).
+  SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, double apex_z,
+                  const SwingSettings& settings = {});
 
   /// The foot's contact point at phase s in [0, 1] (clamped).
   Eigen::Vector3d At(double s) const;

@@ -95,6 +95,18 @@ void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& 
             << "  wrote:     " << out << "/plan.json, " << out << "/plan.svg\n";
 }
 
+void PrintValidation(const PipelineResult& result) {
+  if (!result.validated) return;
+  const ValidationReport& v = result.validation;
+  std::cout << "  validated: " << (v.ok ? "ok" : "VIOLATIONS") << ", min clearance " << v.min_clearance_m * 1000
+            << " mm, min stability margin " << v.min_stability_margin_m * 1000 << " mm\n";
+  if (!v.violations.empty()) {
+    const Violation& first = v.violations.front();
+    std::cout << "  first violation: t=" << first.t << " s, " << first.leg << ", " << ToString(first.kind) << " ("
+              << first.value << (first.detail.empty() ? "" : ", " + first.detail) << ")\n";
+  }
+}
+
 int RunPlan(const std::vector<std::string>& args) {
   CLI::App app("Plan a traversal of a staircase; writes plan.json and plan.svg", "plan");
   PlanOptions o;
@@ -110,7 +122,8 @@ int RunPlan(const std::vector<std::string>& args) {
     PipelineResult result = RunPipeline(robot, stairs, options);
     Plan& plan = result.plan;
     plan.timing_us.insert(plan.timing_us.begin(), {"load", load_us});
-    const nlohmann::json json = PlanToJson(plan, stairs, result.map);
+    nlohmann::json json = PlanToJson(plan, stairs, result.map);
+    if (result.validated) json["validation"] = ValidationToJson(result.validation);
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");
     WriteFileAtomically(o.out + "/plan.svg", PlanToSvg(plan, stairs, result.map));
@@ -118,8 +131,10 @@ int RunPlan(const std::vector<std::string>& args) {
       std::cout << json.dump(2) << "\n";
     } else {
       PrintSummary(plan, stairs, o.out);
+      PrintValidation(result);
     }
-    return plan.status == PlanStatus::kOk ? kExitOk : kExitInfeasible;
+    const bool valid = !result.validated || result.validation.ok;
+    return plan.status == PlanStatus::kOk && valid ? kExitOk : kExitInfeasible;
   });
 }
 

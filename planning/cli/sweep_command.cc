@@ -20,6 +20,7 @@ struct SweepOptions {
   std::string rise = "0.10:0.25:20", run = "0.20:0.35:20", nosing = "0.02", steps = "7";
   std::string directions = "up", facing = "forward", robot, csv, svg, shard = "0/1";
   int threads = 1;
+  double validation_step = 0.05;
   bool times = false;
 };
 
@@ -37,36 +38,36 @@ SweepGrid ParseGrid(const SweepOptions& o) {
   return grid;
 }
 
-// One grid point through the same pipeline as `stairplan plan`.
-SweepRow Evaluate(const SweepPoint& point, const RobotModel& robot, Facing facing) {
+// One grid point through the same pipeline as `stairplan plan`, validation included.
+SweepRow Evaluate(const SweepPoint& point, const RobotModel& robot, Facing facing, double validation_step) {
   SweepRow row;
   row.point = point;
-  const auto start = std::chrono::steady_clock::now();
   try {
     const Staircase stairs(point.Spec());
     PipelineOptions options;
     options.facing = facing;
+    options.validation.time_step = validation_step;
     const PipelineResult result = RunPipeline(robot, stairs, options);
     row.cadence_s = result.plan.cadence_s;
     row.footsteps = static_cast<int>(result.plan.footsteps.size());
+    for (const auto& [stage, us] : result.plan.timing_us) (stage == "validate" ? row.validate_us : row.plan_us) += us;
     if (result.plan.status != PlanStatus::kOk) {
       row.status = "infeasible";
       row.reason = result.plan.status_reason;
-    } else {
-      row.status = "valid";
-      for (const Footstep& f : result.plan.footsteps) {
-        if (!f.in_step_region) {
-          row.status = "invalid";
-          row.reason = "foot outside its step region";
-          break;
-        }
-      }
+      return row;
+    }
+    const ValidationReport& v = result.validation;
+    row.min_clearance_m = v.min_clearance_m;
+    row.min_stability_margin_m = v.min_stability_margin_m;
+    row.status = v.ok ? "valid" : "invalid";
+    if (!v.violations.empty()) {
+      const Violation& first = v.violations.front();
+      row.reason = std::string(ToString(first.kind)) + " " + first.leg + (first.detail.empty() ? "" : " " + first.detail);
     }
   } catch (const std::invalid_argument& e) {
     row.status = "bad_stairs";
     row.reason = e.what();
   }
-  row.plan_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
   return row;
 }
 
@@ -92,6 +93,8 @@ int RunSweepCommand(const std::vector<std::string>& args) {
   app.add_option("--shard", o.shard, "Compute only shard i of N (i/N); join with sweep-merge");
   app.add_option("--csv", o.csv, "Output CSV file")->required();
   app.add_option("--svg", o.svg, "Output SVG heatmap");
+  app.add_option("--validation-step", o.validation_step, "Validator replay step [s] (default 0.05; plan uses 0.02)")
+      ->check(CLI::Range(1e-3, 1.0));
   app.add_flag("--times", o.times, "Add plan_us and validate_us columns (not reproducible)");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("sweep", [&] {
@@ -108,7 +111,7 @@ int RunSweepCommand(const std::vector<std::string>& args) {
     const bool terminal = isatty(STDERR_FILENO) != 0;
     const auto start = std::chrono::steady_clock::now();
     const std::vector<SweepRow> rows = RunSweep(
-        points, [&](const SweepPoint& p) { return Evaluate(p, robot, grid.facing); }, o.threads, shard,
+        points, [&](const SweepPoint& p) { return Evaluate(p, robot, grid.facing, o.validation_step); }, o.threads, shard,
         terminal ? SweepProgress(ShowProgress) : SweepProgress());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     WriteFileAtomically(o.csv, SweepToCsv(rows, o.times));

@@ -1,0 +1,55 @@
+// `stairplan validate plan.json`: replay a plan through the validator on the stairs it names.
+#include <iostream>
+
+#include "planning/cli/cli_common.h"
+#include "planning/plan_json.h"
+#include "planning/plan_json_reader.h"
+#include "planning/plan_pipeline.h"
+
+namespace stairplan::cli {
+namespace {
+
+// The robot a plan names: a file path, or the built-in robot.
+RobotModel PlanRobot(const PlanFile& file, const std::string& override_path) {
+  if (!override_path.empty()) return LoadRobot(override_path);
+  const std::string& source = file.plan.robot_source;
+  if (source.empty() || source.rfind("builtin:", 0) == 0) return LoadRobot("");
+  return LoadRobot(source);
+}
+
+int RunValidate(const std::vector<std::string>& args) {
+  CLI::App app("Validate a plan: reach, joint limits, clearances, stability, step regions", "validate");
+  std::string path, robot_path;
+  bool json = false;
+  app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
+  app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
+  app.add_flag("--json", json, "Print the validation report as JSON");
+  if (const int code = Parse(app, args); code >= 0) return code;
+  return Guarded("validate", [&] {
+    const PlanFile file = ReadPlanJsonFile(path);
+    const RobotModel robot = PlanRobot(file, robot_path);
+    const Staircase stairs(file.stairs);
+    PipelineOptions options;
+    options.facing = file.facing;
+    const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
+    TraversalValidator validator(robot, stairs, map, options.validation);
+    const ValidationReport report = validator.Validate(file.plan);
+    if (json) {
+      std::cout << ValidationToJson(report).dump(2) << "\n";
+    } else {
+      std::cout << "stairplan validate: " << path << ": " << (report.ok ? "valid" : "INVALID") << ", "
+                << report.samples << " instants, min clearance " << report.min_clearance_m * 1000
+                << " mm, min stability margin " << report.min_stability_margin_m * 1000 << " mm\n";
+      for (const Violation& v : report.violations) {
+        std::cout << "  t=" << v.t << " s  " << v.leg << "  " << ToString(v.kind) << "  " << v.value
+                  << (v.detail.empty() ? "" : "  " + v.detail) << "\n";
+      }
+    }
+    return report.ok ? kExitOk : kExitInfeasible;
+  });
+}
+
+const CommandRegistrar kRegistrar({"validate", "replay a plan.json and check it (exit 3 on violations)", RunValidate});
+
+}  // namespace
+}  // namespace stairplan::cli

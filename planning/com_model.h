@@ -1,0 +1,36 @@
+// The robot's centre of mass for given leg joint angles: the base's links lumped at the base
+// link's inertial origin, every leg link at its own inertial origin through the leg's FK.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinematics/body_pose.h"
+#include "kinematics/robot_kinematics.h"
+
+namespace stairplan {
+
+class ComModel {
+ public:
+  explicit ComModel(const RobotKinematics& kinematics);
+
+  /// The centre of mass in the world for the body pose and the four legs' joint angles.
+  Eigen::Vector3d Com(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& q, RobotWorkspace& ws) const;
+  double total_mass() const { return total_mass_; }
+
+ private:
+  struct Part {
+    int segment = -1;  // leg chain segment carrying it
+    double mass = 0.0;
+    Eigen::Vector3d com_local = Eigen::Vector3d::Zero();
+  };
+  const RobotKinematics& kinematics_;
+  std::vector<std::vector<Part>> legs_;
+  double base_mass_ = 0.0;
+  Eigen::Vector3d base_com_B_ = Eigen::Vector3d::Zero();
+  double total_mass_ = 0.0;
+};
+
+}  // namespace stairplan

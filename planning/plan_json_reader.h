@@ -1,0 +1,24 @@
+// Reading plan.json back (for `stairplan validate` and `simulate`): the plan, the stairs it was
+// made for, the facing and the robot's source. Errors name the file and the JSON field.
+#pragma once
+
+#include <string>
+
+#include "geometry/constrained_map.h"
+#include "geometry/staircase.h"
+#include "planning/plan.h"
+
+namespace stairplan {
+
+struct PlanFile {
+  Plan plan;
+  StairSpec stairs;
+  Facing facing = Facing::kForward;
+};
+
+/// Parses plan.json text. Throws std::invalid_argument "<source>: field '<path>': <problem>".
+PlanFile ReadPlanJson(const std::string& text, const std::string& source);
+/// Reads and parses a plan.json file.
+PlanFile ReadPlanJsonFile(const std::string& path);
+
+}  // namespace stairplan

@@ -1,0 +1,197 @@
+#include "planning/validation/traversal_validator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "geometry/field_error.h"
+
+namespace stairplan {
+namespace {
+
+constexpr double kTouchTolerance = 1e-4;  // a foot sphere this deep in its tread still only touches [m]
+
+// Convex hull of the stance feet in xy, counter-clockwise (Andrew's monotone chain).
+Polygon2 SupportPolygon(std::vector<Eigen::Vector2d> points) {
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  Polygon2 polygon;
+  polygon.vertices = hull;
+  return polygon;
+}
+
+bool QuasiStatic(const std::string& gait) { return gait.rfind("crawl", 0) == 0; }
+
+}  // namespace
+
+const char* ToString(ViolationKind kind) {
+  switch (kind) {
+    case ViolationKind::kFootOutsideStepRegion: return "foot_outside_step_region";
+    case ViolationKind::kOutOfReach: return "out_of_reach";
+    case ViolationKind::kJointLimits: return "joint_limits";
+    case ViolationKind::kStairCollision: return "stair_collision";
+    case ViolationKind::kLegCollision: return "leg_collision";
+    case ViolationKind::kBodyCollision: return "body_collision";
+    case ViolationKind::kStability: return "stability";
+  }
+  return "unknown";
+}
+
+void ValidationSettings::Validate() const {
+  const auto check = [](const char* name, double v, double lo, double hi) {
+    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
+  };
+  check("time_step", time_step, 1e-4, 1.0);
+  check("min_clearance", min_clearance, -1.0, 1.0);
+  check("min_stability_margin", min_stability_margin, -1.0, 1.0);
+  if (max_violations < 1) throw FieldError("max_violations", "must be at least 1");
+  swing.Validate();
+  ik.Validate();
+}
+
+BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t) {
+  BodyPose pose;
+  if (body.empty()) return pose;
+  const auto next = std::upper_bound(body.begin(), body.end(), t, [](double v, const BodyState& b) { return v < b.t; });
+  const BodyState& a = next == body.begin() ? body.front() : *(next - 1);
+  const BodyState& b = next == body.end() ? body.back() : *next;
+  const double u = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
+  pose.position_W = {a.x + u * (b.x - a.x), a.y + u * (b.y - a.y), a.z + u * (b.z - a.z)};
+  pose.pitch = a.pitch + u * (b.pitch - a.pitch);
+  pose.yaw = a.yaw + u * (b.yaw - a.yaw);
+  return pose;
+}
+
+TraversalValidator::TraversalValidator(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                                       const ValidationSettings& settings)
+    : stairs_(stairs), map_(map), settings_(settings) {
+  settings_.Validate();
+  StanceSettings stance;
+  stance.ik = settings_.ik;
+  stance.min_clearance = settings_.min_clearance;
+  checker_ = std::make_unique<StanceChecker>(robot, stairs, stance);
+  com_ = std::make_unique<ComModel>(checker_->kinematics());
+}
+
+ValidationReport TraversalValidator::Validate(const Plan& plan) {
+  ValidationReport report;
+  report.min_clearance_m = std::numeric_limits<double>::infinity();
+  report.min_stability_margin_m = std::numeric_limits<double>::infinity();
+  CheckTouchdowns(plan, report);
+  std::set<double> times;
+  for (double t = 0.0; t < plan.duration(); t += settings_.time_step) times.insert(t);
+  times.insert(plan.duration());
+  for (const Footstep& f : plan.footsteps) {
+    times.insert(f.t_liftoff);
+    times.insert(f.t_touchdown);
+  }
+  for (double t : times) CheckInstant(plan, t, report);
+  std::stable_sort(report.violations.begin(), report.violations.end(),
+                   [](const Violation& a, const Violation& b) { return a.t < b.t; });
+  if (static_cast<int>(report.violations.size()) > settings_.max_violations) {
+    report.violations.resize(static_cast<std::size_t>(settings_.max_violations));
+  }
+  report.samples = static_cast<int>(times.size());
+  report.ok = report.violations.empty() && plan.status == PlanStatus::kOk;
+  if (!std::isfinite(report.min_stability_margin_m)) report.min_stability_margin_m = 0.0;
+  return report;
+}
+
+void TraversalValidator::CheckTouchdowns(const Plan& plan, ValidationReport& report) const {
+  for (const Footstep& f : plan.footsteps) {
+    const int stair = map_.StairAt(f.position_W.head<2>());
+    const bool on_height = stair >= 0 && std::abs(map_.stair(stair).z - f.position_W.z()) < 1e-6;
+    if (on_height && map_.InStepRegion(stair, f.position_W.head<2>(), 1e-6)) continue;
+    double distance = 0.0;
+    map_.NearestStepRegion(f.position_W.head<2>(), &distance);
+    report.violations.push_back({f.t_touchdown, f.leg, ViolationKind::kFootOutsideStepRegion, distance,
+                                 stair < 0 ? "off the stairs" : "stair " + std::to_string(stair)});
+  }
+}
+
+void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationReport& report) {
+  const RobotKinematics& kinematics = checker_->kinematics();
+  const BodyPose body = BodyPoseAt(plan.body, t);
+  std::array<Eigen::Vector3d, 4> contacts;
+  std::array<bool, 4> stance{true, true, true, true};
+  for (std::size_t i = 0; i < plan.legs.size() && i < 4; ++i) {
+    const auto l = static_cast<std::size_t>(kinematics.LegIndex(plan.legs[i]));
+    contacts[l] = plan.initial_feet_W.at(i);
+    for (const Footstep& f : plan.footsteps) {
+      if (f.leg != plan.legs[i] || f.t_liftoff >= t) continue;
+      if (t >= f.t_touchdown) {
+        contacts[l] = f.position_W;
+        continue;
+      }
+      const double phase = (t - f.t_liftoff) / (f.t_touchdown - f.t_liftoff);
+      const SwingTrajectory swing = std::isfinite(f.swing_apex_z)
+                                        ? SwingTrajectory(f.from_W, f.position_W, f.swing_apex_z, settings_.swing)
+                                        : SwingTrajectory(f.from_W, f.position_W, stairs_, settings_.swing);
+      contacts[l] = swing.At(phase);
+      stance[l] = false;
+    }
+  }
+  const StanceResult r = checker_->Check(body, contacts);
+  // One entry per leg and kind: the first time it happens.
+  std::set<std::pair<std::string, ViolationKind>> seen;
+  for (const Violation& v : report.violations) seen.insert({v.leg, v.kind});
+  const auto add = [&](const std::string& leg, ViolationKind kind, double value, const std::string& detail) {
+    if (seen.insert({leg, kind}).second) report.violations.push_back({t, leg, kind, value, detail});
+  };
+  for (int l = 0; l < 4; ++l) {
+    const LegStance& leg = r.legs[static_cast<std::size_t>(l)];
+    const std::string& name = kinematics.leg(l).name();
+    if (leg.ik.status == IkStatus::kOutOfReach) add(name, ViolationKind::kOutOfReach, leg.ik.error, "");
+    if (leg.ik.status == IkStatus::kJointLimits) add(name, ViolationKind::kJointLimits, leg.ik.error, "");
+    const auto& shapes = checker_->collision_model().leg_shapes(l);
+    const CollisionShape* shape = leg.stairs.shape >= 0 ? &shapes.at(static_cast<std::size_t>(leg.stairs.shape)) : nullptr;
+    // A foot lifting off or touching down grazes its tread by design: only penetration counts.
+    const bool foot_on_tread = shape != nullptr && shape->foot_contact && leg.stairs.part == StairPart::kTread;
+    if (foot_on_tread && leg.stairs.distance > -kTouchTolerance) continue;
+    report.min_clearance_m = std::min(report.min_clearance_m, leg.stairs.distance);
+    if (!(leg.stairs.distance > settings_.min_clearance)) {
+      add(name, ViolationKind::kStairCollision, leg.stairs.distance,
+          (shape != nullptr ? shape->link : std::string("?")) + " against " + ToString(leg.stairs.part));
+    }
+  }
+  for (const Clearance* pair : {&r.front_pair, &r.hind_pair}) {
+    report.min_clearance_m = std::min(report.min_clearance_m, pair->distance);
+    if (!(pair->distance > settings_.min_clearance)) {
+      add(pair == &r.front_pair ? "LF/RF" : "LH/RH", ViolationKind::kLegCollision, pair->distance, "");
+    }
+  }
+  const Clearance body_clearance = BodyStairClearance(checker_->collision_model(), checker_->stairs(), body);
+  report.min_clearance_m = std::min(report.min_clearance_m, body_clearance.distance);
+  if (!(body_clearance.distance > settings_.min_clearance)) {
+    add("body", ViolationKind::kBodyCollision, body_clearance.distance, ToString(body_clearance.part));
+  }
+  const int stance_count = static_cast<int>(std::count(stance.begin(), stance.end(), true));
+  if (stance_count >= 3 && (QuasiStatic(plan.gait) || settings_.stability_for_dynamic_gaits)) {
+    std::array<Eigen::Vector3d, 4> q;
+    for (int l = 0; l < 4; ++l) q[static_cast<std::size_t>(l)] = r.legs[static_cast<std::size_t>(l)].ik.q;
+    const Eigen::Vector3d com = com_->Com(body, q, checker_->workspace());
+    std::vector<Eigen::Vector2d> feet;
+    for (int l = 0; l < 4; ++l) {
+      if (stance[static_cast<std::size_t>(l)]) feet.push_back(contacts[static_cast<std::size_t>(l)].head<2>());
+    }
+    const double margin = -SupportPolygon(feet).SignedDistance(com.head<2>());
+    report.min_stability_margin_m = std::min(report.min_stability_margin_m, margin);
+    if (margin < settings_.min_stability_margin) add("body", ViolationKind::kStability, margin, "");
+  }
+}
+
+}  // namespace stairplan

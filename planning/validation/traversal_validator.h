@@ -1,0 +1,85 @@
+// The validator: replays a plan quasi-statically at a fine time step and proves it reachable,
+// within joint limits, collision-free (legs against the stairs, contralateral legs, the body) and
+// statically stable where the gait needs it, with every foot landing inside its step region.
+// It is our own check of our own plans; MuJoCo (planning/simulation) is the independent one.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "collision/stance_check.h"
+#include "geometry/constrained_map.h"
+#include "geometry/staircase.h"
+#include "planning/plan.h"
+#include "planning/swing_trajectory.h"
+#include "planning/com_model.h"
+
+namespace stairplan {
+
+/// What went wrong.
+enum class ViolationKind {
+  kFootOutsideStepRegion,  ///< a touchdown outside its stair's step region
+  kOutOfReach,             ///< a foot no leg configuration reaches
+  kJointLimits,            ///< a foot reachable only beyond a joint limit
+  kStairCollision,         ///< a leg link closer to the stairs than the margin
+  kLegCollision,           ///< contralateral legs closer than the margin
+  kBodyCollision,          ///< the body closer to the stairs than the margin
+  kStability,              ///< the centre of mass outside the support polygon (by less than the margin)
+};
+const char* ToString(ViolationKind kind);
+
+struct Violation {
+  double t = 0.0;
+  std::string leg;     ///< "LF".."RH", or "body"
+  ViolationKind kind = ViolationKind::kStairCollision;
+  double value = 0.0;  ///< clearance, margin or distance that failed [m]
+  std::string detail;  ///< e.g. the link and stair part involved
+};
+
+struct ValidationSettings {
+  double time_step = 0.02;             ///< replay step [s]
+  double min_clearance = 0.005;        ///< leg, leg-leg and body clearance needed [m]
+  double min_stability_margin = 0.01;  ///< COM inside the support polygon by this much [m]
+  /// Quasi-static gaits (the crawl) need the COM inside the support polygon at all times;
+  /// dynamic gaits (trot) do not, and are only reported.
+  bool stability_for_dynamic_gaits = false;
+  int max_violations = 64;             ///< violations listed at most (the first ones in time)
+  SwingSettings swing;                 ///< for footsteps whose plan gives no swing apex
+  IkSettings ik;
+
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+struct ValidationReport {
+  bool ok = true;
+  double min_clearance_m = 0.0;         ///< smallest leg/body-to-stairs or leg-to-leg clearance
+  double min_stability_margin_m = 0.0;  ///< smallest COM margin over quasi-static phases
+  std::vector<Violation> violations;    ///< in time order; the first is the first violation
+  int samples = 0;
+};
+
+/// Built once per robot and staircase; Validate() may be called for many plans. Not thread-safe.
+class TraversalValidator {
+ public:
+  TraversalValidator(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                     const ValidationSettings& settings = {});
+
+  ValidationReport Validate(const Plan& plan);
+
+ private:
+  void CheckTouchdowns(const Plan& plan, ValidationReport& report) const;
+  void CheckInstant(const Plan& plan, double t, ValidationReport& report);
+
+  const Staircase& stairs_;
+  const ConstrainedMap& map_;
+  ValidationSettings settings_;
+  std::unique_ptr<StanceChecker> checker_;
+  std::unique_ptr<ComModel> com_;
+};
+
+/// The body pose at time t, interpolated linearly between the plan's body samples.
+BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t);
+
+}  // namespace stairplan

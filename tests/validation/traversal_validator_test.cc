@@ -1,0 +1,118 @@
+// The validator passes good plans and catches planted faults with the right kind.
+#include <catch2/catch.hpp>
+
+#include <iostream>
+
+#include "kinematics/builtin_robot.h"
+#include "planning/plan_pipeline.h"
+#include "planning/validation/traversal_validator.h"
+
+using namespace stairplan;
+
+namespace {
+
+struct Scenario {
+  Staircase stairs;
+  PipelineResult result;
+  Scenario(TravelDirection direction, Facing facing) : stairs(Spec(direction)) {
+    PipelineOptions options;
+    options.facing = facing;
+    result = RunPipeline(BuiltinRobot(), stairs, options);
+  }
+  static StairSpec Spec(TravelDirection direction) {
+    StairSpec spec;
+    spec.direction = direction;
+    return spec;
+  }
+  ValidationReport Validate(const Plan& plan) {
+    TraversalValidator validator(BuiltinRobot(), stairs, result.map);
+    return validator.Validate(plan);
+  }
+};
+
+std::string Describe(const ValidationReport& r) {
+  std::string text = "min clearance " + std::to_string(r.min_clearance_m) + ", min margin " +
+                     std::to_string(r.min_stability_margin_m) + ", violations:";
+  for (const Violation& v : r.violations) {
+    text += "\n  t=" + std::to_string(v.t) + " " + v.leg + " " + ToString(v.kind) + " " + std::to_string(v.value) + " " + v.detail;
+  }
+  return text;
+}
+
+bool HasKind(const ValidationReport& r, ViolationKind kind, const std::string& leg_prefix = "") {
+  for (const Violation& v : r.violations) {
+    if (v.kind == kind && v.leg.rfind(leg_prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("the validator passes the default plan", "[validator]") {
+  Scenario s(TravelDirection::kUp, Facing::kForward);
+  REQUIRE(s.result.plan.status == PlanStatus::kOk);
+  const ValidationReport r = s.Validate(s.result.plan);
+  INFO(Describe(r));
+  CHECK(r.ok);
+  CHECK(r.violations.empty());
+  CHECK(r.min_clearance_m > 0.005);
+  CHECK(r.min_stability_margin_m > 0.01);
+  CHECK(r.samples > 1000);
+}
+
+TEST_CASE("a foot moved off its step region is caught", "[validator]") {
+  Scenario s(TravelDirection::kUp, Facing::kForward);
+  Plan plan = s.result.plan;
+  Footstep& step = plan.footsteps.at(13);  // a foot landing on a tread mid-flight
+  const StairSurface& tread = s.stairs.surface(step.stair_index);
+  step.position_W.x() = tread.x_end - 0.01;  // under the nosing above: a collision region
+  const ValidationReport r = s.Validate(plan);
+  INFO(Describe(r));
+  CHECK_FALSE(r.ok);
+  CHECK(HasKind(r, ViolationKind::kFootOutsideStepRegion, step.leg));
+}
+
+TEST_CASE("a body lowered into the stairs is caught", "[validator]") {
+  Scenario s(TravelDirection::kUp, Facing::kForward);
+  Plan plan = s.result.plan;
+  for (BodyState& b : plan.body) {
+    if (b.t > 8.0 && b.t < 9.0) b.z -= 0.40;
+  }
+  const ValidationReport r = s.Validate(plan);
+  INFO(Describe(r));
+  CHECK_FALSE(r.ok);
+  CHECK(HasKind(r, ViolationKind::kBodyCollision, "body"));
+  CHECK(r.violations.front().t > 8.0);
+  CHECK(r.violations.front().t < 9.0);
+}
+
+TEST_CASE("a hind knee driven into a riser is caught", "[validator]") {
+  // Descending, the hind knees point back uphill; pitching the rear of the body down drives them
+  // into the riser of the stair behind.
+  Scenario s(TravelDirection::kDown, Facing::kForward);
+  Plan plan = s.result.plan;
+  for (BodyState& b : plan.body) {
+    if (b.t > 8.0 && b.t < 9.0) b.pitch -= 0.45;
+  }
+  const ValidationReport r = s.Validate(plan);
+  INFO(Describe(r));
+  CHECK_FALSE(r.ok);
+  bool hind_link_hit = false;
+  for (const Violation& v : r.violations) {
+    const bool hind = v.leg == "LH" || v.leg == "RH";
+    if (v.kind == ViolationKind::kStairCollision && hind && v.detail.find("foot") == std::string::npos) hind_link_hit = true;
+  }
+  CHECK(hind_link_hit);
+}
+
+TEST_CASE("a swing too low to clear a nosing is caught", "[validator]") {
+  Scenario s(TravelDirection::kUp, Facing::kForward);
+  Plan plan = s.result.plan;
+  Footstep& step = plan.footsteps.at(12);
+  REQUIRE(step.position_W.z() > step.from_W.z());  // a step up onto the next tread
+  step.swing_apex_z = step.from_W.z() + 0.03;      // never rises to the tread it climbs to
+  const ValidationReport r = s.Validate(plan);
+  INFO(Describe(r));
+  CHECK_FALSE(r.ok);
+  CHECK(HasKind(r, ViolationKind::kStairCollision, step.leg));
+}
