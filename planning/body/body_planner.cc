@@ -1,0 +1,423 @@
+#include "planning/body/body_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "planning/body/kinematic_body_bounds.h"
+
+namespace stairplan {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MicrosSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+}
+
+// Warm-up stops when an iteration moves no knot by more than this [m or rad].
+constexpr double kWarmupTolerance = 1e-6;
+// A knot whose narrowest stance-leg hip-height range is below this gets its shift reference
+// moved to widen it [m]; the candidates span [-max_shift, max_shift].
+constexpr double kRestoreWidth = 0.03;
+constexpr int kRestoreCandidates = 13;
+// The next knot may break a bound by this much before the cycle reports it infeasible [m]: a
+// touchdown between knots makes the plan's interpolation break the new stance row by a hair,
+// which reach_margin covers.
+constexpr double kExecutionTolerance = 0.002;
+// Per cycle, a plan that breaks a bound must come this far back [m].
+constexpr double kPullIn = 0.001;
+// Wanted hip heights are kept this far inside a stance leg's valid range [m].
+constexpr double kReferenceInset = 0.002;
+// A plan counts as breaking a leg's bound only beyond this [m] (solver tolerance).
+constexpr double kRowTolerance = 1e-6;
+
+void CheckFinite(double value, const char* what) {
+  if (!std::isfinite(value)) throw std::invalid_argument(std::string("BodyPlanner::Update: ") + what + " is not finite");
+}
+
+}  // namespace
+
+const char* ToString(BodyPlanStatus status) {
+  switch (status) {
+    case BodyPlanStatus::kOk: return "ok";
+    case BodyPlanStatus::kStale: return "stale";
+    case BodyPlanStatus::kInfeasible: return "infeasible";
+  }
+  return "unknown";
+}
+
+BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                         const Plan& footsteps, const BodyPlannerSettings& settings)
+    : settings_(settings), schedule_(robot, footsteps) {
+  settings_.Validate();
+  bounds_ = std::make_shared<KinematicBodyBounds>(robot, stairs, map.facing(), settings_);
+  Initialise(robot, stairs);
+}
+
+BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const Plan& footsteps,
+                         std::shared_ptr<BodyBounds> bounds, const BodyPlannerSettings& settings)
+    : settings_(settings), schedule_(robot, footsteps), bounds_(std::move(bounds)) {
+  settings_.Validate();
+  if (!bounds_) throw std::invalid_argument("BodyPlanner: bounds must not be null");
+  Initialise(robot, stairs);
+}
+
+void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
+  if (robot.legs().size() != static_cast<std::size_t>(kBodyLegs)) {
+    throw std::invalid_argument("BodyPlanner: robot '" + robot.name() + "' must have 4 legs");
+  }
+  // The flight's slope: rise over the horizontal distance between the first and last nosing.
+  const auto& edges = stairs.edges();
+  double run = stairs.spec().run;
+  if (edges.size() >= 2) run = std::abs(edges.back().x_nose - edges.front().x_nose) / static_cast<double>(edges.size() - 1);
+  const double rise = stairs.total_rise() / std::max(1, stairs.steps());
+  stairs_pitch_ = std::atan2(rise, run);
+  const double up = stairs.direction() == TravelDirection::kUp ? 1.0 : -1.0;
+  const double nominal_pitch = -schedule_.heading() * up * stairs_pitch_;
+  for (int l = 0; l < kBodyLegs; ++l) {
+    const LegModel& leg = robot.legs()[static_cast<std::size_t>(l)];
+    hips_B_[static_cast<std::size_t>(l)] = leg.hip_B;
+    c_[static_cast<std::size_t>(l)] = -std::cos(nominal_pitch) * leg.hip_B.x() - std::sin(nominal_pitch) * leg.hip_B.z();
+  }
+  hip_height_ = bounds_->NominalHipHeight();
+  qp_ = std::make_unique<BodyQp>(settings_, c_);
+  const int n = settings_.knots;
+  previous_z_.setZero(n);
+  previous_pitch_.setZero(n);
+  previous_shift_.setZero(n);
+  neutral_x_.setZero(n);
+  neutral_y_.setZero(n);
+  leg_lo_.setConstant(n * kBodyLegs, -optim::kInf);
+  leg_hi_.setConstant(n * kBodyLegs, optim::kInf);
+  output_.knots.resize(static_cast<std::size_t>(n));
+  bounds_->SetFootholds(schedule_.footholds());
+}
+
+double BodyPlanner::HipDz(int leg, double pitch) const {
+  const Eigen::Vector3d& h = hips_B_[static_cast<std::size_t>(leg)];
+  return -std::sin(pitch) * h.x() + std::cos(pitch) * h.z();
+}
+
+double BodyPlanner::HipDx(int leg, double pitch) const {
+  const Eigen::Vector3d& h = hips_B_[static_cast<std::size_t>(leg)];
+  return std::cos(pitch) * h.x() + std::sin(pitch) * h.z();
+}
+
+BodyState BodyPlanner::StartState() const {
+  BodyState s;
+  const Eigen::Vector2d xy = schedule_.NeutralBodyXY(0.0);
+  s.x = xy.x();
+  s.y = xy.y();
+  s.pitch = std::clamp(schedule_.FeetPitch(0.0), -settings_.max_pitch, settings_.max_pitch);
+  s.yaw = schedule_.yaw();
+  double z = 0.0;
+  for (int l = 0; l < kBodyLegs; ++l) z += (schedule_.Phase(l, 0.0).foot_W.z() + hip_height_ - HipDz(l, s.pitch)) / kBodyLegs;
+  s.z = z;
+  return s;
+}
+
+double BodyPlanner::PreviousAt(const Eigen::VectorXd& values, double t) const {
+  const double u = (t - previous_t0_) / settings_.knot_dt;
+  const int n = static_cast<int>(values.size());
+  if (!(u > 0.0)) return values[0];
+  // Up to one knot past the end the plan goes on at its last rate, so that a shifted plan keeps
+  // its second differences (the acceleration rows) where the previous plan had them; then holds.
+  if (u >= n - 1) return values[n - 1] + std::min(u - (n - 1), 1.0) * (values[n - 1] - values[n - 2]);
+  const int k = static_cast<int>(u);
+  const double a = u - k;
+  return (1.0 - a) * values[k] + a * values[k + 1];
+}
+
+void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, double now) {
+  BodyQp& qp = *qp_;
+  const int n = settings_.knots;
+  const double dt = settings_.knot_dt, pmax = settings_.max_pitch, smax = settings_.max_shift;
+  const double heading = schedule_.heading();
+  for (int k = 0; k < n; ++k) {
+    const double t = now + k * dt;
+    const Eigen::Vector2d xy = schedule_.NeutralBodyXY(t);
+    neutral_x_[k] = xy.x();
+    neutral_y_[k] = xy.y();
+    if (k == 0) {
+      qp.z_lo[0] = qp.z_hi[0] = state.z;
+      qp.pitch_lo[0] = qp.pitch_hi[0] = state.pitch;
+      qp.shift_lo[0] = qp.shift_hi[0] = state.com_shift;
+    } else {
+      const double p0 = std::clamp(has_previous_ ? PreviousAt(previous_pitch_, t) : state.pitch, -pmax, pmax);
+      const double s0 = std::clamp(has_previous_ ? PreviousAt(previous_shift_, t) : state.com_shift, -smax, smax);
+      qp.z_lo[k] = -optim::kInf;
+      qp.z_hi[k] = optim::kInf;
+      qp.pitch_lo[k] = std::max(-pmax, p0 - settings_.trust_pitch);
+      qp.pitch_hi[k] = std::min(pmax, p0 + settings_.trust_pitch);
+      qp.shift_lo[k] = std::max(-smax, s0 - settings_.trust_shift);
+      qp.shift_hi[k] = std::min(smax, s0 + settings_.trust_shift);
+    }
+    const double feet_pitch = schedule_.FeetPitch(t);
+    qp.pitch_ref[k] = std::clamp(feet_pitch + command.pitch_offset, -pmax, pmax);
+    const double stairness = stairs_pitch_ > 0.0 ? std::clamp(std::abs(feet_pitch) / stairs_pitch_, 0.0, 1.0) : 0.0;
+    qp.shift_ref[k] = settings_.stairs_com_shift * stairness;
+
+    const double pl = qp.pitch_lo[k], ph = qp.pitch_hi[k], pm = 0.5 * (pl + ph);
+    double narrowest = optim::kInf;  // the stance legs' narrowest hip-height range at this knot
+    for (int g = 0; g < qp.groups(); ++g) {
+      qp.hip_lo[k * qp.groups() + g] = -optim::kInf;
+      qp.hip_hi[k * qp.groups() + g] = optim::kInf;
+    }
+    for (int l = 0; l < kBodyLegs; ++l) {
+      const int row = k * qp.groups() + qp.group_of(l);
+      leg_lo_[k * kBodyLegs + l] = -optim::kInf;
+      leg_hi_[k * kBodyLegs + l] = optim::kInf;
+      const double c = qp.row_coefficient(l);
+      const LegPhase phase = schedule_.Phase(l, t);
+      qp.height_ref[k * kBodyLegs + l] = phase.foot_W.z() + hip_height_ + command.height_offset - (HipDz(l, pm) - c * pm);
+      if (!phase.stance || k == 0) continue;
+      // The exact hip offsets over the pitch interval: sampled at its ends and middle, padded by
+      // the curvature bound (|hip_B| (w/2)^2 / 8 per half).
+      const double pad = hips_B_[static_cast<std::size_t>(l)].norm() * (ph - pl) * (ph - pl) / 32.0;
+      const double e1 = HipDz(l, pl) - c * pl, e2 = HipDz(l, pm) - c * pm, e3 = HipDz(l, ph) - c * ph;
+      const double g1 = HipDx(l, pl), g2 = HipDx(l, pm), g3 = HipDx(l, ph);
+      const double e_min = std::min({e1, e2, e3}) - pad, e_max = std::max({e1, e2, e3}) + pad;
+      const double g_min = std::min({g1, g2, g3}) - pad, g_max = std::max({g1, g2, g3}) + pad;
+      const Eigen::Vector3d& contact = schedule_.footholds()[static_cast<std::size_t>(phase.foothold)].contact_W;
+      const double base = heading * (xy.x() - contact.x());
+      HipBox box;
+      box.leg = l;
+      box.foothold = phase.foothold;
+      box.dx_lo = base + qp.shift_lo[k] + g_min;
+      box.dx_hi = base + qp.shift_hi[k] + g_max;
+      box.pitch_lo = pl;
+      box.pitch_hi = ph;
+      const HeightRange range = bounds_->HipHeight(box);
+      const double lo = range.lo + contact.z() - e_min, hi = range.hi + contact.z() - e_max;
+      narrowest = std::min(narrowest, range.empty() ? -1.0 : hi - lo);
+      // The previous plan (the centre of the trust region) is kept feasible: where it breaks a
+      // bound, the bound gives way to it and the row counts as a conflict. So the QP always has
+      // a solution, and the cost pulls the plan back inside as the bounds allow.
+      const double previous = has_previous_ ? PreviousAt(previous_z_, t) + c * PreviousAt(previous_pitch_, t) : 0.0;
+      const bool empty = range.empty() || !(lo <= hi);
+      if (empty) {
+        leg_lo_[k * kBodyLegs + l] = optim::kInf;  // nothing is valid: always a conflict
+        continue;
+      }
+      leg_lo_[k * kBodyLegs + l] = lo;
+      leg_hi_[k * kBodyLegs + l] = hi;
+      // A wanted height outside the valid range cannot be had; aiming inside it also pulls a plan
+      // that breaks the range (through a row that gave way) back in.
+      const double inset = std::min(kReferenceInset, 0.5 * (hi - lo));
+      double& ref = qp.height_ref[k * kBodyLegs + l];
+      ref = std::clamp(ref, lo + inset, hi - inset);
+      double row_lo = std::max(qp.hip_lo[row], lo), row_hi = std::min(qp.hip_hi[row], hi);
+      if (has_previous_) {
+        // Where the previous plan breaks the bound, the plan must come back by pull_in_ per
+        // cycle (so it cannot stay outside while other costs pull it out).
+        if (previous < row_lo) row_lo = std::min(row_lo, previous + pull_in_);
+        if (previous > row_hi) row_hi = std::max(row_hi, previous - pull_in_);
+        if (row_lo > row_hi) row_lo = row_hi = previous;  // two legs of the row disagree: hold
+      } else if (row_lo > row_hi) {
+        continue;  // two legs of the row disagree and there is no plan to hold: leave it free
+      }
+      qp.hip_lo[row] = row_lo;
+      qp.hip_hi[row] = row_hi;
+    }
+    if (k > 0 && narrowest < kRestoreWidth) RestoreShift(k, t, xy.x(), pl, ph, narrowest);
+  }
+}
+
+void BodyPlanner::RestoreShift(int k, double t, double neutral_x, double pitch_lo, double pitch_hi, double width) {
+  // The rows only see the shift through their trust box, so nothing in the QP moves the body
+  // fore or aft to widen a leg's range. Here the knot's shift reference moves to the candidate
+  // shift that leaves the stance legs the widest ranges; the trust region then walks the plan
+  // there over the next cycles, long before the knot is executed.
+  const double smax = settings_.max_shift, heading = schedule_.heading();
+  const double pm = 0.5 * (pitch_lo + pitch_hi);
+  double best_width = width, best_shift = qp_->shift_ref[k];
+  for (int i = 0; i < kRestoreCandidates; ++i) {
+    const double s = -smax + 2.0 * smax * i / (kRestoreCandidates - 1);
+    double narrowest = optim::kInf;
+    for (int l = 0; l < kBodyLegs && narrowest > best_width; ++l) {
+      const LegPhase phase = schedule_.Phase(l, t);
+      if (!phase.stance) continue;
+      const Eigen::Vector3d& contact = schedule_.footholds()[static_cast<std::size_t>(phase.foothold)].contact_W;
+      HipBox box;
+      box.leg = l;
+      box.foothold = phase.foothold;
+      box.dx_lo = box.dx_hi = heading * (neutral_x - contact.x()) + s + HipDx(l, pm);
+      box.pitch_lo = pitch_lo;
+      box.pitch_hi = pitch_hi;
+      const HeightRange range = bounds_->HipHeight(box);
+      narrowest = std::min(narrowest, range.empty() ? -1.0 : range.hi - range.lo);
+    }
+    if (narrowest > best_width + 1e-4) best_width = narrowest, best_shift = s;
+  }
+  qp_->shift_ref[k] = best_shift;
+}
+
+void BodyPlanner::CountConflicts() {
+  output_.conflicts = 0;
+  output_.conflict_knot = output_.conflict_leg = -1;
+  output_.next_violation = 0.0;
+  for (int k = 1; k < settings_.knots; ++k) {
+    for (int l = 0; l < kBodyLegs; ++l) {
+      const double value = previous_z_[k] + qp_->row_coefficient(l) * previous_pitch_[k];
+      const double lo = leg_lo_[k * kBodyLegs + l], hi = leg_hi_[k * kBodyLegs + l];
+      const double violation = std::max(lo - value, value - hi);
+      if (!(violation > kRowTolerance)) continue;
+      if (k == 1) output_.next_violation = std::max(output_.next_violation, violation);
+      if (output_.conflicts++ == 0) output_.conflict_knot = k, output_.conflict_leg = l;
+    }
+  }
+}
+
+void BodyPlanner::StoreSolution(const optim::SolveResult& result, double now) {
+  const int n = settings_.knots;
+  previous_t0_ = now;
+  previous_z_ = result.x.segment(qp_->z().start, n);
+  previous_pitch_ = result.x.segment(qp_->pitch().start, n);
+  previous_shift_ = result.x.segment(qp_->shift().start, n);
+  has_previous_ = true;
+}
+
+BodyState BodyPlanner::Interpolate(double t) const {
+  BodyState s;
+  const Eigen::Vector2d xy = schedule_.NeutralBodyXY(t);
+  s.t = t;
+  s.com_shift = PreviousAt(previous_shift_, t);
+  s.x = xy.x() + schedule_.heading() * s.com_shift;
+  s.y = xy.y();
+  s.z = PreviousAt(previous_z_, t);
+  s.pitch = PreviousAt(previous_pitch_, t);
+  s.yaw = schedule_.yaw();
+  return s;
+}
+
+void BodyPlanner::FillOutput(double now) {
+  const int n = settings_.knots;
+  for (int k = 0; k < n; ++k) {
+    const double t = now + k * settings_.knot_dt;
+    BodyState& s = output_.knots[static_cast<std::size_t>(k)];
+    s.t = t;
+    s.com_shift = PreviousAt(previous_shift_, t);
+    s.x = neutral_x_[k] + schedule_.heading() * s.com_shift;
+    s.y = neutral_y_[k];
+    s.z = PreviousAt(previous_z_, t);
+    s.pitch = PreviousAt(previous_pitch_, t);
+    s.yaw = schedule_.yaw();
+  }
+  for (int l = 0; l < kBodyLegs; ++l) {
+    const LegPhase phase = schedule_.Phase(l, now);
+    LegTarget& target = output_.feet[static_cast<std::size_t>(l)];
+    target.stance = phase.stance;
+    target.foot_W = phase.foot_W;
+    target.target_W = phase.stance ? phase.foot_W
+                                   : schedule_.footholds()[static_cast<std::size_t>(phase.next_foothold)].contact_W;
+    target.t_liftoff = phase.t_liftoff;
+    target.t_touchdown = phase.t_touchdown;
+  }
+}
+
+double BodyPlanner::kDefaultPullIn() { return kPullIn; }
+
+const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyCommand& command, double now) {
+  const Clock::time_point start = Clock::now();
+  CheckFinite(now, "now");
+  CheckFinite(state.z, "state.z");
+  CheckFinite(state.pitch, "state.pitch");
+  CheckFinite(state.com_shift, "state.com_shift");
+  CheckFinite(command.height_offset, "command.height_offset");
+  CheckFinite(command.pitch_offset, "command.pitch_offset");
+  output_.solves = 0;
+  output_.iterations = 0;
+  output_.timings = {};
+  bool solved = false;
+  if (!has_previous_) {
+    // Warm-up: converge the linearisation at this instant, without a budget, starting from the
+    // state held over the horizon (a plan the rows then give way to where they must).
+    qp_->ResetWarmStart();
+    previous_t0_ = now;
+    previous_z_.setConstant(state.z);
+    previous_pitch_.setConstant(state.pitch);
+    previous_shift_.setConstant(state.com_shift);
+    has_previous_ = true;
+    for (int i = 0; i < settings_.warmup_solves; ++i) {
+      const Clock::time_point t0 = Clock::now();
+      Linearise(state, command, now);
+      const Clock::time_point t1 = Clock::now();
+      output_.timings.bounds_us += std::chrono::duration<double, std::micro>(t1 - t0).count();
+      qp_->Solve(optim::kInf, &result_);
+      output_.timings.solve_us += MicrosSince(t1);
+      ++output_.solves;
+      output_.iterations += result_.info.iterations;
+      solved = result_.solved() && result_.x.allFinite();
+      if (!solved) {
+        has_previous_ = false;
+        break;
+      }
+      const int n = settings_.knots;
+      const double change =
+          i > 0 ? std::max({(result_.x.segment(qp_->z().start, n) - previous_z_).lpNorm<Eigen::Infinity>(),
+                                    (result_.x.segment(qp_->pitch().start, n) - previous_pitch_).lpNorm<Eigen::Infinity>(),
+                                    (result_.x.segment(qp_->shift().start, n) - previous_shift_).lpNorm<Eigen::Infinity>()})
+                        : optim::kInf;
+      StoreSolution(result_, now);
+      if (change < kWarmupTolerance) break;
+    }
+    solve_estimate_us_ = 0.0;
+  } else {
+    Linearise(state, command, now);
+    output_.timings.bounds_us = MicrosSince(start);
+    const double remaining_us = settings_.cycle_budget_s * 1e6 - output_.timings.bounds_us;
+    if (remaining_us > solve_estimate_us_) {
+      const Clock::time_point t1 = Clock::now();
+      qp_->Solve(remaining_us * 1e-6, &result_);
+      const double solve_us = MicrosSince(t1);
+      output_.timings.solve_us = solve_us;
+      solve_estimate_us_ = 0.9 * solve_estimate_us_ + 0.1 * solve_us;
+      ++output_.solves;
+      output_.iterations = result_.info.iterations;
+      solved = result_.solved() && result_.x.allFinite();
+      if (!solved && result_.status != optim::SolveStatus::kTimeLimit) {
+        // Pulling a plan that breaks a bound back inside may be too much for one cycle (the
+        // acceleration limits): try once more with rows that only hold it where it is, which
+        // the shifted previous plan satisfies, from cold (a degenerate active set also fails).
+        pull_in_ = 0.0;
+        Linearise(state, command, now);
+        pull_in_ = kPullIn;
+        qp_->ResetWarmStart();
+        const double left_us = settings_.cycle_budget_s * 1e6 - MicrosSince(start);
+        if (left_us > 0.0) {
+          qp_->Solve(left_us * 1e-6, &result_);
+          ++output_.solves;
+          solved = result_.solved() && result_.x.allFinite();
+        }
+      }
+      output_.timings.solve_us = MicrosSince(t1);
+      if (solved) StoreSolution(result_, now);
+    } else {
+      result_.status = optim::SolveStatus::kTimeLimit;
+    }
+  }
+  output_.solve_status = result_.status;
+  if (solved) CountConflicts();
+  if (solved) {
+    // Conflicts further ahead are the receding horizon's to resolve; the next knot is executed now.
+    output_.status = output_.next_violation > kExecutionTolerance ? BodyPlanStatus::kInfeasible : BodyPlanStatus::kOk;
+  } else if (has_previous_) {
+    output_.status = BodyPlanStatus::kStale;  // the shifted previous plan
+  } else {
+    output_.status = BodyPlanStatus::kInfeasible;
+  }
+  if (!has_previous_) {
+    // Nothing solved yet: hold the state over the horizon.
+    previous_t0_ = now;
+    previous_z_.setConstant(state.z);
+    previous_pitch_.setConstant(state.pitch);
+    previous_shift_.setConstant(state.com_shift);
+  }
+  FillOutput(now);
+  output_.timings.total_us = MicrosSince(start);
+  return output_;
+}
+
+}  // namespace stairplan

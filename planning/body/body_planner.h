@@ -1,0 +1,148 @@
+// The control-loop body planner (seed 000 [0050]-[0052], claims 3-4): a receding-horizon QP over
+// the body's height, pitch and forward weight shift, bounded by every stance leg's reach and by
+// the height below which a leg would touch the stairs, re-linearised around the previous
+// solution and re-solved warm once per cycle.
+//
+//   BodyPlanner planner(robot, stairs, map, PlanCrawl(robot, stairs, map), settings);  // once
+//   BodyState state = planner.StartState();
+//   for (double now = 0.0;; now += 0.003) {                  // every 3 ms
+//     const BodyPlannerOutput& out = planner.Update(state, BodyCommand{}, now);
+//     if (out.status == BodyPlanStatus::kStale) { /* out.knots is the shifted previous plan */ }
+//     Track(out.knots, out.feet);                            // body references and foot targets
+//   }
+//
+// Update() never allocates after the first call (warm-up) as long as the bounds it needs are
+// cached; it throws only for misuse (non-finite state or time). Footsteps come from a footstep
+// plan (the crawl planner or the step planner's offline driver).
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "geometry/constrained_map.h"
+#include "geometry/staircase.h"
+#include "kinematics/robot_model.h"
+#include "planning/body/body_bounds.h"
+#include "planning/body/body_planner_settings.h"
+#include "planning/body/body_qp.h"
+#include "planning/body/foot_schedule.h"
+#include "planning/optim/solve_result.h"
+#include "planning/plan.h"
+
+namespace stairplan {
+
+/// What the operator asks of the body on top of the plan.
+struct BodyCommand {
+  double height_offset = 0.0;  ///< added to the desired hip height [m]
+  double pitch_offset = 0.0;   ///< added to the pitch reference [rad]
+};
+
+enum class BodyPlanStatus {
+  kOk,          ///< solved this cycle
+  kStale,       ///< not solved in the cycle budget (or the solver failed): the shifted previous plan
+  kInfeasible,  ///< the next knot breaks a stance leg's bound (no valid hip height there)
+};
+/// "ok", "stale", "infeasible".
+const char* ToString(BodyPlanStatus status);
+
+/// One leg's footstep target at the current time.
+struct LegTarget {
+  bool stance = true;
+  Eigen::Vector3d foot_W = Eigen::Vector3d::Zero();    ///< contact point now (interpolated in swing)
+  Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< where the foot lands next (= foot_W in stance)
+  double t_liftoff = 0.0;    ///< swing start (in stance: the next one, +inf when none)
+  double t_touchdown = 0.0;  ///< swing end (in stance: the last one)
+};
+
+struct BodyPlannerTimings {
+  double bounds_us = 0.0;  ///< linearisation and bounds
+  double solve_us = 0.0;   ///< the QP
+  double total_us = 0.0;   ///< the whole Update
+};
+
+struct BodyPlannerOutput {
+  BodyPlanStatus status = BodyPlanStatus::kOk;
+  optim::SolveStatus solve_status = optim::SolveStatus::kSolved;
+  std::array<LegTarget, kBodyLegs> feet{};
+  std::vector<BodyState> knots;  ///< body references at now + k * knot_dt (sized once)
+  /// Stance legs at knots 1.. whose bounds the new plan breaks: no valid hip height, or a row
+  /// that gave way to the previous plan (rows never exclude the previous plan, the centre of the
+  /// trust region, so the QP stays feasible while the cost pulls the plan back inside).
+  int conflicts = 0;
+  int conflict_knot = -1, conflict_leg = -1;  ///< the first one
+  double next_violation = 0.0;   ///< how far the next knot breaks a stance leg's bound [m]
+  int iterations = 0;            ///< active-set changes
+  int solves = 0;                ///< QPs solved in this Update (> 1 only at warm-up)
+  BodyPlannerTimings timings;
+};
+
+class BodyPlanner {
+ public:
+  /// Builds the bounds (KDL IK and FCL clearances) and the QP for `footsteps`' footholds. Throws
+  /// std::invalid_argument naming the field or footstep for bad settings or a malformed plan.
+  BodyPlanner(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const Plan& footsteps,
+              const BodyPlannerSettings& settings = {});
+  /// The same with given bounds (tests use fakes).
+  BodyPlanner(const RobotModel& robot, const Staircase& stairs, const Plan& footsteps,
+              std::shared_ptr<BodyBounds> bounds, const BodyPlannerSettings& settings = {});
+
+  /// One cycle at time `now` from the measured `state`. The first call (and the first after
+  /// Reset()) converges the linearisation with up to warmup_solves QPs and has no budget.
+  const BodyPlannerOutput& Update(const BodyState& state, const BodyCommand& command, double now);
+  /// Forgets the previous plan.
+  void Reset() { has_previous_ = false; }
+
+  /// A state to start from: the neutral body over the initial feet at the desired hip height.
+  BodyState StartState() const;
+  /// The body reference at time t from the latest plan (interpolated between knots).
+  BodyState Interpolate(double t) const;
+  const BodyPlannerOutput& output() const { return output_; }
+  const FootSchedule& schedule() const { return schedule_; }
+  const BodyPlannerSettings& settings() const { return settings_; }
+  BodyBounds& bounds() { return *bounds_; }
+  BodyQp& qp() { return *qp_; }
+  /// The desired hip height above the contact points [m].
+  double desired_hip_height() const { return hip_height_; }
+  double yaw() const { return schedule_.yaw(); }
+
+ private:
+  void Initialise(const RobotModel& robot, const Staircase& stairs);
+  // Fills the QP's inputs around the previous plan; returns the number of conflicting rows.
+  void Linearise(const BodyState& state, const BodyCommand& command, double now);
+  // Moves knot k's shift reference to the shift that widens its narrowest stance-leg range.
+  void RestoreShift(int k, double t, double neutral_x, double pitch_lo, double pitch_hi, double width);
+  // Previous plan's pitch and shift at time t (held beyond its ends).
+  double PreviousAt(const Eigen::VectorXd& values, double t) const;
+  void StoreSolution(const optim::SolveResult& result, double now);
+  // Counts the stance legs whose bounds the stored plan breaks (knots 1..), into output_.
+  void CountConflicts();
+  void ShiftPrevious(double now);
+  void FillOutput(double now);
+  // Hip height offset from the body origin at pitch p: -sin p hx + cos p hz; and along the heading.
+  double HipDz(int leg, double pitch) const;
+  double HipDx(int leg, double pitch) const;
+
+  BodyPlannerSettings settings_;
+  FootSchedule schedule_;
+  std::shared_ptr<BodyBounds> bounds_;
+  std::unique_ptr<BodyQp> qp_;
+  std::array<Eigen::Vector3d, kBodyLegs> hips_B_{};
+  std::array<double, kBodyLegs> c_{};
+  double hip_height_ = 0.0;
+  double stairs_pitch_ = 0.0;  // |pitch| of the flight's slope line
+
+  bool has_previous_ = false;
+  double previous_t0_ = 0.0;
+  Eigen::VectorXd previous_z_, previous_pitch_, previous_shift_;
+  Eigen::VectorXd neutral_x_, neutral_y_;  // this cycle's neutral body xy per knot
+  Eigen::VectorXd leg_lo_, leg_hi_;        // each stance leg's own row bounds, k * 4 + leg
+  optim::SolveResult result_;
+  BodyPlannerOutput output_;
+  double solve_estimate_us_ = 0.0;
+  static double kDefaultPullIn();
+  double pull_in_ = kDefaultPullIn();  // how far a plan breaking a bound must come back per cycle  // running estimate of a warm solve, for the budget
+};
+
+}  // namespace stairplan

@@ -1,0 +1,47 @@
+#include "planning/body/body_planner_settings.h"
+
+#include <cmath>
+#include <string>
+
+#include "geometry/field_error.h"
+
+namespace stairplan {
+namespace {
+
+void CheckRange(const char* field, double value, double lo, double hi) {
+  if (!std::isfinite(value) || value <= lo || value > hi) {
+    throw FieldError(field, "must be in (" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
+                                std::to_string(value) + ")");
+  }
+}
+
+}  // namespace
+
+void BodyPlannerSettings::Validate() const {
+  if (knots < 3 || knots > 400) throw FieldError("knots", "must be in [3, 400] (got " + std::to_string(knots) + ")");
+  CheckRange("knot_dt", knot_dt, 0.0, 1.0);
+  CheckRange("hip_height_fraction", hip_height_fraction, 0.0, 1.0);
+  CheckRange("stairs_com_shift", stairs_com_shift, -1.0, 1.0);
+  CheckRange("height_weight", height_weight, 0.0, 1e9);
+  CheckRange("pitch_weight", pitch_weight, 0.0, 1e9);
+  CheckRange("shift_weight", shift_weight, 0.0, 1e9);
+  CheckRange("velocity_weight", velocity_weight, 0.0, 1e9);
+  CheckRange("acceleration_weight", acceleration_weight, 0.0, 1e9);
+  CheckRange("max_pitch", max_pitch, 0.0, 1.5);
+  CheckRange("max_shift", max_shift, 0.0, 1.0);
+  if (std::abs(stairs_com_shift) > max_shift) throw FieldError("stairs_com_shift", "must be within max_shift");
+  CheckRange("max_height_accel", max_height_accel, 0.0, 1e3);
+  CheckRange("max_pitch_accel", max_pitch_accel, 0.0, 1e4);
+  CheckRange("max_shift_accel", max_shift_accel, 0.0, 1e3);
+  if (!(reach_margin >= 0.0 && reach_margin <= 0.5)) throw FieldError("reach_margin", "must be in [0, 0.5] m");
+  if (!(clearance_margin >= 0.0 && clearance_margin <= 0.5)) throw FieldError("clearance_margin", "must be in [0, 0.5] m");
+  CheckRange("grid_dx", grid_dx, 0.0, 0.5);
+  CheckRange("grid_pitch", grid_pitch, 0.0, 1.0);
+  CheckRange("grid_height", grid_height, 0.0, 0.2);
+  CheckRange("trust_pitch", trust_pitch, 0.0, 1.0);
+  CheckRange("trust_shift", trust_shift, 0.0, 1.0);
+  CheckRange("cycle_budget_s", cycle_budget_s, 0.0, 10.0);
+  if (warmup_solves < 1 || warmup_solves > 100000) throw FieldError("warmup_solves", "must be in [1, 100000]");
+}
+
+}  // namespace stairplan

@@ -1,0 +1,59 @@
+// Settings of the body planner (seed 000 [0050]-[0052]): the horizon, the cost weights, the hard
+// limits, the margins of the kinematic and collision bounds, the trust region of the per-cycle
+// linearisation and the cycle budget. Defaults suit a medium quadruped on building-code stairs.
+#pragma once
+
+namespace stairplan {
+
+struct BodyPlannerSettings {
+  // --- Horizon.
+  int knots = 40;             ///< knots over the horizon
+  double knot_dt = 0.025;     ///< spacing of the knots [s]
+
+  // --- Targets.
+  /// Desired hip height above the feet' contact points (the soft equality of [0052]): the foot
+  /// radius plus this fraction of the legs' longest hip-to-foot reach within their joint limits.
+  double hip_height_fraction = 0.8;
+  /// Forward shift of the centre of mass wanted on the flight (toward the front legs, [0049]) [m].
+  double stairs_com_shift = 0.03;
+
+  // --- Cost weights (per knot).
+  double height_weight = 1e4;        ///< per leg, per m^2 of hip-height error
+  double pitch_weight = 1e3;         ///< per rad^2 away from the feet's slope
+  double shift_weight = 2e3;         ///< per m^2 away from the wanted shift
+  double velocity_weight = 1e-1;     ///< per (m/s)^2 and (rad/s)^2 of knot-to-knot change
+  double acceleration_weight = 1e-3; ///< per (m/s^2)^2 and (rad/s^2)^2
+
+  // --- Hard limits.
+  double max_pitch = 0.8;          ///< |pitch| bound [rad]
+  double max_shift = 0.06;         ///< |com_shift| bound [m]
+  double max_height_accel = 4.0;   ///< |z''| [m/s^2]
+  double max_pitch_accel = 20.0;   ///< |pitch''| [rad/s^2]
+  double max_shift_accel = 2.0;    ///< |com_shift''| [m/s^2]
+
+  // --- Bounds from kinematics and collision.
+  double reach_margin = 0.01;      ///< hip height kept this far inside the IK-feasible range [m]
+  /// Every stance leg's links at least this far from the stairs [m]. The lower legs of real robots
+  /// stand a few millimetres above the tread under the foot, so larger margins rule out standing.
+  double clearance_margin = 0.0;
+  double grid_dx = 0.03;           ///< spacing of the cached bounds along the heading [m]
+  double grid_pitch = 0.1;         ///< spacing of the cached bounds in pitch [rad]
+  double grid_height = 0.02;       ///< scan step when searching a feasible hip height [m]
+
+  // --- Linearisation: per cycle, pitch and shift move at most this far from the last plan,
+  // and the bounds hold over that whole box (so the linear rows stay conservative).
+  double trust_pitch = 0.02;       ///< [rad]
+  double trust_shift = 0.004;      ///< [m]
+
+  // --- Control loop.
+  /// Wall-clock budget of one Update [s]; a solve that would overrun returns the shifted
+  /// previous plan marked stale.
+  double cycle_budget_s = 0.0025;
+  /// QP solves at the first Update (and after Reset) to converge the linearisation.
+  int warmup_solves = 60;
+
+  /// Throws std::invalid_argument naming the offending field.
+  void Validate() const;
+};
+
+}  // namespace stairplan

@@ -1,0 +1,126 @@
+#include "planning/body/body_qp.h"
+
+#include <cmath>
+
+namespace stairplan {
+namespace {
+
+// D1: (n-1) x n first differences; D2: (n-2) x n second differences.
+Eigen::MatrixXd FirstDifferences(int n) {
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n - 1, n);
+  for (int k = 0; k + 1 < n; ++k) d(k, k) = -1.0, d(k, k + 1) = 1.0;
+  return d;
+}
+
+Eigen::MatrixXd SecondDifferences(int n) {
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n - 2, n);
+  for (int k = 0; k + 2 < n; ++k) d(k, k) = 1.0, d(k, k + 1) = -2.0, d(k, k + 2) = 1.0;
+  return d;
+}
+
+}  // namespace
+
+BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients)
+    : knots_(settings.knots), settings_(settings), c_(row_coefficients) {
+  settings_.Validate();
+  const int n = knots_;
+  for (int l = 0; l < kBodyLegs; ++l) {
+    int g = 0;
+    while (g < groups_ && std::abs(group_c_[static_cast<std::size_t>(g)] - c_[static_cast<std::size_t>(l)]) > kRowMergeTolerance) ++g;
+    if (g == groups_) group_c_[static_cast<std::size_t>(groups_++)] = c_[static_cast<std::size_t>(l)];
+    group_of_[static_cast<std::size_t>(l)] = g;
+  }
+  for (int g = 0; g < groups_; ++g) {
+    double sum = 0.0;
+    int count = 0;
+    for (int l = 0; l < kBodyLegs; ++l) {
+      if (group_of_[static_cast<std::size_t>(l)] == g) sum += c_[static_cast<std::size_t>(l)], ++count;
+    }
+    group_c_[static_cast<std::size_t>(g)] = sum / count;
+  }
+  for (int l = 0; l < kBodyLegs; ++l) c_[static_cast<std::size_t>(l)] = group_c_[static_cast<std::size_t>(group_of_[static_cast<std::size_t>(l)])];
+  const double dt = settings_.knot_dt;
+  z_ = program_.AddVariables("height", n);
+  pitch_ = program_.AddVariables("pitch", n);
+  shift_ = program_.AddVariables("com_shift", n);
+
+  // Costs (0.5 x'Hx + g'x: a weight w on (a'x - r)^2 adds 2w aa' to H).
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
+  double sum_c = 0.0, sum_c2 = 0.0;
+  for (double c : c_) sum_c += c, sum_c2 += c * c;
+  const double wh = settings_.height_weight;
+  const Eigen::MatrixXd d1 = FirstDifferences(n), d2 = SecondDifferences(n);
+  const Eigen::MatrixXd smooth = 2.0 * settings_.velocity_weight / (dt * dt) * d1.transpose() * d1 +
+                                 2.0 * settings_.acceleration_weight / (dt * dt * dt * dt) * d2.transpose() * d2;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  program_.AddQuadraticCost(z_, 2.0 * wh * kBodyLegs * identity + smooth, zero);
+  program_.AddQuadraticCost(pitch_, (2.0 * wh * sum_c2 + 2.0 * settings_.pitch_weight) * identity + smooth, zero);
+  program_.AddCrossQuadraticCost(z_, pitch_, 2.0 * wh * sum_c * identity);
+  program_.AddQuadraticCost(shift_, 2.0 * settings_.shift_weight * identity + smooth, zero);
+
+  // Hip rows: z_k + c_g pitch_k, row k * groups + g.
+  Eigen::MatrixXd a_z = Eigen::MatrixXd::Zero(groups_ * n, n), a_p = a_z;
+  for (int k = 0; k < n; ++k) {
+    for (int g = 0; g < groups_; ++g) {
+      a_z(k * groups_ + g, k) = 1.0;
+      a_p(k * groups_ + g, k) = group_c_[static_cast<std::size_t>(g)];
+    }
+  }
+  const Eigen::VectorXd free_lo = Eigen::VectorXd::Constant(groups_ * n, -optim::kInf);
+  const Eigen::VectorXd free_hi = Eigen::VectorXd::Constant(groups_ * n, optim::kInf);
+  hip_rows_ = program_.AddLinearConstraint({{z_, a_z}, {pitch_, a_p}}, free_lo, free_hi, "hip_height");
+
+  // Acceleration limits.
+  const Eigen::MatrixXd zeros = Eigen::MatrixXd::Zero(n - 2, n);
+  Eigen::MatrixXd accel_z(3 * (n - 2), n), accel_p(3 * (n - 2), n), accel_s(3 * (n - 2), n);
+  accel_z << d2, zeros, zeros;
+  accel_p << zeros, d2, zeros;
+  accel_s << zeros, zeros, d2;
+  Eigen::VectorXd accel_hi(3 * (n - 2));
+  accel_hi << Eigen::VectorXd::Constant(n - 2, settings_.max_height_accel * dt * dt),
+      Eigen::VectorXd::Constant(n - 2, settings_.max_pitch_accel * dt * dt),
+      Eigen::VectorXd::Constant(n - 2, settings_.max_shift_accel * dt * dt);
+  accel_rows_ = program_.AddLinearConstraint({{z_, accel_z}, {pitch_, accel_p}, {shift_, accel_s}}, -accel_hi, accel_hi,
+                                             "acceleration");
+
+  for (Eigen::VectorXd* v : {&z_lo, &pitch_lo, &shift_lo}) v->setConstant(n, -optim::kInf);
+  for (Eigen::VectorXd* v : {&z_hi, &pitch_hi, &shift_hi}) v->setConstant(n, optim::kInf);
+  hip_lo = free_lo;
+  hip_hi = free_hi;
+  height_ref.setZero(kBodyLegs * n);
+  pitch_ref.setZero(n);
+  shift_ref.setZero(n);
+  g_z_.setZero(n);
+  g_pitch_.setZero(n);
+  g_shift_.setZero(n);
+}
+
+void BodyQp::PushInputs() {
+  const double wh = settings_.height_weight;
+  for (int k = 0; k < knots_; ++k) {
+    double gz = 0.0, gp = 0.0;
+    for (int l = 0; l < kBodyLegs; ++l) {
+      const double r = height_ref[k * kBodyLegs + l];
+      gz -= 2.0 * wh * r;
+      gp -= 2.0 * wh * c_[static_cast<std::size_t>(l)] * r;
+    }
+    g_z_[k] = gz;
+    g_pitch_[k] = gp - 2.0 * settings_.pitch_weight * pitch_ref[k];
+    g_shift_[k] = -2.0 * settings_.shift_weight * shift_ref[k];
+  }
+  program_.SetLinearCost(z_, g_z_);
+  program_.SetLinearCost(pitch_, g_pitch_);
+  program_.SetLinearCost(shift_, g_shift_);
+  program_.SetVariableBounds(z_, z_lo, z_hi);
+  program_.SetVariableBounds(pitch_, pitch_lo, pitch_hi);
+  program_.SetVariableBounds(shift_, shift_lo, shift_hi);
+  program_.SetConstraintBounds(hip_rows_, hip_lo, hip_hi);
+}
+
+void BodyQp::Solve(double time_limit_s, optim::SolveResult* result) {
+  PushInputs();
+  solver_.settings().time_limit_s = time_limit_s > 0.0 ? time_limit_s : 1e-9;
+  solver_.Solve(program_, result);
+}
+
+}  // namespace stairplan

@@ -1,0 +1,82 @@
+// The body planner's QP (seed 000 [0050]-[0052]): per knot the body height z, the pitch and the
+// forward shift of the centre of mass. Built once; every cycle only bounds and linear terms change,
+// so ActiveSetQpSolver re-solves warm from the last active set without allocating.
+//
+//   min  sum_k [ sum_legs w_h (z_k + c_l pitch_k - height_ref_kl)^2       hip height above the feet
+//              + w_p (pitch_k - pitch_ref_k)^2 + w_s (shift_k - shift_ref_k)^2 ]
+//        + velocity and acceleration terms (finite differences over the knots)
+//   s.t. hip_lo_kg <= z_k + c_g pitch_k <= hip_hi_kg    one row per knot and hip group
+//        (legs whose hips share c, e.g. the front pair, share a row: identical rows would make
+//        the active set degenerate)
+//        |second differences| <= max accel * dt^2        height, pitch, shift
+//        variable bounds (limits intersected with the cycle's trust region; knot 0 pinned)
+//
+// c_l = -hip_x_l cos(pitch_nominal) is the hip's height change per unit pitch at the flight's
+// nominal pitch. It is fixed so the matrix never changes; the planner evaluates the exact hip
+// height at the linearisation point and makes each row's bounds hold over the trust region.
+#pragma once
+
+#include <array>
+
+#include <Eigen/Core>
+
+#include "planning/body/body_planner_settings.h"
+#include "planning/optim/active_set_qp_solver.h"
+#include "planning/optim/program.h"
+
+namespace stairplan {
+
+constexpr int kBodyLegs = 4;
+
+class BodyQp {
+ public:
+  /// `row_coefficients`: c_l per leg; legs within kRowMergeTolerance share a row (and the mean
+  /// coefficient). Throws std::invalid_argument naming the field for bad settings.
+  BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients);
+
+  /// Coefficients closer than this share one row [m/rad].
+  static constexpr double kRowMergeTolerance = 1e-3;
+
+  int knots() const { return knots_; }
+  /// Rows per knot (hip groups) and each leg's group.
+  int groups() const { return groups_; }
+  int group_of(int leg) const { return group_of_[static_cast<std::size_t>(leg)]; }
+  /// The row coefficient used for leg `leg` (its group's).
+  double row_coefficient(int leg) const { return group_c_[static_cast<std::size_t>(group_of(leg))]; }
+
+  // ---- per-cycle inputs, filled in place by the planner (sizes fixed at construction) ----
+  Eigen::VectorXd z_lo, z_hi, pitch_lo, pitch_hi, shift_lo, shift_hi;  ///< knots
+  Eigen::VectorXd hip_lo, hip_hi;      ///< knots * groups(), row k * groups() + group; +-inf: none
+  Eigen::VectorXd height_ref;          ///< knots * 4: wanted value of z + c_l pitch
+  Eigen::VectorXd pitch_ref, shift_ref;  ///< knots
+
+  /// Pushes the inputs into the program and solves warm; `time_limit_s` may be +inf.
+  /// Allocation-free after the first call.
+  void Solve(double time_limit_s, optim::SolveResult* result);
+  /// The next solve starts cold.
+  void ResetWarmStart() { solver_.ResetWarmStart(); }
+
+  const optim::Program& program() const { return program_; }
+  const optim::VariableBlock& z() const { return z_; }
+  const optim::VariableBlock& pitch() const { return pitch_; }
+  const optim::VariableBlock& shift() const { return shift_; }
+  const optim::ConstraintRows& hip_rows() const { return hip_rows_; }
+  /// Writes the linear cost of the current inputs into the program (done by Solve too); lets
+  /// other solvers (Ipopt, for comparison) solve the same QP.
+  void PushInputs();
+
+ private:
+  int knots_ = 0;
+  BodyPlannerSettings settings_;
+  std::array<double, kBodyLegs> c_{};
+  int groups_ = 0;
+  std::array<int, kBodyLegs> group_of_{};
+  std::array<double, kBodyLegs> group_c_{};
+  optim::Program program_;
+  optim::VariableBlock z_, pitch_, shift_;
+  optim::ConstraintRows hip_rows_, accel_rows_;
+  optim::ActiveSetQpSolver solver_;
+  Eigen::VectorXd g_z_, g_pitch_, g_shift_;
+};
+
+}  // namespace stairplan

@@ -1,0 +1,111 @@
+#include "planning/body/foot_schedule.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace stairplan {
+
+FootSchedule::FootSchedule(const RobotModel& robot, const Plan& plan) {
+  const auto& models = robot.legs();
+  if (plan.initial_feet_W.size() != plan.legs.size() || plan.legs.size() != models.size()) {
+    throw std::invalid_argument("FootSchedule: the plan's legs and initial_feet_W must match the robot's " +
+                                std::to_string(models.size()) + " legs");
+  }
+  yaw_ = plan.facing == Facing::kForward ? 0.0 : M_PI;
+  heading_ = plan.facing == Facing::kForward ? 1.0 : -1.0;
+  legs_.resize(models.size());
+  const auto leg_index = [&](const std::string& name, const std::string& what) {
+    for (std::size_t i = 0; i < models.size(); ++i) {
+      if (models[i].name == name) return static_cast<int>(i);
+    }
+    throw std::invalid_argument("FootSchedule: " + what + " names an unknown leg '" + name + "'");
+  };
+  for (std::size_t p = 0; p < plan.legs.size(); ++p) {
+    const int l = leg_index(plan.legs[p], "plan.legs[" + std::to_string(p) + "]");
+    if (!plan.initial_feet_W[p].allFinite()) {
+      throw std::invalid_argument("FootSchedule: initial_feet_W[" + std::to_string(p) + "] is not finite");
+    }
+    LegTimeline& tl = legs_[static_cast<std::size_t>(l)];
+    const LegModel& m = models[static_cast<std::size_t>(l)];
+    tl.offset_W = Eigen::Vector2d(heading_ * m.hip_B.x(), heading_ * m.foot_zero_B.y());
+    tl.front = m.hip_B.x() > 0.0;
+    tl.footholds.push_back(static_cast<int>(footholds_.size()));
+    footholds_.push_back({l, plan.initial_feet_W[p], -1});
+  }
+  for (std::size_t i = 0; i < plan.footsteps.size(); ++i) {
+    const Footstep& f = plan.footsteps[i];
+    const std::string what = "footsteps[" + std::to_string(i) + "]";
+    const int l = leg_index(f.leg, what);
+    if (!std::isfinite(f.t_liftoff) || !std::isfinite(f.t_touchdown) || f.t_touchdown < f.t_liftoff ||
+        !f.position_W.allFinite()) {
+      throw std::invalid_argument("FootSchedule: " + what + " has non-finite or reversed times or position");
+    }
+    LegTimeline& tl = legs_[static_cast<std::size_t>(l)];
+    if (!tl.touchdowns.empty() && f.t_liftoff < tl.touchdowns.back()) {
+      throw std::invalid_argument("FootSchedule: " + what + " lifts off before the leg's previous touchdown");
+    }
+    tl.liftoffs.push_back(f.t_liftoff);
+    tl.touchdowns.push_back(f.t_touchdown);
+    tl.footholds.push_back(static_cast<int>(footholds_.size()));
+    footholds_.push_back({l, f.position_W, f.stair_index});
+    end_time_ = std::max(end_time_, f.t_touchdown);
+  }
+  if (!plan.body.empty()) end_time_ = std::max(end_time_, plan.body.back().t);
+}
+
+LegPhase FootSchedule::Phase(int leg, double t) const {
+  const LegTimeline& tl = legs_[static_cast<std::size_t>(leg)];
+  LegPhase phase;
+  // j: swings that have started by t.
+  const auto j = static_cast<std::size_t>(std::upper_bound(tl.liftoffs.begin(), tl.liftoffs.end(), t) - tl.liftoffs.begin());
+  if (j > 0 && t < tl.touchdowns[j - 1]) {
+    const double span = tl.touchdowns[j - 1] - tl.liftoffs[j - 1];
+    phase.stance = false;
+    phase.foothold = tl.footholds[j - 1];
+    phase.next_foothold = tl.footholds[j];
+    phase.progress = span > 0.0 ? std::clamp((t - tl.liftoffs[j - 1]) / span, 0.0, 1.0) : 1.0;
+    phase.t_liftoff = tl.liftoffs[j - 1];
+    phase.t_touchdown = tl.touchdowns[j - 1];
+    const Eigen::Vector3d& a = footholds_[static_cast<std::size_t>(phase.foothold)].contact_W;
+    const Eigen::Vector3d& b = footholds_[static_cast<std::size_t>(phase.next_foothold)].contact_W;
+    phase.foot_W = (1.0 - phase.progress) * a + phase.progress * b;
+    return phase;
+  }
+  phase.stance = true;
+  phase.foothold = tl.footholds[j];
+  phase.next_foothold = j + 1 < tl.footholds.size() ? tl.footholds[j + 1] : -1;
+  phase.t_liftoff = j < tl.liftoffs.size() ? tl.liftoffs[j] : std::numeric_limits<double>::infinity();
+  phase.t_touchdown = j > 0 ? tl.touchdowns[j - 1] : 0.0;
+  phase.foot_W = footholds_[static_cast<std::size_t>(phase.foothold)].contact_W;
+  return phase;
+}
+
+Eigen::Vector2d FootSchedule::NeutralBodyXY(double t) const {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (int l = 0; l < leg_count(); ++l) {
+    sum += Phase(l, t).foot_W.head<2>() - legs_[static_cast<std::size_t>(l)].offset_W;
+  }
+  return sum / static_cast<double>(std::max(1, leg_count()));
+}
+
+double FootSchedule::FeetPitch(double t) const {
+  double front_x = 0.0, front_z = 0.0, hind_x = 0.0, hind_z = 0.0;
+  int fronts = 0, hinds = 0;
+  for (int l = 0; l < leg_count(); ++l) {
+    const Eigen::Vector3d p = Phase(l, t).foot_W;
+    if (legs_[static_cast<std::size_t>(l)].front) {
+      front_x += p.x(), front_z += p.z(), ++fronts;
+    } else {
+      hind_x += p.x(), hind_z += p.z(), ++hinds;
+    }
+  }
+  if (fronts == 0 || hinds == 0) return 0.0;
+  const double run = (front_x / fronts - hind_x / hinds) * heading_;
+  if (!(run > 1e-6)) return 0.0;
+  return -std::atan2(front_z / fronts - hind_z / hinds, run);
+}
+
+}  // namespace stairplan

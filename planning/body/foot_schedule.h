@@ -1,0 +1,75 @@
+// The feet's timeline from a footstep plan: for every leg, alternating stances on footholds and
+// swings between them, queried at any time without allocating. The body planner reads from it
+// which legs stand where at each knot, the feet's mean height and slope, and the neutral body x
+// (the body above the feet's centre, as the crawl planner carries it).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinematics/robot_model.h"
+#include "planning/plan.h"
+
+namespace stairplan {
+
+/// One place a foot stands: the leg, its contact point on a surface and that surface.
+struct Foothold {
+  int leg = -1;                                          ///< index in the robot's legs
+  Eigen::Vector3d contact_W = Eigen::Vector3d::Zero();  ///< contact point [m]
+  int stair = -1;                                        ///< surface index, -1 when unknown
+};
+
+/// A leg at one instant.
+struct LegPhase {
+  bool stance = true;
+  int foothold = -1;       ///< standing on (stance) or leaving (swing)
+  int next_foothold = -1;  ///< the next foothold (the target during a swing), -1 after the last
+  double progress = 0.0;   ///< swing progress in [0, 1]; 0 in stance
+  double t_liftoff = 0.0;  ///< the phase's liftoff (swing) or the next liftoff (stance; +inf if none)
+  double t_touchdown = 0.0;  ///< the phase's touchdown (swing) or the last one (stance)
+  Eigen::Vector3d foot_W = Eigen::Vector3d::Zero();  ///< contact point, interpolated in swing
+};
+
+class FootSchedule {
+ public:
+  FootSchedule() = default;
+  /// Reads `plan`'s initial feet and footsteps for `robot` (legs matched by name). Throws
+  /// std::invalid_argument naming the footstep when a leg is unknown, times are not finite or a
+  /// leg's footsteps overlap in time.
+  FootSchedule(const RobotModel& robot, const Plan& plan);
+
+  const std::vector<Foothold>& footholds() const { return footholds_; }
+  int leg_count() const { return static_cast<int>(legs_.size()); }
+  double end_time() const { return end_time_; }
+  /// Body yaw (0 facing forward, pi facing backward) and its cosine along x (+1 or -1).
+  double yaw() const { return yaw_; }
+  double heading() const { return heading_; }
+
+  /// Leg `leg` at time t (clamped to [0, end_time()]). Allocation-free.
+  LegPhase Phase(int leg, double t) const;
+  /// The body's neutral horizontal position at t: the mean of (foot - the leg's neutral offset).
+  Eigen::Vector2d NeutralBodyXY(double t) const;
+  /// The pitch of the line from the hind feet to the front feet at t (nose-up negative).
+  double FeetPitch(double t) const;
+  /// The leg's neutral foot offset from the body origin in the world, horizontal [m].
+  const Eigen::Vector2d& NeutralOffset(int leg) const { return legs_[static_cast<std::size_t>(leg)].offset_W; }
+  bool IsFront(int leg) const { return legs_[static_cast<std::size_t>(leg)].front; }
+
+ private:
+  struct LegTimeline {
+    Eigen::Vector2d offset_W = Eigen::Vector2d::Zero();
+    bool front = false;
+    std::vector<int> footholds;     // in time order; footholds[0] is the initial one
+    std::vector<double> liftoffs;   // liftoffs[j]: leaving footholds[j]
+    std::vector<double> touchdowns; // touchdowns[j]: arriving on footholds[j + 1]
+  };
+  std::vector<Foothold> footholds_;
+  std::vector<LegTimeline> legs_;
+  double end_time_ = 0.0;
+  double yaw_ = 0.0;
+  double heading_ = 1.0;
+};
+
+}  // namespace stairplan

@@ -1,0 +1,22 @@
+// The body planner's offline driver: runs the receding-horizon planner along a footstep plan (as
+// the control loop would, one cycle per knot) and writes the executed body trajectory, with its
+// com_shift, into the plan; then re-checks it exactly (IK and FCL). `stairplan plan` calls it.
+#pragma once
+
+#include "geometry/constrained_map.h"
+#include "geometry/staircase.h"
+#include "kinematics/robot_model.h"
+#include "planning/body/body_planner_settings.h"
+#include "planning/plan.h"
+
+namespace stairplan {
+
+/// Fills `footsteps_plan.body` (one sample per knot_dt) from the body planner and returns the
+/// plan. Its status becomes infeasible, with the reason, when a cycle finds no valid body height
+/// for a stance leg, a QP fails, or the exact re-check finds a stance leg out of reach or closer
+/// to the stairs than settings.clearance_margin. A plan that is already infeasible is returned as
+/// it is. Throws std::invalid_argument naming the field for bad settings.
+Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan footsteps_plan,
+              const BodyPlannerSettings& settings = {});
+
+}  // namespace stairplan
