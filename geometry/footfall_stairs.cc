@@ -286,7 +286,10 @@ std::vector<FootfallStaircase> StairsFromFootfalls(const std::vector<Footfall>& 
 
   // 3. Per staircase: clusters by height; runs of clusters a rise apart are the stairs.
   std::vector<FootfallStaircase> result;
-  for (auto& [group, ids] : members) {
+  for (auto& member : members) {
+    // Named, not a structured binding: C++17 lambdas cannot capture those (clang rejects it).
+    const int group = member.first;
+    std::vector<int>& ids = member.second;
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     std::sort(ids.begin(), ids.end(), [&](int a, int b) { return footfalls[static_cast<std::size_t>(a)].position.z() < footfalls[static_cast<std::size_t>(b)].position.z(); });
