@@ -79,7 +79,9 @@ Plan PlanWithStepPlanner(const RobotModel& robot, const Staircase& stairs, const
     plan.initial_feet_W.push_back(leg.foot_W);
   }
 
-  double t = 0.0;
+  // The first swing waits settle_s: with four feet down the body moves forward, out of the line
+  // between the diagonal feet that will carry it while the first leg swings.
+  double t = settings.settle_s;
   bool arrived = false;
   std::string failure;
   for (int cycle = 0; cycle < settings.max_cycles; ++cycle) {

@@ -52,6 +52,7 @@ void StepPlannerSettings::Validate() const {
   Check("speed", speed, 0.0, 10.0);
   Check("sample_period", sample_period, 0.0, 1.0);
   Check("start_gap", start_gap, -1.0, 5.0);
+  Check("settle_s", settle_s, 0.0, 10.0, false);
   if (max_cycles < 1 || max_cycles > 10000000) {
     throw FieldError("max_cycles", "must be between 1 and 10000000 (got " + std::to_string(max_cycles) + ")");
   }

@@ -51,6 +51,10 @@ struct StepPlannerSettings {
   double speed = 0.15;           ///< commanded body speed along the stairs [m/s]
   double sample_period = 0.05;   ///< body trajectory sampling [s]
   double start_gap = 0.10;       ///< fore feet this far before the end of the first step region [m]
+  /// Four feet down at the start before the first swing, the body already moving [s]. The driver's
+  /// body keeps a constant speed and does not shift the COM between support triangles; that is the
+  /// body planner's job.
+  double settle_s = 0.0;
   int max_cycles = 20000;        ///< bound on re-selections in one traversal
 
   /// Throws std::invalid_argument naming the field (e.g. "cadences_s[2]", "horizon_steps").

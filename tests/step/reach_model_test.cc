@@ -1,11 +1,14 @@
-// The geometric reach model and the ground profile the step planner's body follows.
+// The reach models (geometric, IK) and the ground profile the step planner's body follows.
 #include <catch2/catch.hpp>
 
 #include <random>
 
 #include "kinematics/builtin_robot.h"
 #include "planning/step/ground_profile.h"
+#include "planning/step/ik_reach_model.h"
 #include "planning/step/reach_model.h"
+#include "planning/step/step_planner_driver.h"
+#include "step_test_util.h"
 
 using namespace stairplan;
 
@@ -51,5 +54,49 @@ TEST_CASE("ground profile: through the tread middles, flat on the landings, cont
     for (double x = stairs.x_min(); x < stairs.x_max(); x += 0.01) {
       CHECK(std::abs(g.HeightAt(x + 0.01) - g.HeightAt(x)) <= 0.01 * std::tan(1.2) + 1e-9);
     }
+  }
+}
+
+TEST_CASE("IK reach: agrees with the kinematics and is stricter than the geometric band", "[step]") {
+  const RobotModel& robot = BuiltinRobot();
+  const IkReachModel ik(robot);
+  const GeometricReachModel band(0.0, 1.0);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> offset(-0.8, 0.8), pitch(-0.5, 0.5);
+  int reachable = 0, unreachable = 0;
+  for (int i = 0; i < 400; ++i) {
+    Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
+    base.linear() = Eigen::AngleAxisd(pitch(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
+    base.translation() = Eigen::Vector3d(0.2, 0.0, 0.5);
+    const LegModel& leg = robot.legs()[static_cast<std::size_t>(i % 4)];
+    const Eigen::Vector3d foot = base * leg.hip_B + Eigen::Vector3d(offset(rng), 0.5 * offset(rng), -std::abs(offset(rng)));
+    const bool ok = ik.Reachable(leg, base, foot);
+    // Whatever the IK reaches lies within the chain's length.
+    if (ok) CHECK(band.Reachable(leg, base, foot));
+    (ok ? reachable : unreachable) += 1;
+  }
+  // Both verdicts occur: the test samples both sides of the boundary.
+  CHECK(reachable > 20);
+  CHECK(unreachable > 20);
+}
+
+TEST_CASE("IK reach plugs into the offline driver: every touchdown solves within the joint limits", "[step]") {
+  const Staircase stairs{StairSpec{}};
+  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
+  auto ik = std::make_shared<IkReachModel>(BuiltinRobot());
+  const Plan plan = PlanWithStepPlanner(BuiltinRobot(), stairs, map, {}, ik);
+  INFO(plan.status_reason);
+  REQUIRE(plan.status == PlanStatus::kOk);
+  RobotWorkspace ws(ik->kinematics());
+  for (const Footstep& f : plan.footsteps) {
+    const stairplan::BodyState b = stairplan::testing::BodyAt(plan, f.t_touchdown);
+    BodyPose pose;
+    pose.position_W = {b.x, b.y, b.z};
+    pose.pitch = b.pitch;
+    pose.yaw = b.yaw;
+    const int index = ik->kinematics().LegIndex(f.leg);
+    const Eigen::Vector3d centre = f.position_W + Eigen::Vector3d(0.0, 0.0, BuiltinRobot().leg(f.leg).foot_radius);
+    CAPTURE(f.leg, f.t_touchdown);
+    CHECK(ik->kinematics().SolveFootIkWorld(index, centre, pose, ws).ok());
   }
 }
