@@ -1,13 +1,9 @@
 // `stairplan plan`: plan a traversal of a staircase and write plan.json and plan.svg.
 #include <chrono>
-#include <filesystem>
 #include <iostream>
-#include <map>
-#include <optional>
 
-#include "geometry/field_error.h"
-#include "geometry/stair_spec_yaml.h"
 #include "planning/cli/cli_common.h"
+#include "planning/cli/stair_flags.h"
 #include "planning/plan_pipeline.h"
 #include "planning/plan_json.h"
 #include "planning/plan_svg.h"
@@ -17,10 +13,7 @@ namespace {
 
 struct PlanOptions {
   std::string robot;
-  std::string stairs_file;
-  std::optional<int> steps;
-  std::optional<double> rise, run, nosing, width;
-  std::string direction;
+  StairFlags stairs;
   std::string facing = "forward";
   std::string out = "stairplan-out";
   bool json = false;
@@ -28,54 +21,10 @@ struct PlanOptions {
 
 void AddOptions(CLI::App& app, PlanOptions& o) {
   app.add_option("--robot", o.robot, "Robot URDF file (default: the built-in stairbot)");
-  app.add_option("--stairs", o.stairs_file, "Stairs YAML file (flags below override its fields)");
-  app.add_option("--steps", o.steps, "Number of steps (risers), default 7");
-  app.add_option("--rise", o.rise, "Riser height [m], default 0.17");
-  app.add_option("--run", o.run, "Tread going [m], default 0.27");
-  app.add_option("--nosing", o.nosing, "Nosing overhang [m], default 0.02");
-  app.add_option("--width", o.width, "Stair width [m], default 1.0");
-  app.add_option("--direction", o.direction, "up or down, default up");
+  AddStairFlags(app, o.stairs);
   app.add_option("--facing", o.facing, "forward or backward, default forward");
   app.add_option("--out", o.out, "Output directory for plan.json and plan.svg (default ./stairplan-out)");
   app.add_flag("--json", o.json, "Print the plan JSON on stdout instead of the summary");
-}
-
-// The stairs from the YAML file (if any) with the flags on top; errors name the flag or the file.
-Staircase ResolveStairs(const PlanOptions& o) {
-  StairSpec spec;
-  if (!o.stairs_file.empty()) spec = StairSpecFromYamlFile(o.stairs_file);
-  std::map<std::string, bool> from_flag;
-  const auto set = [&](const char* field, auto& target, const auto& value) {
-    if (value) {
-      target = *value;
-      from_flag[field] = true;
-    }
-  };
-  set("steps", spec.steps, o.steps);
-  set("rise", spec.rise, o.rise);
-  set("run", spec.run, o.run);
-  set("nosing", spec.nosing, o.nosing);
-  set("width", spec.width, o.width);
-  if (from_flag["rise"]) spec.rises.clear();
-  if (from_flag["run"] || from_flag["steps"]) spec.runs.clear();
-  if (from_flag["steps"]) spec.rises.clear();
-  if (!o.direction.empty()) {
-    spec.direction = ParseDirection(o.direction, "--direction");
-    from_flag["direction"] = true;
-  }
-  try {
-    return Staircase(spec);
-  } catch (const FieldError& e) {
-    const std::string base = e.field().substr(0, e.field().find('['));
-    if (from_flag[base] || o.stairs_file.empty()) throw BadInput("--" + e.field() + ": " + e.problem());
-    throw BadInput(o.stairs_file + ": field '" + e.field() + "': " + e.problem());
-  }
-}
-
-Facing ParseFacing(const std::string& text) {
-  if (text == "forward") return Facing::kForward;
-  if (text == "backward") return Facing::kBackward;
-  throw BadInput("--facing: must be 'forward' or 'backward' (got '" + text + "')");
 }
 
 double MicrosSince(std::chrono::steady_clock::time_point start) {
@@ -114,7 +63,7 @@ int RunPlan(const std::vector<std::string>& args) {
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("plan", [&] {
     const auto t0 = std::chrono::steady_clock::now();
-    const Staircase stairs = ResolveStairs(o);
+    const Staircase stairs = ResolveStairs(o.stairs);
     PipelineOptions options;
     options.facing = ParseFacing(o.facing);
     const RobotModel robot = LoadRobot(o.robot);

@@ -1,0 +1,38 @@
+// Open-loop robustness to stair errors (the 2012 paper's dW/dH analysis): a plan made for the
+// nominal stairs is executed on stairs whose every rise and run is off by a random error, and
+// compared with replanning on the true stairs. A foot lands where the true surface is under the
+// planned foothold; the body follows its nominal reference.
+#pragma once
+
+#include <cstdint>
+
+#include "kinematics/robot_model.h"
+#include "planning/plan_pipeline.h"
+
+namespace stairplan {
+
+struct RobustnessSettings {
+  double sigma_rise = 0.005;  ///< standard deviation of each rise's error [m]
+  double sigma_run = 0.01;    ///< standard deviation of each run's error [m]
+  int trials = 20;
+  std::uint32_t seed = 1;
+
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+struct RobustnessReport {
+  int trials = 0;
+  int nominal_valid = 0;  ///< 1 when the plan is valid on the nominal stairs
+  int open_loop_ok = 0;   ///< trials where the nominal plan is still valid on the true stairs
+  int replanned_ok = 0;   ///< trials where a plan made on the true stairs is valid
+  double worst_cumulative_run_error = 0.0;  ///< largest |sum of run errors| over the trials [m]
+};
+
+/// The nominal plan moved onto `true_stairs`: footholds keep x and y and take the true height.
+Plan PlanOnTrueStairs(const Plan& nominal, const Staircase& true_stairs, const ConstrainedMap& true_map);
+
+RobustnessReport EvaluateRobustness(const RobotModel& robot, const StairSpec& nominal, const PipelineOptions& options,
+                                    const RobustnessSettings& settings);
+
+}  // namespace stairplan
