@@ -43,6 +43,7 @@ const char* ToString(RuleOut reason) {
     case RuleOut::kNoStepRegion: return "no step region";
     case RuleOut::kStepTooHigh: return "step too high";
     case RuleOut::kUnreachable: return "unreachable";
+    case RuleOut::kStanceLost: return "stance foot lost";
     case RuleOut::kLeaderBehind: return "leading leg behind";
     case RuleOut::kStepsBack: return "steps back";
   }
@@ -169,6 +170,9 @@ std::string StepPlanner::RuleOutReason(int index) const {
       std::snprintf(value, sizeof value, "%.2f", e.rule_out_value);
       return where + ": no target in reach (hip-to-foot " + value + " of max_reach)";
     case RuleOut::kLeaderBehind: return where + ": the leading leg would land behind its trailing leg";
+    case RuleOut::kStanceLost:
+      std::snprintf(value, sizeof value, "%.2f", e.rule_out_value);
+      return where + ": its stance foot falls out of reach before liftoff (hip-to-foot " + value + " of max_reach)";
     case RuleOut::kStepsBack: return where + ": the only targets lie behind the leg's stair";
     case RuleOut::kNone: break;
   }
@@ -369,7 +373,7 @@ void StepPlanner::Evaluate(int index, const StepPlannerInput& input) {
     // The foot it stands on must stay in reach until this controller lifts it.
     const Eigen::Vector3d stance_centre = foot[l] + Eigen::Vector3d(0.0, 0.0, model.foot_radius);
     if (!reach_->Reachable(model, base_lift, stance_centre)) {
-      e.rule_out = s.rule_out = RuleOut::kUnreachable;
+      e.rule_out = s.rule_out = RuleOut::kStanceLost;
       e.rule_out_step = k;
       e.rule_out_value = GeometricReachModel::Extension(model, base_lift, stance_centre);
       break;

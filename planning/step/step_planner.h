@@ -53,8 +53,8 @@ enum class RuleOut {
   kNone,
   kNoStepRegion,    ///< the map has no step region near a footstep
   kStepTooHigh,     ///< a footstep needs a step higher than the leg can clear
-  kUnreachable,     ///< a foot out of reach: no target reachable through the coming stance, or
-                    ///< the foot it stands on lost before the plan lifts it
+  kUnreachable,     ///< no target in reach from touchdown through the longest coming stance
+  kStanceLost,      ///< a stance foot falls out of reach before the plan lifts it
   kLeaderBehind,    ///< the only targets would land a leading leg behind its trailing leg ([0070])
   kStepsBack,       ///< the only targets lie on a stair behind the leg's own
 };
