@@ -66,7 +66,12 @@ StairSpec StairSpecFromYaml(const std::string& text, const std::string& source, 
       {"landing_before", &spec.landing_before}, {"landing_after", &spec.landing_after},
       {"nosing_thickness", &spec.nosing_thickness}};
   for (const auto& item : root) {
-    const std::string key = item.first.as<std::string>();
+    // A key that is a list or a mapping ("? [a]: 1") names no field; as<std::string>() would throw
+    // YAML::TypedBadConversion, which is not the FieldError callers handle (found by fuzz_stairs_yaml).
+    if (!item.first.IsScalar()) {
+      throw FieldError(source + " (line " + std::to_string(item.first.Mark().line + 1) + ")", "a key must be a field name");
+    }
+    const std::string key = item.first.Scalar();
     const std::string where = Where(source, key, item.second);
     if (auto it = numbers.find(key); it != numbers.end()) {
       *it->second = ReadNumber(item.second, where);
