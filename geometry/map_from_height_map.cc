@@ -137,10 +137,11 @@ PerceivedStairs ConstrainedMapFromHeightMap(const HeightMap& map, const StairMod
       if (edge) continue;
       // Off its surface away from the edges (an object on a tread): data says keep off.
       const double from_edges = std::min(p.x() - s.x_begin, s.x_end - p.x());
-      // Filled cells count too when far off (behind an object, the fill continues its top), with
-      // twice the tolerance: a far nosing's top is sampled a little low.
-      const double off = std::abs(p.z() - s.z);
-      const bool off_surface = state == CellState::kMeasured ? off > settings.surface_tolerance : off > 2.0 * settings.surface_tolerance;
+      // Filled cells count too when far above it (behind an object the fill continues its top),
+      // with twice the tolerance; a fill below the surface only says a far riser's top went
+      // unsampled between two camera rows, so it is no evidence.
+      const double above = p.z() - s.z;
+      const bool off_surface = state == CellState::kMeasured ? std::abs(above) > settings.surface_tolerance : above > 2.0 * settings.surface_tolerance;
       if (from_edges > edge_reach + map.resolution() && off_surface) {
         bands[{k, RegionKind::kData}].push_back({p.x() - half_cell, p.x() + half_cell});
       }

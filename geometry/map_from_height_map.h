@@ -21,7 +21,9 @@ struct MapFromHeightMapSettings {
   /// Edge cells grow by half a cell, and towards the lower side by this more (a nosing's depth) [m].
   double edge_dilation = 0.02;
   double surface_tolerance = 0.04;  ///< a cell further than this off its surface's height is an obstacle [m]
-  double min_landing = 0.4;     ///< shortest landing put before and after the flight [m]
+  /// Shortest landing put before and after the flight [m]: the robot stands on the landing it
+  /// looks from, and a planner needs room there even where the sensor saw little of it.
+  double min_landing = 1.2;
   double max_landing = 3.0;     ///< longest landing [m]
 
   /// Throws FieldError naming the field.

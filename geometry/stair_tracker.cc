@@ -81,13 +81,17 @@ double LevelHeight(const PointCloud& cloud, const std::vector<double>& u, double
   // A tread seen from above: its own bins (not those lifted to it past a nosing) and their points
   // near the level give an unbiased median.
   constexpr double kTreadBand = 0.015;
-  std::vector<char> member(raw_envelope.size(), 0);
+  std::vector<char> member(raw_envelope.size(), 0), own(raw_envelope.size(), 0);
   int tread_bins = 0;
   for (std::size_t b : cluster) {
     member[b] = 1;
-    if (std::abs(raw_envelope[b] - level) < kTreadBand) ++tread_bins;
+    if (std::abs(raw_envelope[b] - level) < kTreadBand) {
+      own[b] = 1;
+      ++tread_bins;
+    }
   }
   const bool tread_seen = tread_bins * bin >= 0.5 * settings.min_run;
+  if (tread_seen) member.swap(own);  // riser faces in the lifted bins would pull the median down
   *seen = tread_seen;
   std::vector<double> z;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -253,10 +257,11 @@ StairFit FitAlong(const PointCloud& cloud, double best_theta, const StairTracker
     if (level_index[j] <= level_index[j - 1]) return Reject("levels are not a regular rise");
   }
   // Treads seen from above give exact levels; a level seen only as the top of a face is as low as
-  // the sensor's sampling of that face, so it counts little when two or more treads were seen.
+  // the sensor's sampling of that face (and far up the flight, where its leverage on the rise is
+  // largest), so it counts for next to nothing when two or more treads were seen.
   const auto seen_count = std::count(level_seen.begin(), level_seen.end(), true);
   std::vector<double> level_weight;
-  for (bool seen : level_seen) level_weight.push_back(seen || seen_count < 2 ? 1.0 : 0.02);
+  for (bool seen : level_seen) level_weight.push_back(seen || seen_count < 2 ? 1.0 : 1e-3);
   const Line levels = FitLine(level_index, level_height, level_weight);
   StairFit fit;
   for (std::size_t j = 0; j < level_height.size(); ++j) {

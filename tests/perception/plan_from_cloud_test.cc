@@ -1,0 +1,91 @@
+// Perception feeds planning (seed 000 claim 1; acceptance 4): a crawl planned on the stairs and
+// the constrained map perceived from a camera cloud, moved back into the true stairs' frame,
+// passes the validator on the true stairs (and on what was perceived).
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "collision/robot_collision_regions.h"
+#include "geometry/stair_perception.h"
+#include "kinematics/builtin_robot.h"
+#include "perception/perception_scenes.h"
+#include "planning/plan_pipeline.h"
+#include "planning/validation/traversal_validator.h"
+
+using namespace stairplan;
+
+namespace {
+
+std::string Describe(const ValidationReport& r) {
+  std::string text = "min clearance " + std::to_string(r.min_clearance_m) + ", violations:";
+  for (const Violation& v : r.violations) {
+    text += "\n  t=" + std::to_string(v.t) + " " + v.leg + " " + ToString(v.kind) + " " + std::to_string(v.value) + " " + v.detail;
+  }
+  return text;
+}
+
+// A plan made in the fitted stairs' frame, expressed in the world (here the true stairs' frame).
+// Feet land on the real surface: a touchdown stops where the foot meets the ground, so contact
+// heights are those of the true treads under the planned footholds (a few millimetres from the
+// perceived ones); the body keeps its planned heights.
+Plan ToWorld(const Plan& plan, const StairModel& model, TravelDirection travel, const Staircase& truth) {
+  const auto world = [&](const Eigen::Vector3d& p) {
+    Eigen::Vector3d w = model.StairToWorld(p, travel);
+    const double ground = truth.HeightAt(w.x(), w.y());
+    if (!std::isnan(ground)) w.z() = ground;
+    return w;
+  };
+  const double base_z = model.levels.front();
+  Plan out = plan;
+  for (auto& p : out.initial_feet_W) p = world(p);
+  for (Footstep& f : out.footsteps) {
+    f.position_W = world(f.position_W);
+    f.from_W = world(f.from_W);
+    if (!std::isnan(f.swing_apex_z)) f.swing_apex_z += base_z;
+  }
+  const double yaw = model.TravelYaw(travel);
+  for (BodyState& b : out.body) {
+    const Eigen::Vector3d p = model.StairToWorld(Eigen::Vector3d(b.x, b.y, b.z), travel);
+    b.x = p.x();
+    b.y = p.y();
+    b.z = p.z();
+    b.yaw += yaw;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a crawl planned on the perceived map validates on the true stairs", "[perception][plan]") {
+  const Staircase truth(StairSpec{});
+  const RobotModel robot = BuiltinRobot();
+  const RobotKinematics kinematics(robot);
+  const RobotCollisionModel collision(kinematics);
+  PipelineOptions options;
+  RobotRegionSettings regions = options.regions;
+  regions.hip_height_fraction = options.crawl.body.hip_height_fraction;
+  const ConstrainedMap truth_map = BuildPipelineMap(robot, truth, options);
+  TraversalValidator on_truth(robot, truth, truth_map);
+  for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+    SensorNoise noise;
+    noise.range_sigma = 0.005;
+    noise.seed = seed;
+    const PointCloud cloud = ScanStairs(truth, PinholeCamera{}, stairplan::testing::CameraOnBottomLanding(), noise);
+    const StairPerception seen = PerceiveStairs(cloud);
+    INFO("seed " << seed);
+    REQUIRE(seen.stairs.has_value());
+    // What `stairplan plan --cloud` does: the perceived map, then this robot's own regions on it.
+    ConstrainedMap map = seen.stairs->map;
+    AddRobotCollisionRegions(kinematics, collision, seen.stairs->stairs, map, regions);
+    const Plan plan = PlanCrawl(robot, seen.stairs->stairs, map, options.crawl);
+    INFO(plan.status_reason);
+    REQUIRE(plan.status == PlanStatus::kOk);
+    TraversalValidator on_seen(robot, seen.stairs->stairs, map);
+    const ValidationReport self = on_seen.Validate(plan);
+    INFO("on the perceived stairs: " << Describe(self));
+    CHECK(self.ok);
+    const ValidationReport report = on_truth.Validate(ToWorld(plan, seen.fit.model, TravelDirection::kUp, truth));
+    INFO("on the true stairs: " << Describe(report));
+    CHECK(report.ok);
+  }
+}
