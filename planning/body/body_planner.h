@@ -106,6 +106,13 @@ class BodyPlanner {
   /// The desired hip height above the contact points [m].
   double desired_hip_height() const { return hip_height_; }
   double yaw() const { return schedule_.yaw(); }
+  /// The hip (first joint) of leg `leg` in the base frame.
+  const Eigen::Vector3d& hip_B(int leg) const { return hips_B_[static_cast<std::size_t>(leg)]; }
+  /// |pitch| of the flight's slope line [rad].
+  double stairs_pitch() const { return stairs_pitch_; }
+  /// The hip's offset from the body origin at `pitch`: vertical, and along the heading [m].
+  double HipDz(int leg, double pitch) const;
+  double HipDx(int leg, double pitch) const;
 
  private:
   void Initialise(const RobotModel& robot, const Staircase& stairs);
@@ -120,9 +127,6 @@ class BodyPlanner {
   void CountConflicts();
   void ShiftPrevious(double now);
   void FillOutput(double now);
-  // Hip height offset from the body origin at pitch p: -sin p hx + cos p hz; and along the heading.
-  double HipDz(int leg, double pitch) const;
-  double HipDx(int leg, double pitch) const;
 
   BodyPlannerSettings settings_;
   FootSchedule schedule_;

@@ -1,0 +1,60 @@
+// The body planner's exact variant: the same problem as the QP over a window of knots, with the
+// hip heights from sin/cos of the pitch instead of the fixed row coefficients, the bounds taken
+// at each knot's exact hip offset and pitch (not the worst case over a trust region), and the
+// FCL clearance bound (the lowest clear hip height per foothold, from the same cache) as
+// constraints. Solved with Ipopt or NLopt's SLSQP. It refines plans offline and measures how
+// conservative the per-cycle QP is (objective gap, distance to the bounds).
+#pragma once
+
+#include <string>
+
+#include "planning/body/body_check.h"
+#include "planning/body/body_planner.h"
+#include "planning/optim/solve_result.h"
+
+namespace stairplan {
+
+struct BodyNlpSettings {
+  std::string solver = "ipopt";  ///< "ipopt" or "nlopt" (SLSQP)
+  double tolerance = 1e-4;       ///< the solver's convergence tolerance
+  int max_iterations = 200;
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+/// One NLP solve and how it compares with the QP plan it started from.
+struct BodyNlpWindow {
+  optim::SolveStatus status = optim::SolveStatus::kInvalidInput;
+  double qp_objective = 0.0;   ///< the NLP's objective at the QP plan
+  double nlp_objective = 0.0;  ///< ... at its own solution
+  double qp_bound_distance = 0.0;   ///< smallest distance of a stance hip from its exact bounds, QP plan [m]
+  double nlp_bound_distance = 0.0;  ///< ... NLP solution [m] (negative: a bound is broken)
+  double solve_ms = 0.0;
+  int iterations = 0;
+  int windows = 0;          ///< RefineBodyNlp: windows solved
+  int windows_refined = 0;  ///< ... whose NLP solution replaced the QP's values
+};
+
+/// The NLP over the planner's horizon at `now` (call after planner.Update(state, ..., now)): the
+/// planner's knots are the initial guess, knot 0 stays pinned. Writes the solution into `knots`
+/// (sized like the planner's). Not per cycle: builds a Program and allocates.
+BodyNlpWindow SolveBodyNlp(BodyPlanner& planner, const BodyNlpSettings& settings, double now,
+                           std::vector<BodyState>* knots);
+
+/// The NLP over the knots t0 + k * knot_dt starting from `guess` (knot 0 pinned to guess[0]):
+/// the QP's plan for a cold start, a previous NLP solution for a warm one.
+BodyNlpWindow SolveBodyNlpFrom(BodyPlanner& planner, const BodyNlpSettings& settings, double t0,
+                               const std::vector<BodyState>& guess, std::vector<BodyState>* knots);
+
+/// The offline refinement behind `stairplan plan --nlp`: the plan's body (from PlanBody) is cut
+/// into windows of settings.knots samples, each re-solved by the NLP from the QP's values with its
+/// first sample pinned to the previous window's end. A window's solution is kept when it is
+/// solved, or inside the bounds and cheaper; otherwise the QP's values stay. Then the whole
+/// trajectory is re-checked exactly (IK and FCL): the plan is infeasible when the check fails.
+/// `summary` (optional) gets the summed objectives, the worst bound distances and the last
+/// non-solved status over the windows.
+Plan RefineBodyNlp(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan plan,
+                   const BodyPlannerSettings& settings = {}, const BodyNlpSettings& nlp = {},
+                   BodyNlpWindow* summary = nullptr);
+
+}  // namespace stairplan
