@@ -308,7 +308,7 @@ StairFit FitAlong(const PointCloud& cloud, double best_theta, const StairTracker
       if (u[i] >= u_b - kEdgeLookBack && u[i] <= u_b + 3 * settings.bin && cloud.points[i].z() > z_top) near.push_back(u[i]);
     }
     edge_index.push_back(level_index[j + 1]);
-    edge_u.push_back(near.empty() ? u_b : Percentile(near, 0.1));
+    edge_u.push_back(near.empty() ? u_b : Percentile(near, 0.3));
     edge_weight.push_back(static_cast<double>(std::clamp<std::size_t>(near.size(), 1, 200)));
   }
   // Far edges are sampled sparsely and land a bin or two off: they count for less.
