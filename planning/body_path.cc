@@ -136,11 +136,14 @@ std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::
                                             const std::vector<Footstep>& footsteps, double yaw,
                                             const BodyPathSettings& settings) {
   settings.Validate();
+  const RobotKinematics kinematics(robot);
+  const ComModel com_model(kinematics);
+  RobotWorkspace ws(kinematics);
   double reach = 0.0, hip_z = 0.0, foot_radius = 0.0;
-  for (const LegModel& leg : robot.legs()) {
-    reach += leg.max_reach / 4.0;
-    hip_z += leg.hip_B.z() / 4.0;
-    foot_radius += leg.foot_radius / 4.0;
+  for (const LegKinematics& leg : kinematics.legs()) {
+    reach += leg.reach().hi / 4.0;  // the reach the joint limits allow, not the sum of the links
+    hip_z += leg.hip_B().z() / 4.0;
+    foot_radius += leg.model().foot_radius / 4.0;
   }
   const double hip_height = settings.hip_height_fraction * reach;
   const Eigen::Vector3d com_B = ApproximateComOffset(robot);
@@ -148,9 +151,6 @@ std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::
   const std::vector<Keyframe> keys = ComKeyframes(legs, initial_feet, footsteps, settings.stability_shift);
   const double duration = footsteps.empty() ? 0.0 : footsteps.back().t_touchdown;
   const int samples = static_cast<int>(std::ceil(duration / settings.sample_period - 1e-9));
-  const RobotKinematics kinematics(robot);
-  const ComModel com_model(kinematics);
-  RobotWorkspace ws(kinematics);
   std::vector<BodyState> body;
   for (int s = 0; s <= samples; ++s) {
     const double t = std::min(duration, s * settings.sample_period);

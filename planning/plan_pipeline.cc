@@ -1,6 +1,14 @@
 #include "planning/plan_pipeline.h"
 
 #include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "planning/body_path.h"
+#include "planning/step/ik_reach_model.h"
+#include "planning/step/step_planner_driver.h"
+#include "planning/swing_trajectory.h"
 
 namespace stairplan {
 namespace {
@@ -9,7 +17,64 @@ double MicrosSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Inserts a four-feet phase before every swing that does not overlap the previous one, so the
+// COM can move to the next support triangle with all feet down.
+void InsertShiftPhases(Plan& plan, double shift) {
+  double offset = 0.0, last_touchdown = 0.0;
+  for (Footstep& f : plan.footsteps) {
+    const double swing = f.t_touchdown - f.t_liftoff;
+    f.t_liftoff += offset;
+    if (f.t_liftoff >= last_touchdown - 1e-9) {
+      offset += shift;
+      f.t_liftoff += shift;
+    }
+    f.t_touchdown = f.t_liftoff + swing;
+    last_touchdown = std::max(last_touchdown, f.t_touchdown);
+  }
+}
+
+Plan StepPlannerPlan(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                     const PipelineOptions& options) {
+  Plan plan = PlanWithStepPlanner(robot, stairs, map, options.step, std::make_shared<IkReachModel>(robot));
+  if (plan.status != PlanStatus::kOk) return plan;
+  InsertShiftPhases(plan, options.crawl.shift_duration);
+  for (Footstep& f : plan.footsteps) {
+    f.swing_apex_z = SwingTrajectory(f.from_W, f.position_W, stairs, options.crawl.swing).apex_z();
+  }
+  const double yaw = options.facing == Facing::kForward ? 0.0 : M_PI;
+  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, options.crawl.body);
+  return plan;
+}
+
+// The crawl at the cadence the step planner selects, with the controllers' scores recorded.
+Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                       const PipelineOptions& options) {
+  const Plan selection = PlanWithStepPlanner(robot, stairs, map, options.step, std::make_shared<IkReachModel>(robot));
+  CrawlSettings crawl = options.crawl;
+  if (selection.status == PlanStatus::kOk && selection.cadence_s > 0.0) crawl.swing_duration = selection.cadence_s;
+  Plan plan = PlanCrawl(robot, stairs, map, crawl);
+  plan.controllers = selection.controllers;
+  plan.selected = selection.selected;
+  if (selection.status != PlanStatus::kOk && plan.status == PlanStatus::kOk) {
+    plan.status = PlanStatus::kInfeasible;
+    plan.status_reason = "step planner: " + selection.status_reason;
+  }
+  return plan;
+}
+
 }  // namespace
+
+FootstepSource ParseFootstepSource(const std::string& text) {
+  if (text == "crawl") return FootstepSource::kSelectedCrawl;
+  if (text == "step") return FootstepSource::kStepPlanner;
+  throw std::invalid_argument("planner must be 'crawl' or 'step' (got '" + text + "')");
+}
+
+StepPlannerSettings CrawlControllers() {
+  StepPlannerSettings settings;
+  settings.gaits = {Gait::kCrawl, Gait::kCrawlAlternate};
+  return settings;
+}
 
 ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
@@ -29,7 +94,8 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
   result.map = BuildPipelineMap(robot, stairs, options);
   const double map_us = MicrosSince(t_map);
   const auto t_plan = std::chrono::steady_clock::now();
-  result.plan = PlanCrawl(robot, stairs, result.map, options.crawl);
+  result.plan = options.footsteps == FootstepSource::kStepPlanner ? StepPlannerPlan(robot, stairs, result.map, options)
+                                                                   : SelectedCrawlPlan(robot, stairs, result.map, options);
   result.plan.timing_us = {{"map", map_us}, {"plan", MicrosSince(t_plan)}};
   if (options.validate && result.plan.status == PlanStatus::kOk) {
     const auto t_validate = std::chrono::steady_clock::now();

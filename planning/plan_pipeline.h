@@ -8,12 +8,31 @@
 #include "kinematics/robot_model.h"
 #include "planning/crawl_planner.h"
 #include "planning/plan.h"
+#include "planning/step/step_planner_settings.h"
 #include "planning/validation/traversal_validator.h"
 
 namespace stairplan {
 
+/// Where the footsteps come from.
+enum class FootstepSource {
+  /// The step planner selects the controller (cadence); the crawl puts every foot at the centre of
+  /// a step region at that cadence, with four-feet phases for the COM shifts. Validates today.
+  kSelectedCrawl,
+  /// The step planner's own footsteps, retimed with four-feet phases, under the quasi-static body
+  /// path. Its plans do not all validate yet (shank clearances at nosings).
+  kStepPlanner,
+};
+/// "crawl" or "step"; throws std::invalid_argument otherwise.
+FootstepSource ParseFootstepSource(const std::string& text);
+
+/// Step planner settings with the crawl gaits only.
+StepPlannerSettings CrawlControllers();
+
 struct PipelineOptions {
   Facing facing = Facing::kForward;
+  FootstepSource footsteps = FootstepSource::kSelectedCrawl;
+  /// The step planner's controllers; the executed gait is quasi-static, so crawls only by default.
+  StepPlannerSettings step = CrawlControllers();
   ConstrainedMapSettings map;
   /// Trim step regions where this robot's legs would hit a riser or nosing (collision module).
   bool robot_regions = true;

@@ -15,6 +15,7 @@ struct PlanOptions {
   std::string robot;
   StairFlags stairs;
   std::string facing = "forward";
+  std::string planner = "crawl";
   std::string out = "stairplan-out";
   bool json = false;
 };
@@ -23,6 +24,9 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
   app.add_option("--robot", o.robot, "Robot URDF file (default: the built-in stairbot)");
   AddStairFlags(app, o.stairs);
   app.add_option("--facing", o.facing, "forward or backward, default forward");
+  app.add_option("--planner", o.planner,
+                 "crawl: the step planner picks the cadence, feet at step-region centres (default); "
+                 "step: the step planner's own footsteps");
   app.add_option("--out", o.out, "Output directory for plan.json and plan.svg (default ./stairplan-out)");
   app.add_flag("--json", o.json, "Print the plan JSON on stdout instead of the summary");
 }
@@ -66,6 +70,10 @@ int RunPlan(const std::vector<std::string>& args) {
     const Staircase stairs = ResolveStairs(o.stairs);
     PipelineOptions options;
     options.facing = ParseFacing(o.facing);
+    if (o.planner != "crawl" && o.planner != "step") {
+      throw BadInput("--planner: must be 'crawl' or 'step' (got '" + o.planner + "')");
+    }
+    options.footsteps = ParseFootstepSource(o.planner);
     const RobotModel robot = LoadRobot(o.robot);
     const double load_us = MicrosSince(t0);
     PipelineResult result = RunPipeline(robot, stairs, options);

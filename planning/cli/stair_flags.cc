@@ -36,8 +36,8 @@ Staircase ResolveStairs(const StairFlags& flags) {
   // A flag for the scalar replaces the file's per-step list of the same quantity.
   if (from_flag["rise"] || from_flag["steps"]) spec.rises.clear();
   if (from_flag["run"] || from_flag["steps"]) spec.runs.clear();
-  if (!flags.direction.empty()) {
-    spec.direction = ParseDirection(flags.direction, "--direction");
+  if (flags.direction) {
+    spec.direction = ParseDirection(*flags.direction, "--direction");
     from_flag["direction"] = true;
   }
   try {

@@ -16,7 +16,7 @@ struct StairFlags {
   std::string file;
   std::optional<int> steps;
   std::optional<double> rise, run, nosing, width;
-  std::string direction;
+  std::optional<std::string> direction;  ///< optional, so an empty value is an error, not a default
 };
 
 /// Adds --stairs, --steps, --rise, --run, --nosing, --width, --direction to `app`.
