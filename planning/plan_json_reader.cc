@@ -98,7 +98,12 @@ Footstep ReadFootstep(const Reader& r, const json& node, const std::string& path
   f.position_W = r.Point(node, path);
   if (node.contains("from")) f.from_W = r.Point(r.At(node, "from", path), path + "from.");
   if (node.contains("swing_apex_z") && !node.at("swing_apex_z").is_null()) f.swing_apex_z = r.Number(node, "swing_apex_z", path);
-  if (node.contains("stair_index")) f.stair_index = static_cast<int>(r.Number(node, "stair_index", path));
+  if (node.contains("stair_index")) {
+    // Checked before the cast: a double outside int's range is undefined behaviour (UBSan).
+    const double index = r.Number(node, "stair_index", path);
+    if (index != std::floor(index) || index < -1 || index > 1e6) r.Fail(path + "stair_index", "must be a whole number from -1");
+    f.stair_index = static_cast<int>(index);
+  }
   if (node.contains("in_step_region") && node.at("in_step_region").is_boolean()) f.in_step_region = node.at("in_step_region").get<bool>();
   return f;
 }
