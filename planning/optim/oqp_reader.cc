@@ -54,6 +54,16 @@ OqpSequence ReadOqpSequence(const std::string& folder) {
   OqpSequence s;
   s.name = fs::path(folder).filename().string();
   if (s.name.empty()) s.name = fs::path(folder).parent_path().filename().string();
+  // Checked before the casts (a double outside int's range is undefined behaviour) and before
+  // any matrix is sized (a huge size would be a bad_alloc, not an error naming the file).
+  for (int i = 0; i < 3; ++i) {
+    if (!(dims(i) >= 0.0 && dims(i) <= 1e5) || dims(i) != static_cast<double>(static_cast<long>(dims(i)))) {
+      throw std::invalid_argument(file("dims.oqp") + ": sizes must be whole numbers from 0 to 100000");
+    }
+  }
+  if (dims(0) * dims(1) > 1e8 || dims(1) * dims(1) > 1e8 || dims(2) * dims(1) > 1e8 || dims(0) * dims(2) > 1e8) {
+    throw std::invalid_argument(file("dims.oqp") + ": the matrices would hold more than 1e8 values");
+  }
   s.num_qps = static_cast<int>(dims(0));
   s.num_variables = static_cast<int>(dims(1));
   s.num_constraints = static_cast<int>(dims(2));
