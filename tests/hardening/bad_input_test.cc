@@ -143,6 +143,9 @@ std::vector<BadCase> Table() {
   t.push_back({"wrong-type", "qp", "q.qps", kYamlGood, "qp solve {file} --json", {"{file}"}, {}});
   t.push_back({"malformed", "qp", "q.qps", "NAME T\nROWS\n N obj\nCOLUMNS\n x1 obj\nENDATA\n", "qp bench {file} --csv {dir}/b.csv", {"{file}"}, {"b.csv", "b.csv.tmp"}});
   t.push_back({"nan", "qp", "", "", "qp solve {dir}/absent.qps --time-limit nan", {"--time-limit"}, {}});
+  t.push_back({"huge", "qp", "seq/dims.oqp", "1e300 2 1 0\n", "qp bench {dir}/seq --csv {dir}/b.csv", {"dims.oqp"}, {"b.csv", "b.csv.tmp"}});
+  t.push_back({"huge", "qp", "seq/dims.oqp", "100000 100000 100000 0\n", "qp bench {dir}/seq --csv {dir}/b.csv", {"dims.oqp"}, {"b.csv", "b.csv.tmp"}});
+  t.push_back({"huge", "validate", "p.json", EditPlan(plan, "\"stair_index\":", "\"stair_index\": 1e300, \"x0\":"), "validate {file} --json", {"{file}", "stair_index"}, {}});
 
   // gait-design: flags only.
   const std::string gait = "gait-design --json --run 0.27 --lmax 0.6 --body-length 0.6 ";
@@ -210,7 +213,10 @@ TEST_CASE("every sub-command refuses bad input with exit 2, a message naming it,
     covered.insert(c.command);
     const std::string dir = MakeTempDir("bad-input-" + std::to_string(index));
     const std::string file = c.file.empty() ? std::string() : dir + "/" + c.file;
-    if (!file.empty()) std::ofstream(file, std::ios::binary) << c.contents;
+    if (!file.empty()) {
+      fs::create_directories(fs::path(file).parent_path());
+      std::ofstream(file, std::ios::binary) << c.contents;
+    }
     const std::string args = Replace(c.args, dir, file);
     const int code = RunCommand("timeout 60 " + BinDir() + "/stairplan " + args, dir + "/run.out", dir + "/run.err");
     const std::string out = ReadFile(dir + "/run.out");

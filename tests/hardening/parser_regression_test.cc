@@ -5,7 +5,13 @@
 #include <stdexcept>
 #include <string>
 
+#include <filesystem>
+#include <fstream>
+
 #include "geometry/stair_spec_yaml.h"
+#include "planning/optim/oqp_reader.h"
+#include "planning/plan_json_reader.h"
+#include "test_paths.h"
 
 using namespace stairplan;
 
@@ -30,4 +36,24 @@ TEST_CASE("stairs YAML: a key that is not a field name is a FieldError naming th
   CHECK_THAT(ErrorOf([&] { StairSpecFromYaml(found, "found.yaml"); }), Catch::Contains("found.yaml"));
   CHECK_THAT(ErrorOf([&] { StairSpecFromYaml("[steps]: 3\n", "list-key.yaml"); }), Catch::Contains("list-key.yaml"));
   CHECK_THAT(ErrorOf([&] { StairSpecFromYaml("? {rise: 1}\n: 3\n", "map-key.yaml"); }), Catch::Contains("map-key.yaml"));
+}
+
+TEST_CASE("plan.json: a stair_index outside int's range is an error naming the field", "[hardening][ubsan][plan_json]") {
+  // UBSan on the plan.json reader: the double was cast to int unchecked (undefined behaviour).
+  std::string plan = stairplan::testing::ReadFile(stairplan::testing::SourceDir() + "/tests/fuzz/corpus/plan_json/minimal.json");
+  REQUIRE(plan.find("\"stair_index\":") != std::string::npos);
+  for (const char* value : {"1e300", "-5", "2.5"}) {
+    std::string edited = plan;
+    edited.replace(edited.find("\"stair_index\":"), 14, std::string("\"stair_index\": ") + value + ", \"x0\":");
+    const std::string error = ErrorOf([&] { ReadPlanJson(edited, "index.json"); });
+    CHECK_THAT(error, Catch::Contains("index.json") && Catch::Contains("stair_index"));
+  }
+}
+
+TEST_CASE("Online QP sequence: huge sizes in dims.oqp are an error naming it, before any allocation", "[hardening][ubsan][oqp]") {
+  const std::string dir = stairplan::testing::MakeTempDir("oqp-dims");
+  for (const char* dims : {"1e300 2 1 0\n", "100000 100000 100000 0\n", "nan 2 1 0\n", "2.5 2 1 0\n"}) {
+    std::ofstream(dir + "/dims.oqp") << dims;
+    CHECK_THAT(ErrorOf([&] { optim::ReadOqpSequence(dir); }), Catch::Contains("dims.oqp"));
+  }
 }
