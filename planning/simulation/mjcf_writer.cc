@@ -121,11 +121,11 @@ void WriteStairs(std::ostringstream& out, const Staircase& stairs) {
   }
 }
 
-void WriteMotors(std::ostringstream& out, const RobotModel& robot) {
+void WriteMotors(std::ostringstream& out, const RobotModel& robot, double effort_scale) {
   out << "  <actuator>\n";
   for (const LegModel& leg : robot.legs()) {
     for (std::size_t i = 0; i < leg.joint_names.size(); ++i) {
-      const double effort = leg.limits[i].effort > 0.0 ? leg.limits[i].effort : 1e3;
+      const double effort = effort_scale * (leg.limits[i].effort > 0.0 ? leg.limits[i].effort : 1e3);
       out << "    <motor name='" << leg.joint_names[i] << "_motor' joint='" << leg.joint_names[i]
           << "' ctrllimited='true' ctrlrange='" << -effort << " " << effort << "'/>\n";
     }
@@ -145,6 +145,7 @@ void MjcfSettings::Validate() const {
   check("armature", armature, 0.0, 10.0);
   check("min_mass", min_mass, 1e-9, 1.0);
   check("min_inertia", min_inertia, 1e-12, 1.0);
+  check("effort_scale", effort_scale, 1e-3, 1e3);
 }
 
 std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const MjcfSettings& settings) {
@@ -166,7 +167,7 @@ std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const Mj
   WriteGeoms(out, *base, "      ");
   for (const auto& child : base->child_links) WriteBody(out, *child, settings, 3);
   out << "    </body>\n  </worldbody>\n";
-  WriteMotors(out, robot);
+  WriteMotors(out, robot, settings.effort_scale);
   out << "</mujoco>\n";
   return out.str();
 }

@@ -19,6 +19,7 @@ struct MjcfSettings {
   double armature = 0.01;         ///< rotor inertia added to every joint [kg m^2], for stability
   double min_mass = 1e-3;         ///< MuJoCo needs positive mass on moving bodies [kg]
   double min_inertia = 1e-6;      ///< ... and positive inertia [kg m^2]
+  double effort_scale = 1.0;      ///< motor torque limits are the URDF efforts times this (what-if studies)
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;

@@ -1,0 +1,458 @@
+#include "planning/simulation/plan_executor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <mujoco/mujoco.h>
+
+#include "collision/stance_check.h"
+#include "planning/plan_pipeline.h"
+#include "planning/validation/traversal_validator.h"
+
+namespace stairplan {
+namespace {
+
+constexpr double kMaxTargetSpeed = 20.0;  // joint target velocity cap [rad/s]: IK branch jumps are not velocities
+constexpr double kFrictionUse = 0.7;      // share of the friction cone the stance forces may use
+constexpr double kBlendTime = 0.1;        // a leg's aim moves between planned and measured body over this [s]
+
+double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+}  // namespace
+
+struct PlanExecutor::LegState {
+  int kin = 0;                              // index in kinematics_
+  std::string name;
+  std::array<int, 3> qpos{}, dof{}, motor{};
+  std::array<double, 3> effort{};
+  int foot_body = -1;
+  int foot_geom = -1;                       // the foot's sphere geom, -1 when it has none
+  double foot_radius = 0.0;
+  bool stance = true;
+  Eigen::Vector3d foothold_W = Eigen::Vector3d::Zero();  // where the stance foot stands
+  int step = -1;                            // the footstep being swung, -1 in stance
+  int next = 0;                             // next entry of leg_steps_
+  std::unique_ptr<SwingTrajectory> swing;
+  Eigen::Vector3d q_target = Eigen::Vector3d::Zero();
+  Eigen::Vector3d q_target_prev = Eigen::Vector3d::Zero();
+  bool has_target = false;
+  double t_switch = -1e9;                   // plan time of the last liftoff or touchdown [s]
+};
+
+PlanExecutor::PlanExecutor(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const Plan& plan,
+                           const SimSettings& settings)
+    : stairs_(stairs), map_(map), plan_(plan), settings_(settings), kinematics_(robot), ws_(kinematics_) {
+  settings_.Validate();
+  if (plan.body.empty()) throw std::invalid_argument("plan.body: no body samples to execute");
+  if (plan.legs.size() != 4 || plan.initial_feet_W.size() != 4) {
+    throw std::invalid_argument("plan.legs: a plan for four legs with four initial footholds is needed");
+  }
+  world_ = std::make_unique<MujocoWorld>(robot, stairs, settings_.world);
+  const mjModel* m = world_->model();
+  mjData* d = world_->data();
+  mass_ = world_->RobotMass();
+  base_body_ = mj_name2id(m, mjOBJ_BODY, robot.base_link().c_str());
+  kp_ = settings_.kp_per_kg * mass_;
+  kd_ = settings_.kd_per_kg * mass_;
+  legs_.resize(4);
+  leg_steps_.resize(4);
+  for (int i = 0; i < 4; ++i) {
+    const std::string& name = plan.legs[static_cast<std::size_t>(i)];
+    LegState& leg = legs_[static_cast<std::size_t>(i)];
+    leg.kin = kinematics_.LegIndex(name);  // throws for unknown legs
+    leg.name = name;
+    const LegModel& model = kinematics_.leg(leg.kin).model();
+    for (std::size_t j = 0; j < 3; ++j) {
+      leg.qpos[j] = world_->QposIndex(model.joint_names[j]);
+      leg.dof[j] = world_->QvelIndex(model.joint_names[j]);
+      leg.motor[j] = world_->MotorIndex(model.joint_names[j]);
+      leg.effort[j] = settings_.world.effort_scale * (model.limits[j].effort > 0.0 ? model.limits[j].effort : 1e3);
+    }
+    leg.foot_body = mj_name2id(m, mjOBJ_BODY, model.foot_link.c_str());
+    if (leg.foot_body < 0) throw std::invalid_argument("robot: no body for foot link " + model.foot_link);
+    for (int g = 0; g < m->ngeom; ++g) {
+      if (m->geom_bodyid[g] == leg.foot_body && m->geom_type[g] == mjGEOM_SPHERE) {
+        leg.foot_geom = g;
+        leg.foot_radius = m->geom_size[3 * g];
+        break;
+      }
+    }
+    leg.foothold_W = plan.initial_feet_W[static_cast<std::size_t>(i)];
+    for (std::size_t k = 0; k < plan.footsteps.size(); ++k) {
+      if (plan.footsteps[k].leg == name) leg_steps_[static_cast<std::size_t>(i)].push_back(static_cast<int>(k));
+    }
+    std::sort(leg_steps_[static_cast<std::size_t>(i)].begin(), leg_steps_[static_cast<std::size_t>(i)].end(),
+              [&](int a, int b) { return plan.footsteps[static_cast<std::size_t>(a)].t_liftoff <
+                                         plan.footsteps[static_cast<std::size_t>(b)].t_liftoff; });
+  }
+  for (const Footstep& f : plan.footsteps) {
+    if (std::find(plan.legs.begin(), plan.legs.end(), f.leg) == plan.legs.end()) {
+      throw std::invalid_argument("plan.footsteps: unknown leg '" + f.leg + "'");
+    }
+  }
+  // Start at the plan's first pose, a few millimetres up so that no foot starts inside a tread.
+  Control(0.0);
+  for (const LegState& leg : legs_) {
+    for (std::size_t j = 0; j < 3; ++j) d->qpos[leg.qpos[j]] = leg.q_target(static_cast<Eigen::Index>(j));
+  }
+  const BodyPose start = BodyPoseAt(plan.body, 0.0);
+  world_->SetBasePose(start.position_W + Eigen::Vector3d(0, 0, 0.003), start.yaw, start.pitch);
+}
+
+PlanExecutor::~PlanExecutor() = default;
+
+double PlanExecutor::PlanTime() const { return (world_->time() - settings_.settle_time) / settings_.time_scale; }
+
+BodyPose PlanExecutor::MeasuredPose() const {
+  BodyPose pose;
+  pose.position_W = world_->BasePosition();
+  const Eigen::Vector3d rpy = world_->BaseRollPitchYaw();
+  pose.roll = rpy.x();
+  pose.pitch = rpy.y();
+  pose.yaw = rpy.z();
+  return pose;
+}
+
+Eigen::Vector3d PlanExecutor::FootContactPoint(const LegState& leg) const {
+  const mjData* d = const_cast<MujocoWorld&>(*world_).data();
+  if (leg.foot_geom < 0) {
+    const double* p = d->xpos + 3 * leg.foot_body;
+    return {p[0], p[1], p[2]};
+  }
+  const double* p = d->geom_xpos + 3 * leg.foot_geom;
+  return {p[0], p[1], p[2] - leg.foot_radius};
+}
+
+void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touching) {
+  for (std::size_t i = 0; i < legs_.size(); ++i) {
+    LegState& leg = legs_[i];
+    const std::vector<int>& steps = leg_steps_[i];
+    if (leg.stance && leg.next < static_cast<int>(steps.size())) {
+      const Footstep& f = plan_.footsteps[static_cast<std::size_t>(steps[static_cast<std::size_t>(leg.next)])];
+      if (tp >= f.t_liftoff) {
+        leg.stance = false;
+        leg.step = steps[static_cast<std::size_t>(leg.next)];
+        ++leg.next;
+        leg.t_switch = tp;
+        // The swing starts where the foot really is, and ends where the plan says.
+        leg.swing = std::isfinite(f.swing_apex_z)
+                        ? std::make_unique<SwingTrajectory>(leg.foothold_W, f.position_W,
+                                                            std::max(f.swing_apex_z, leg.foothold_W.z() + settings_.swing.min_lift),
+                                                            settings_.swing)
+                        : std::make_unique<SwingTrajectory>(leg.foothold_W, f.position_W, stairs_, settings_.swing);
+      }
+    }
+    if (leg.stance) continue;
+    const Footstep& f = plan_.footsteps[static_cast<std::size_t>(leg.step)];
+    const double duration = std::max(f.t_touchdown - f.t_liftoff, 1e-6);
+    const double phase = (tp - f.t_liftoff) / duration;
+    const bool late_out = tp - f.t_touchdown > settings_.late_descent_max / std::max(settings_.late_descent_speed, 1e-6) + 0.1;
+    const bool touched = phase >= settings_.touchdown_phase && foot_touching[i];
+    if (!touched && !late_out) continue;
+    FootLanding landing;
+    landing.leg = leg.name;
+    landing.t_planned = f.t_touchdown;
+    landing.t_contact = touched ? tp : -1.0;
+    landing.touched = touched;
+    landing.target_W = f.position_W;
+    landing.landed_W = FootContactPoint(leg);
+    landing.error_m = (landing.landed_W - f.position_W).head<2>().norm();
+    landing.stair = map_.StairAt(landing.landed_W.head<2>());
+    landing.in_step_region = touched && landing.stair >= 0 &&
+                             std::abs(map_.stair(landing.stair).z - landing.landed_W.z()) < 0.02 &&
+                             map_.InStepRegion(landing.stair, landing.landed_W.head<2>(), 1e-6);
+    outcome_.landings.push_back(landing);
+    leg.stance = true;
+    leg.t_switch = tp;
+    leg.step = -1;
+    leg.swing.reset();
+    leg.foothold_W = landing.landed_W;
+  }
+}
+
+void PlanExecutor::Control(double tp) {
+  const mjModel* m = world_->model();
+  mjData* d = world_->data();
+  const double t_plan = std::clamp(tp, 0.0, plan_.duration());
+  const BodyPose planned = BodyPoseAt(plan_.body, t_plan);
+  const bool started = running_;
+  const BodyPose measured = started ? MeasuredPose() : planned;
+  // Swing legs aim from the measured body so that they land on their world targets even when the
+  // body lags; stance legs aim from the planned body so that their PD pulls the body back on plan.
+  // The share moves over kBlendTime after a liftoff or touchdown so that no target jumps.
+  const auto aim_pose = [&](const LegState& leg) {
+    const double ramp = std::clamp((tp - leg.t_switch) / kBlendTime, 0.0, 1.0);
+    const double a = settings_.swing_pose_feedback * (leg.stance ? 1.0 - ramp : ramp);
+    BodyPose pose = planned;
+    pose.position_W += a * (measured.position_W - planned.position_W);
+    pose.roll += a * WrapAngle(measured.roll - planned.roll);
+    pose.pitch += a * WrapAngle(measured.pitch - planned.pitch);
+    pose.yaw += a * WrapAngle(measured.yaw - planned.yaw);
+    return pose;
+  };
+
+  // Virtual-model forces of the stance feet: the wrench that carries the body's weight and pulls
+  // its position and attitude onto the plan (PD on the measured base pose and velocity), split over
+  // the stance feet by least norm, then kept in their friction cones and never pulling.
+  const Eigen::Matrix3d r_measured = measured.ToIsometry().linear();
+  std::vector<Eigen::Vector3d> force(legs_.size(), Eigen::Vector3d::Zero());
+  std::vector<int> stance;
+  for (std::size_t i = 0; i < legs_.size(); ++i) {
+    if (legs_[i].stance) stance.push_back(static_cast<int>(i));
+  }
+  if (started && !stance.empty()) {
+    const double* com = d->subtree_com + 3 * base_body_;
+    constexpr double kH = 0.005;  // planned velocity by central difference [s]
+    const BodyPose ahead = BodyPoseAt(plan_.body, std::clamp(tp + kH, 0.0, plan_.duration()));
+    const BodyPose behind = BodyPoseAt(plan_.body, std::clamp(tp - kH, 0.0, plan_.duration()));
+    const Eigen::Vector3d v_plan = (ahead.position_W - behind.position_W) / (2 * kH * settings_.time_scale);
+    const Eigen::Vector3d v(d->qvel[0], d->qvel[1], d->qvel[2]);
+    const Eigen::Vector3d omega_W = r_measured * Eigen::Vector3d(d->qvel[3], d->qvel[4], d->qvel[5]);
+    const Eigen::Vector3d kp(settings_.xy_kp, settings_.xy_kp, settings_.height_kp);
+    const Eigen::Vector3d kd(settings_.xy_kd, settings_.xy_kd, settings_.height_kd);
+    const Eigen::Vector3d wrench_f =
+        mass_ * (Eigen::Vector3d(0, 0, 9.81) + kp.cwiseProduct(planned.position_W - measured.position_W) +
+                 kd.cwiseProduct(v_plan - v));
+    const Eigen::AngleAxisd rotation_error(planned.ToIsometry().linear() * r_measured.transpose());
+    const Eigen::Vector3d inertia =
+        mass_ / 4 * Eigen::Vector3d(std::pow(std::max(kinematics_.robot().hip_width(), 0.1), 2),
+                                    std::pow(std::max(kinematics_.robot().hip_length(), 0.2), 2),
+                                    std::pow(std::max(kinematics_.robot().hip_length(), 0.2), 2));
+    const Eigen::Vector3d wrench_t = inertia.cwiseProduct(settings_.attitude_kp * rotation_error.angle() *
+                                                              rotation_error.axis() -
+                                                          settings_.attitude_kd * omega_W);
+    // Vertical forces give the vertical force and the roll and pitch moments about the centre of
+    // mass (least norm over the stance feet); the force along the ground is shared equally. Internal
+    // forces between the feet would only load the joints and risk slipping.
+    const auto n = static_cast<Eigen::Index>(stance.size());
+    Eigen::MatrixXd a(3, n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const Eigen::Vector3d r = FootContactPoint(legs_[static_cast<std::size_t>(stance[static_cast<std::size_t>(k)])]) -
+                                Eigen::Vector3d(com[0], com[1], com[2]);
+      a.col(k) << 1.0, r.y(), -r.x();
+    }
+    const Eigen::Vector3d wrench(wrench_f.z(), wrench_t.x(), wrench_t.y());
+    const Eigen::MatrixXd gram = a * a.transpose() + 1e-6 * Eigen::MatrixXd::Identity(3, 3);
+    const Eigen::VectorXd f = a.transpose() * gram.ldlt().solve(wrench);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      Eigen::Vector3d fk(wrench_f.x() / static_cast<double>(n), wrench_f.y() / static_cast<double>(n), f(k));
+      fk.z() = std::clamp(fk.z(), 0.0, 3.0 * mass_ * 9.81);
+      const double tangential = fk.head<2>().norm(), cone = kFrictionUse * settings_.world.friction * fk.z();
+      if (tangential > cone) fk.head<2>() *= cone / tangential;
+      force[static_cast<std::size_t>(stance[static_cast<std::size_t>(k)])] = fk;
+    }
+  }
+
+  for (std::size_t i = 0; i < legs_.size(); ++i) {
+    LegState& leg = legs_[i];
+    const LegKinematics& kin = kinematics_.leg(leg.kin);
+    LegWorkspace& lws = ws_.leg(leg.kin);
+    Eigen::Vector3d contact = leg.foothold_W;
+    if (!leg.stance && leg.swing) {
+      const Footstep& f = plan_.footsteps[static_cast<std::size_t>(leg.step)];
+      const double phase = (tp - f.t_liftoff) / std::max(f.t_touchdown - f.t_liftoff, 1e-6);
+      contact = leg.swing->At(phase);
+      if (phase > 1.0) {  // late: keep lowering until the foot finds the stairs
+        contact.z() -= std::min(settings_.late_descent_speed * (tp - f.t_touchdown), settings_.late_descent_max);
+      }
+    }
+    const BodyPose pose = aim_pose(leg);
+    const Eigen::Isometry3d body_W = pose.ToIsometry();
+    const Eigen::Isometry3d w_body = body_W.inverse();
+    const Eigen::Vector3d seed = leg.has_target ? leg.q_target : kin.nominal();
+    IkResult ik = kin.SolveFootIk(w_body * FootOriginForContact(kin.model(), contact, body_W.linear()), seed, lws, settings_.ik);
+    if (!kin.model().foot_sphere_center.isZero()) {
+      const Eigen::Matrix3d foot_rotation = body_W.linear() * kin.FootPose(ik.q, lws).linear();
+      ik = kin.SolveFootIk(w_body * FootOriginForContact(kin.model(), contact, foot_rotation), ik.q, lws, settings_.ik);
+    }
+    leg.q_target_prev = leg.has_target ? leg.q_target : ik.q;
+    leg.q_target = ik.q;
+    leg.has_target = true;
+    if (!started) continue;
+
+    Eigen::Vector3d q, qd;
+    for (int j = 0; j < 3; ++j) {
+      q(j) = d->qpos[leg.qpos[static_cast<std::size_t>(j)]];
+      qd(j) = d->qvel[leg.dof[static_cast<std::size_t>(j)]];
+    }
+    const Eigen::Vector3d qd_target =
+        ((leg.q_target - leg.q_target_prev) / (m->opt.timestep * settings_.time_scale)).cwiseMax(-kMaxTargetSpeed).cwiseMin(kMaxTargetSpeed);
+    Eigen::Vector3d tau = kp_ * (leg.q_target - q) + kd_ * (qd_target - qd);
+    if (leg.stance && force[i].z() > 0.0) {
+      // The ground pushes the foot with f: the joints hold it with -J^T f (base frame).
+      tau -= kin.FootJacobian(q, lws).transpose() * (r_measured.transpose() * force[i]);
+    }
+    for (std::size_t j = 0; j < 3; ++j) {
+      const double demanded = tau(static_cast<Eigen::Index>(j)) + d->qfrc_bias[leg.dof[j]];
+      JointTorquePeak& peak = outcome_.torques[i * 3 + j];
+      if (std::abs(demanded) > peak.peak) {
+        peak.peak = std::abs(demanded);
+        peak.t = tp;
+      }
+      d->ctrl[leg.motor[j]] = std::clamp(demanded, -leg.effort[j], leg.effort[j]);
+    }
+  }
+}
+
+bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
+  std::fill(foot_touching.begin(), foot_touching.end(), false);
+  const mjModel* m = world_->model();
+  const mjData* d = world_->data();
+  const int base = base_body_;
+  for (int c = 0; c < d->ncon; ++c) {
+    const mjContact& con = d->contact[c];
+    const char* n1 = mj_id2name(m, mjOBJ_GEOM, con.geom1);
+    const char* n2 = mj_id2name(m, mjOBJ_GEOM, con.geom2);
+    const bool s1 = n1 != nullptr && std::string(n1).rfind("stair_", 0) == 0;
+    const bool s2 = n2 != nullptr && std::string(n2).rfind("stair_", 0) == 0;
+    if (s1 == s2) continue;
+    const int robot_geom = s1 ? con.geom2 : con.geom1;
+    const std::string stair = s1 ? n1 : n2;
+    const int body = m->geom_bodyid[robot_geom];
+    bool foot = false;
+    for (std::size_t i = 0; i < legs_.size(); ++i) {
+      if (legs_[i].foot_body == body) {
+        foot_touching[i] = true;
+        foot = true;
+      }
+    }
+    if (foot) continue;
+    const std::string link = mj_id2name(m, mjOBJ_BODY, body);
+    const double depth = -con.dist;
+    auto it = std::find_if(outcome_.other_contacts.begin(), outcome_.other_contacts.end(),
+                           [&](const LinkContact& l) { return l.link == link; });
+    if (it == outcome_.other_contacts.end()) {
+      outcome_.other_contacts.push_back({link, stair, tp, depth, 0});
+      it = outcome_.other_contacts.end() - 1;
+    }
+    it->max_depth = std::max(it->max_depth, depth);
+    ++it->steps;
+    // Only the body's own geoms make a fall; a shin on a nosing is reported, not judged here.
+    if ((body == base || m->body_parentid[body] == 0) && !fallen_) {
+      fallen_ = true;
+      outcome_.status = SimStatus::kFall;
+      std::ostringstream cause;
+      cause << "body " << link << " touched " << stair << " at t=" << tp << " s";
+      outcome_.cause = cause.str();
+    }
+  }
+  return fallen_;
+}
+
+void PlanExecutor::RecordFrame(double tp) {
+  const mjModel* m = world_->model();
+  const mjData* d = world_->data();
+  SimFrame frame;
+  frame.t = tp;
+  const BodyPose measured = MeasuredPose();
+  const BodyPose planned = BodyPoseAt(plan_.body, std::clamp(tp, 0.0, plan_.duration()));
+  frame.base_W = measured.position_W;
+  frame.base_rpy = {measured.roll, measured.pitch, measured.yaw};
+  frame.planned_W = planned.position_W;
+  frame.planned_pitch = planned.pitch;
+  for (const LegState& leg : legs_) frame.stance.push_back(leg.stance);
+  for (int b = 1; b < m->nbody; ++b) {
+    frame.bodies.emplace_back(d->xpos[3 * b], d->xpos[3 * b + 1], d->xpos[3 * b + 2]);
+    frame.parents.push_back(m->body_parentid[b] - 1);
+  }
+  for (const LegState& leg : legs_) {
+    if (leg.foot_geom < 0) continue;
+    const double* p = d->geom_xpos + 3 * leg.foot_geom;
+    frame.feet.emplace_back(p[0], p[1], p[2]);
+    frame.foot_radii.push_back(leg.foot_radius);
+  }
+  outcome_.frames.push_back(std::move(frame));
+}
+
+void PlanExecutor::Judge(double tp) {
+  const BodyPose measured = MeasuredPose();
+  const BodyPose planned = BodyPoseAt(plan_.body, std::clamp(tp, 0.0, plan_.duration()));
+  if (!measured.position_W.allFinite()) {
+    fallen_ = true;
+    outcome_.status = SimStatus::kFall;
+    outcome_.cause = "the simulation diverged at t=" + std::to_string(tp) + " s";
+    return;
+  }
+  const double roll = std::abs(measured.roll);
+  const double pitch_error = std::abs(WrapAngle(measured.pitch - planned.pitch));
+  outcome_.max_roll = std::max(outcome_.max_roll, roll);
+  outcome_.max_pitch_error = std::max(outcome_.max_pitch_error, pitch_error);
+  if (tp >= 0.0) {
+    outcome_.max_height_error =
+        std::max(outcome_.max_height_error, std::abs(measured.position_W.z() - planned.position_W.z()));
+  }
+  if (roll > settings_.fall_angle || pitch_error > settings_.fall_angle) {
+    fallen_ = true;
+    outcome_.status = SimStatus::kFall;
+    std::ostringstream cause;
+    cause << (roll > settings_.fall_angle ? "roll " : "pitch error ")
+          << (roll > settings_.fall_angle ? roll : pitch_error) << " rad at t=" << tp << " s";
+    outcome_.cause = cause.str();
+  }
+}
+
+SimulationOutcome PlanExecutor::Run() {
+  const auto start = std::chrono::steady_clock::now();
+  outcome_ = SimulationOutcome{};
+  running_ = true;
+  for (const LegState& leg : legs_) {
+    const LegModel& model = kinematics_.leg(leg.kin).model();
+    for (std::size_t j = 0; j < 3; ++j) outcome_.torques.push_back({model.joint_names[j], 0.0, leg.effort[j], 0.0, 0.0});
+  }
+  const double t_final = plan_.duration() + settings_.hold_time / settings_.time_scale;
+  std::vector<bool> touching(legs_.size(), false);
+  double next_frame = -settings_.settle_time / settings_.time_scale;
+  while (!fallen_) {
+    const double tp = PlanTime();
+    if (tp > t_final) break;
+    if (settings_.frame_interval > 0.0 && tp >= next_frame - 1e-9) {
+      RecordFrame(tp);
+      next_frame += settings_.frame_interval;
+    }
+    if (tp >= 0.0) UpdatePhases(tp, touching);
+    Control(tp);
+    world_->Step();
+    ++outcome_.sim_steps;
+    if (CheckContacts(PlanTime(), touching)) break;
+    Judge(PlanTime());
+  }
+  const double tp = PlanTime();
+  outcome_.t_end = tp;
+  const BodyPose measured = MeasuredPose();
+  outcome_.final_base_W = measured.position_W;
+  outcome_.final_rpy = {measured.roll, measured.pitch, measured.yaw};
+  const BodyState& last = plan_.body.back();
+  outcome_.final_error_m = (measured.position_W - Eigen::Vector3d(last.x, last.y, last.z)).norm();
+  if (!fallen_) {
+    if (outcome_.final_error_m <= settings_.goal_tolerance) {
+      outcome_.status = SimStatus::kSuccess;
+    } else {
+      outcome_.status = SimStatus::kStalled;
+      std::ostringstream cause;
+      cause << "the base ended " << outcome_.final_error_m << " m from the plan's final pose";
+      outcome_.cause = cause.str();
+    }
+  }
+  for (JointTorquePeak& peak : outcome_.torques) {
+    peak.ratio = peak.effort_limit > 0.0 ? peak.peak / peak.effort_limit : 0.0;
+    outcome_.max_torque_ratio = std::max(outcome_.max_torque_ratio, peak.ratio);
+  }
+  outcome_.time_scale = settings_.time_scale;
+  outcome_.sim_time_s = world_->time();
+  outcome_.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome_.real_time_factor = outcome_.wall_time_s > 0.0 ? outcome_.sim_time_s / outcome_.wall_time_s : 0.0;
+  return outcome_;
+}
+
+SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan, const SimSettings& settings) {
+  PipelineOptions options;
+  options.facing = plan.facing;
+  const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
+  PlanExecutor executor(robot, stairs, map, plan, settings);
+  return executor.Run();
+}
+
+}  // namespace stairplan

@@ -1,0 +1,73 @@
+// The executor: plays a plan on the simulated robot. Every millisecond the plan's body pose and
+// each foot's contact point (its foothold, or the point on its swing trajectory) become joint
+// targets through our IK; joint PD with gravity compensation tracks them, and stance legs add the
+// torques that carry the body's weight, distributed over the stance feet with feedback on the
+// base height and attitude. Touchdown is driven by contact (seed 000 [0055]): a swinging foot that
+// touches the stairs in the second half of its swing becomes a stance foot where it touched.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "geometry/constrained_map.h"
+#include "kinematics/robot_kinematics.h"
+#include "planning/plan.h"
+#include "planning/simulation/mujoco_world.h"
+#include "planning/simulation/sim_outcome.h"
+#include "planning/simulation/sim_settings.h"
+
+namespace stairplan {
+
+class PlanExecutor {
+ public:
+  /// Builds the world and places the robot on the plan's initial footholds. Throws
+  /// std::invalid_argument when the plan has no body samples or names unknown legs, and
+  /// std::runtime_error when MuJoCo rejects the model. `map` judges the landings (step regions).
+  PlanExecutor(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const Plan& plan,
+               const SimSettings& settings = {});
+  ~PlanExecutor();
+  PlanExecutor(const PlanExecutor&) = delete;
+  PlanExecutor& operator=(const PlanExecutor&) = delete;
+
+  /// Settles, executes the plan, holds, and judges. Call once.
+  SimulationOutcome Run();
+
+  const MujocoWorld& world() const { return *world_; }
+
+ private:
+  struct LegState;
+
+  double PlanTime() const;
+  void UpdatePhases(double tp, const std::vector<bool>& foot_touching);
+  void Control(double tp);
+  bool CheckContacts(double tp, std::vector<bool>& foot_touching);
+  Eigen::Vector3d FootContactPoint(const LegState& leg) const;
+  BodyPose MeasuredPose() const;
+  void RecordFrame(double tp);
+  void Judge(double tp);
+
+  const Staircase& stairs_;
+  const ConstrainedMap& map_;
+  const Plan& plan_;
+  SimSettings settings_;
+  RobotKinematics kinematics_;
+  RobotWorkspace ws_;
+  std::unique_ptr<MujocoWorld> world_;
+  std::vector<LegState> legs_;
+  std::vector<std::vector<int>> leg_steps_;  // per leg: footstep indices by liftoff
+  double mass_ = 0.0;
+  int base_body_ = -1;
+  double kp_ = 0.0, kd_ = 0.0;
+  SimulationOutcome outcome_;
+  bool fallen_ = false;
+  bool running_ = false;  // false while placing the robot: targets only, no torques
+};
+
+/// One call: builds the robot-aware map for the plan's facing, executes the plan, returns what
+/// happened. The sweep's `--simulate` and `stairplan simulate` use this.
+SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan,
+                           const SimSettings& settings = {});
+
+}  // namespace stairplan

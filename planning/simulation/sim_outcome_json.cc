@@ -1,0 +1,59 @@
+#include "planning/simulation/sim_outcome_json.h"
+
+namespace stairplan {
+namespace {
+
+nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+nlohmann::json SimulationToJson(const SimulationOutcome& o) {
+  nlohmann::json j;
+  j["status"] = ToString(o.status);
+  j["passed"] = o.Passed();
+  j["cause"] = o.cause;
+  j["first_cause"] = o.FirstCause();
+  j["t_end_s"] = o.t_end;
+  j["final_base"] = Vec(o.final_base_W);
+  j["final_roll_pitch_yaw"] = Vec(o.final_rpy);
+  j["final_error_m"] = o.final_error_m;
+  j["max_roll_rad"] = o.max_roll;
+  j["max_pitch_error_rad"] = o.max_pitch_error;
+  j["max_height_error_m"] = o.max_height_error;
+  j["max_landing_error_m"] = o.MaxLandingError();
+  j["all_landed_in_step_regions"] = o.AllLandedInRegions();
+  j["landings"] = nlohmann::json::array();
+  for (const FootLanding& l : o.landings) {
+    j["landings"].push_back({{"leg", l.leg},
+                             {"t_planned", l.t_planned},
+                             {"t_contact", l.t_contact},
+                             {"touched", l.touched},
+                             {"target", Vec(l.target_W)},
+                             {"landed", Vec(l.landed_W)},
+                             {"error_m", l.error_m},
+                             {"stair", l.stair},
+                             {"in_step_region", l.in_step_region}});
+  }
+  j["other_contacts"] = nlohmann::json::array();
+  for (const LinkContact& c : o.other_contacts) {
+    j["other_contacts"].push_back({{"link", c.link},
+                                   {"stair_geom", c.stair_geom},
+                                   {"t_first", c.t_first},
+                                   {"max_depth_m", c.max_depth},
+                                   {"steps", c.steps}});
+  }
+  j["torques"] = nlohmann::json::array();
+  for (const JointTorquePeak& t : o.torques) {
+    j["torques"].push_back(
+        {{"joint", t.joint}, {"peak_nm", t.peak}, {"effort_limit_nm", t.effort_limit}, {"ratio", t.ratio}, {"t", t.t}});
+  }
+  j["max_torque_ratio"] = o.max_torque_ratio;
+  j["time_scale"] = o.time_scale;
+  j["sim_steps"] = o.sim_steps;
+  j["sim_time_s"] = o.sim_time_s;
+  j["wall_time_s"] = o.wall_time_s;
+  j["real_time_factor"] = o.real_time_factor;
+  return j;
+}
+
+}  // namespace stairplan

@@ -1,0 +1,54 @@
+#include "planning/simulation/sim_settings.h"
+
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "geometry/field_error.h"
+
+namespace stairplan {
+
+void SimSettings::Validate() const {
+  world.Validate();
+  swing.Validate();
+  ik.Validate();
+  const auto check = [](const char* name, double v, double lo, double hi) {
+    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
+  };
+  check("kp_per_kg", kp_per_kg, 0.0, 1e4);
+  check("kd_per_kg", kd_per_kg, 0.0, 1e3);
+  check("xy_kp", xy_kp, 0.0, 1e5);
+  check("xy_kd", xy_kd, 0.0, 1e4);
+  check("height_kp", height_kp, 0.0, 1e5);
+  check("height_kd", height_kd, 0.0, 1e4);
+  check("attitude_kp", attitude_kp, 0.0, 1e5);
+  check("attitude_kd", attitude_kd, 0.0, 1e4);
+  check("swing_pose_feedback", swing_pose_feedback, 0.0, 1.0);
+  check("time_scale", time_scale, 0.1, 100.0);
+  check("settle_time", settle_time, 0.0, 10.0);
+  check("hold_time", hold_time, 0.0, 10.0);
+  check("touchdown_phase", touchdown_phase, 0.0, 1.0);
+  check("late_descent_speed", late_descent_speed, 0.0, 10.0);
+  check("late_descent_max", late_descent_max, 0.0, 1.0);
+  check("fall_angle", fall_angle, 0.01, 3.2);
+  check("goal_tolerance", goal_tolerance, 1e-4, 10.0);
+  check("frame_interval", frame_interval, 0.0, 100.0);
+}
+
+void SimSettings::Set(const std::string& name, double value) {
+  const std::map<std::string, double*> fields = {
+      {"world.friction", &world.friction}, {"world.timestep", &world.timestep},
+      {"world.default_damping", &world.default_damping}, {"world.armature", &world.armature},
+      {"world.effort_scale", &world.effort_scale},
+      {"kp_per_kg", &kp_per_kg}, {"kd_per_kg", &kd_per_kg}, {"xy_kp", &xy_kp}, {"xy_kd", &xy_kd},
+      {"height_kp", &height_kp}, {"height_kd", &height_kd}, {"attitude_kp", &attitude_kp},
+      {"attitude_kd", &attitude_kd}, {"swing_pose_feedback", &swing_pose_feedback}, {"settle_time", &settle_time}, {"time_scale", &time_scale},
+      {"hold_time", &hold_time}, {"touchdown_phase", &touchdown_phase}, {"late_descent_speed", &late_descent_speed},
+      {"late_descent_max", &late_descent_max}, {"fall_angle", &fall_angle}, {"goal_tolerance", &goal_tolerance},
+      {"frame_interval", &frame_interval}};
+  const auto it = fields.find(name);
+  if (it == fields.end()) throw FieldError(name, "no such simulation setting");
+  *it->second = value;
+}
+
+}  // namespace stairplan

@@ -1,0 +1,58 @@
+// Settings of a physics run: the simulated world, the executor's controller (joint PD with gravity
+// compensation and a weight-distributing feed-forward), touchdown handling, and what counts as a
+// fall, a stall or a success.
+#pragma once
+
+#include <string>
+
+#include "kinematics/leg_ik.h"
+#include "planning/simulation/mjcf_writer.h"
+#include "planning/swing_trajectory.h"
+
+namespace stairplan {
+
+struct SimSettings {
+  MjcfSettings world;                ///< contact and integration (friction 0.8, 1 kHz)
+  SwingSettings swing;               ///< for footsteps whose plan gives no swing apex
+  IkSettings ik;
+
+  // Controller. Gains scale with the robot's mass so that one setting suits a 12 kg Unitree and a
+  // 50 kg ANYmal alike.
+  double kp_per_kg = 8.0;            ///< joint stiffness per kg of robot [N m/rad/kg]
+  double kd_per_kg = 0.2;            ///< joint damping per kg of robot [N m s/rad/kg]
+  double xy_kp = 400.0;              ///< base position feedback along the ground [1/s^2] (times mass)
+  double xy_kd = 40.0;               ///< [1/s]
+  double height_kp = 800.0;          ///< base height feedback [1/s^2] (times mass)
+  double height_kd = 60.0;           ///< [1/s]
+  double attitude_kp = 300.0;        ///< base roll/pitch feedback [1/s^2] (times mass and hip length^2)
+  double attitude_kd = 30.0;         ///< [1/s]
+  /// Share of the body-pose error (measured - planned) a swing leg follows so that it lands where
+  /// the plan says in the world even when the body lags: 1 = fully, 0 = not at all.
+  double swing_pose_feedback = 1.0;
+
+  // Timing and touchdown.
+  /// Plays the plan this many times slower (1: as planned). The crawl baseline's body shifts (about
+  /// 10 cm in 0.25 s, starting and stopping at once) are too abrupt for this quasi-static controller
+  /// at the plan's own pace: the stairbot rolls over within 2 s at 1 and 1.5, falls late at 2 and
+  /// climbs at 3. A quasi-static plan must survive any slowing, so 3 is the default and the pace is
+  /// reported with every outcome.
+  double time_scale = 3.0;
+  double settle_time = 0.5;          ///< standing on the initial footholds before the plan starts [s]
+  double hold_time = 1.0;            ///< standing after the plan ends before judging [s]
+  double touchdown_phase = 0.5;      ///< a foot contact counts as touchdown from this swing phase on
+  double late_descent_speed = 0.2;   ///< a foot late for touchdown keeps lowering at this speed [m/s]
+  double late_descent_max = 0.05;    ///< ... by at most this much [m]
+
+  // Judgement.
+  double fall_angle = 0.6;           ///< roll, or pitch away from the plan's, beyond this is a fall [rad]
+  double goal_tolerance = 0.10;      ///< final base position within this of the plan's last pose [m]
+  double frame_interval = 0.0;       ///< record a state for the drawings every this [s]; 0: none
+
+  /// Throws std::invalid_argument naming the field.
+  void Validate() const;
+  /// Sets the numeric field `name` (as spelled above, "world.friction" for the world's) to `value`;
+  /// throws std::invalid_argument naming an unknown field.
+  void Set(const std::string& name, double value);
+};
+
+}  // namespace stairplan

@@ -1,0 +1,115 @@
+// The physics check end to end: plans from our pipeline executed in MuJoCo by the executor.
+#include <catch2/catch.hpp>
+
+#include <set>
+
+#include "kinematics/builtin_robot.h"
+#include "planning/plan_pipeline.h"
+#include "planning/simulation/plan_executor.h"
+#include "planning/simulation/sim_outcome_json.h"
+#include "test_paths.h"
+
+using namespace stairplan;
+
+namespace {
+
+std::string Describe(const SimulationOutcome& o) {
+  return std::string(ToString(o.status)) + " / " + o.FirstCause() + " / landings " +
+         std::to_string(o.landings.size()) + ", max error " + std::to_string(o.MaxLandingError());
+}
+
+}  // namespace
+
+TEST_CASE("the built-in robot climbs the default stairs in MuJoCo", "[simulation]") {
+  const RobotModel& robot = BuiltinRobot();
+  const Staircase stairs(StairSpec{});
+  const PipelineResult planned = RunPipeline(robot, stairs);
+  REQUIRE(planned.validation.ok);
+  const SimulationOutcome o = Simulate(robot, stairs, planned.plan);
+  INFO(Describe(o));
+  CHECK(o.status == SimStatus::kSuccess);
+  CHECK(o.Passed());
+  CHECK(o.other_contacts.empty());
+  // Every footstep of the plan was executed and touched down by contact, inside its step region.
+  CHECK(o.landings.size() == planned.plan.footsteps.size());
+  for (const FootLanding& l : o.landings) {
+    INFO(l.leg << " at t=" << l.t_planned);
+    CHECK(l.touched);
+    CHECK(l.in_step_region);
+  }
+  CHECK(o.MaxLandingError() < 0.03);
+  // The final landing is the top one, where the plan ends.
+  CHECK(o.final_base_W.z() > stairs.total_rise());
+  CHECK(o.final_error_m < 0.05);
+  CHECK(o.max_torque_ratio > 0.05);  // the legs carried the robot
+  CHECK(o.max_torque_ratio <= 1.0);
+  CHECK(o.sim_steps > 1000 * planned.plan.duration() * o.time_scale);
+}
+
+TEST_CASE("a plan with the body far too low fails in MuJoCo and names the link on the stairs", "[simulation]") {
+  const RobotModel& robot = BuiltinRobot();
+  const Staircase stairs(StairSpec{});
+  PipelineOptions options;
+  options.validate = false;
+  Plan plan = RunPipeline(robot, stairs, options).plan;
+  for (BodyState& b : plan.body) b.z -= 0.25;
+  const SimulationOutcome o = Simulate(robot, stairs, plan);
+  INFO(Describe(o));
+  CHECK_FALSE(o.Passed());
+  REQUIRE_FALSE(o.other_contacts.empty());
+  std::set<std::string> links;
+  for (const LinkContact& c : o.other_contacts) links.insert(c.link);
+  // The link that hit the stairs is a named body of the robot, and is named in the first cause.
+  bool named = false;
+  for (const std::string& link : links) named = named || o.FirstCause().find(link) != std::string::npos;
+  CHECK(named);
+}
+
+TEST_CASE("the outcome JSON carries the verdict, landings, contacts, torques and speed", "[simulation]") {
+  SimulationOutcome o;
+  o.status = SimStatus::kFall;
+  o.cause = "roll 0.7 rad at t=3 s";
+  o.landings.push_back({"LF", 1.0, 1.01, true, {0.3, 0.2, 0.17}, {0.31, 0.2, 0.17}, 0.01, 1, true});
+  o.other_contacts.push_back({"LF_SHANK", "stair_nosing_2", 2.5, 0.004, 12});
+  o.torques.push_back({"LF_KFE", 45.0, 90.0, 0.5, 2.0});
+  const nlohmann::json j = SimulationToJson(o);
+  CHECK(j["status"] == "fall");
+  CHECK(j["passed"] == false);
+  CHECK(j["first_cause"] == "fall: roll 0.7 rad at t=3 s");
+  CHECK(j["landings"].size() == 1);
+  CHECK(j["landings"][0]["error_m"] == Approx(0.01));
+  CHECK(j["other_contacts"][0]["link"] == "LF_SHANK");
+  CHECK(j["torques"][0]["ratio"] == Approx(0.5));
+  CHECK(j.contains("real_time_factor"));
+}
+
+TEST_CASE("the physics verdict needs success, feet in their regions and no other contact", "[simulation]") {
+  SimulationOutcome o;
+  o.status = SimStatus::kSuccess;
+  o.landings.push_back({"LF", 1.0, 1.0, true, {0, 0, 0}, {0, 0, 0}, 0.0, 1, true});
+  CHECK(o.Passed());
+  CHECK(o.FirstCause().empty());
+  o.landings.push_back({"RF", 2.0, 2.0, true, {0, 0, 0}, {0.05, 0, 0}, 0.05, 1, false});
+  CHECK_FALSE(o.Passed());
+  CHECK(o.FirstCause().find("RF outside its step region") != std::string::npos);
+  o.landings.pop_back();
+  o.other_contacts.push_back({"RH_THIGH", "stair_block_1", 4.0, 0.01, 3});
+  CHECK_FALSE(o.Passed());
+  CHECK(o.FirstCause().find("RH_THIGH") != std::string::npos);
+  o.other_contacts.clear();
+  o.status = SimStatus::kStalled;
+  CHECK_FALSE(o.Passed());
+}
+
+TEST_CASE("simulation settings name the offending field", "[simulation]") {
+  SimSettings s;
+  s.fall_angle = -1.0;
+  CHECK_THROWS_WITH(s.Validate(), Catch::Contains("fall_angle"));
+  s = SimSettings{};
+  s.world.friction = -0.1;
+  CHECK_THROWS_WITH(s.Validate(), Catch::Contains("friction"));
+  const RobotModel& robot = BuiltinRobot();
+  const Staircase stairs(StairSpec{});
+  Plan empty;
+  CHECK_THROWS_WITH(Simulate(robot, stairs, empty), Catch::Contains("plan.body"));
+}
