@@ -66,43 +66,57 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
     }
   }
 
+  // One variable block per knot, [z, pitch, shift]: each knot's constraints then touch only its
+  // own block, so the solvers see a sparse Jacobian instead of a dense one.
   optim::Program prog;
-  const optim::VariableBlock zb = prog.AddVariables("height", n);
-  const optim::VariableBlock pb = prog.AddVariables("pitch", n);
-  const optim::VariableBlock sb = prog.AddVariables("com_shift", n);
+  std::vector<optim::VariableBlock> knot_blocks;
+  for (int k = 0; k < n; ++k) knot_blocks.push_back(prog.AddVariables("knot" + std::to_string(k), 3));
+  const auto Z = [](int k) { return 3 * k; };
+  const auto P = [](int k) { return 3 * k + 1; };
+  const auto S = [](int k) { return 3 * k + 2; };
   const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
   const Eigen::MatrixXd d1 = FirstDifferences(n), d2 = SecondDifferences(n);
   const Eigen::MatrixXd smooth = 2.0 * set.velocity_weight / (dt * dt) * d1.transpose() * d1 +
                                  2.0 * set.acceleration_weight / (dt * dt * dt * dt) * d2.transpose() * d2;
-  prog.AddQuadraticCost(zb, smooth, Eigen::VectorXd::Zero(n));
-  prog.AddQuadraticCost(pb, 2.0 * set.pitch_weight * identity + smooth, -2.0 * set.pitch_weight * pitch_ref);
-  prog.AddQuadraticCost(sb, 2.0 * set.shift_weight * identity + smooth, -2.0 * set.shift_weight * shift_ref);
+  const Eigen::MatrixXd hp = 2.0 * set.pitch_weight * identity + smooth;
+  const Eigen::MatrixXd hs = 2.0 * set.shift_weight * identity + smooth;
+  Eigen::MatrixXd& hessian = prog.MutableHessian();
+  Eigen::VectorXd& linear = prog.MutableLinearCost();
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      hessian(Z(i), Z(j)) = smooth(i, j);
+      hessian(P(i), P(j)) = hp(i, j);
+      hessian(S(i), S(j)) = hs(i, j);
+    }
+    linear[P(i)] = -2.0 * set.pitch_weight * pitch_ref[i];
+    linear[S(i)] = -2.0 * set.shift_weight * shift_ref[i];
+  }
   prog.AddConstant(set.pitch_weight * pitch_ref.squaredNorm() + set.shift_weight * shift_ref.squaredNorm());
-  const Eigen::MatrixXd zeros = Eigen::MatrixXd::Zero(n - 2, n);
-  Eigen::MatrixXd accel_z(3 * (n - 2), n), accel_p(3 * (n - 2), n), accel_s(3 * (n - 2), n);
-  accel_z << d2, zeros, zeros;
-  accel_p << zeros, d2, zeros;
-  accel_s << zeros, zeros, d2;
-  Eigen::VectorXd accel_hi(3 * (n - 2));
-  accel_hi << Eigen::VectorXd::Constant(n - 2, set.max_height_accel * dt * dt),
-      Eigen::VectorXd::Constant(n - 2, set.max_pitch_accel * dt * dt),
-      Eigen::VectorXd::Constant(n - 2, set.max_shift_accel * dt * dt);
-  prog.AddLinearConstraint({{zb, accel_z}, {pb, accel_p}, {sb, accel_s}}, -accel_hi, accel_hi, "acceleration");
-
-  Eigen::VectorXd z_lo = Eigen::VectorXd::Constant(n, -optim::kInf), z_hi = -z_lo;
-  Eigen::VectorXd p_lo = Eigen::VectorXd::Constant(n, -set.max_pitch), p_hi = -p_lo;
-  Eigen::VectorXd s_lo = Eigen::VectorXd::Constant(n, -set.max_shift), s_hi = -s_lo;
-  z_lo[0] = z_hi[0] = guess[0].z;
-  p_lo[0] = p_hi[0] = guess[0].pitch;
-  s_lo[0] = s_hi[0] = guess[0].com_shift;
-  prog.SetVariableBounds(zb, z_lo, z_hi);
-  prog.SetVariableBounds(pb, p_lo, p_hi);
-  prog.SetVariableBounds(sb, s_lo, s_hi);
+  // Acceleration limits: rows (quantity, k) over knots k .. k + 2.
+  {
+    const int rows_per = n - 2;
+    std::vector<optim::LinearTerm> terms;
+    for (int k = 0; k < n; ++k) terms.emplace_back(knot_blocks[static_cast<std::size_t>(k)], Eigen::MatrixXd::Zero(3 * rows_per, 3));
+    for (int q = 0; q < 3; ++q) {
+      for (int r = 0; r < rows_per; ++r) {
+        terms[static_cast<std::size_t>(r)].second(q * rows_per + r, q) = 1.0;
+        terms[static_cast<std::size_t>(r + 1)].second(q * rows_per + r, q) = -2.0;
+        terms[static_cast<std::size_t>(r + 2)].second(q * rows_per + r, q) = 1.0;
+      }
+    }
+    Eigen::VectorXd accel_hi(3 * rows_per);
+    accel_hi << Eigen::VectorXd::Constant(rows_per, set.max_height_accel * dt * dt),
+        Eigen::VectorXd::Constant(rows_per, set.max_pitch_accel * dt * dt),
+        Eigen::VectorXd::Constant(rows_per, set.max_shift_accel * dt * dt);
+    prog.AddLinearConstraint(terms, -accel_hi, accel_hi, "acceleration");
+  }
   Eigen::VectorXd x0(3 * n);
   for (int k = 0; k < n; ++k) {
-    x0[zb.start + k] = guess[static_cast<std::size_t>(k)].z;
-    x0[pb.start + k] = guess[static_cast<std::size_t>(k)].pitch;
-    x0[sb.start + k] = guess[static_cast<std::size_t>(k)].com_shift;
+    const BodyState& g = guess[static_cast<std::size_t>(k)];
+    x0.segment<3>(Z(k)) << g.z, g.pitch, g.com_shift;
+    Eigen::Vector3d lo(-optim::kInf, -set.max_pitch, -set.max_shift), hi = -lo;
+    if (k == 0) lo = hi = x0.segment<3>(0);  // knot 0 is the state
+    prog.SetVariableBounds(knot_blocks[static_cast<std::size_t>(k)], lo, hi);
   }
   prog.MutableInitialGuess() = x0;
 
@@ -110,33 +124,31 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
   const double wh = set.height_weight;
   optim::NonlinearCost height;
   height.name = "hip_height";
-  height.blocks = {zb, pb};
+  height.blocks = knot_blocks;
   height.value = [&, n](const Eigen::VectorXd& x) {
     double f = 0.0;
     for (int k = 0; k < n; ++k) {
       for (int l = 0; l < kBodyLegs; ++l) {
-        const double r = x[zb.start + k] + planner.HipDz(l, x[pb.start + k]) - foot_z[k * kBodyLegs + l] - hip_height;
+        const double r = x[Z(k)] + planner.HipDz(l, x[P(k)]) - foot_z[k * kBodyLegs + l] - hip_height;
         f += wh * r * r;
       }
     }
     return f;
   };
-  height.gradient = [&, n](const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::VectorXd> g) {
-    for (int k = 0; k < n; ++k) {
-      double sum = 0.0;
-      for (int l = 0; l < kBodyLegs; ++l) {
-        const double p = x[pb.start + k];
-        const double r = x[zb.start + k] + planner.HipDz(l, p) - foot_z[k * kBodyLegs + l] - hip_height;
-        const Eigen::Vector3d& h = planner.hip_B(l);
-        sum += 2.0 * wh * r * (block == 0 ? 1.0 : -std::cos(p) * h.x() - std::sin(p) * h.z());
-      }
-      g[k] = sum;
+  height.gradient = [&](const Eigen::VectorXd& x, int k, Eigen::Ref<Eigen::VectorXd> g) {
+    g.setZero();
+    const double p = x[P(k)];
+    for (int l = 0; l < kBodyLegs; ++l) {
+      const double r = x[Z(k)] + planner.HipDz(l, p) - foot_z[k * kBodyLegs + l] - hip_height;
+      const Eigen::Vector3d& h = planner.hip_B(l);
+      g[0] += 2.0 * wh * r;
+      g[1] += 2.0 * wh * r * (-std::cos(p) * h.x() - std::sin(p) * h.z());
     }
   };
   prog.AddNonlinearCost(height);
 
   // Each stance row: (hip height - lowest valid) >= 0 and (highest valid - hip height) >= 0, the
-  // bounds at the exact hip offset and pitch.
+  // bounds at the exact hip offset and pitch; one constraint per knot, on that knot's block.
   const auto margins = [&](const StanceRow& r, double z, double p, double s) {
     const double h = z + planner.HipDz(r.leg, p) - r.contact_z;
     HipBox box;
@@ -148,44 +160,35 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
     if (range.empty()) return Eigen::Vector2d(-1.0, -1.0);  // no valid height here
     return Eigen::Vector2d(h - range.lo, range.hi - h);
   };
-  const int m = static_cast<int>(rows.size());
-  if (m > 0) {
+  for (std::size_t first = 0; first < rows.size();) {
+    std::size_t last = first;
+    while (last < rows.size() && rows[last].knot == rows[first].knot) ++last;
+    const int k = rows[first].knot, m = static_cast<int>(last - first);
     optim::NonlinearConstraint limits;
-    limits.name = "hip_bounds";
-    limits.blocks = {zb, pb, sb};
+    limits.name = "hip_bounds" + std::to_string(k);
+    limits.blocks = {knot_blocks[static_cast<std::size_t>(k)]};
     limits.lower = Eigen::VectorXd::Zero(2 * m);
     limits.upper = Eigen::VectorXd::Constant(2 * m, optim::kInf);
-    limits.value = [&, m](const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> c) {
-      for (int i = 0; i < m; ++i) {
-        const StanceRow& r = rows[static_cast<std::size_t>(i)];
-        c.segment<2>(2 * i) = margins(r, x[zb.start + r.knot], x[pb.start + r.knot], x[sb.start + r.knot]);
-      }
+    limits.value = [&, first, m, k](const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> c) {
+      for (int i = 0; i < m; ++i) c.segment<2>(2 * i) = margins(rows[first + static_cast<std::size_t>(i)], x[Z(k)], x[P(k)], x[S(k)]);
     };
-    limits.jacobian = [&, m](const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::MatrixXd> jac) {
-      jac.setZero();
+    limits.jacobian = [&, first, m, k](const Eigen::VectorXd& x, int, Eigen::Ref<Eigen::MatrixXd> jac) {
+      const double z = x[Z(k)], p = x[P(k)], s = x[S(k)];
       for (int i = 0; i < m; ++i) {
-        const StanceRow& r = rows[static_cast<std::size_t>(i)];
-        const double z = x[zb.start + r.knot], p = x[pb.start + r.knot], s = x[sb.start + r.knot];
-        Eigen::Vector2d d;
-        if (block == 0) {
-          d = Eigen::Vector2d(1.0, -1.0);
-        } else if (block == 1) {
-          d = (margins(r, z, p + kFiniteStep, s) - margins(r, z, p - kFiniteStep, s)) / (2.0 * kFiniteStep);
-        } else {
-          d = (margins(r, z, p, s + kFiniteStep) - margins(r, z, p, s - kFiniteStep)) / (2.0 * kFiniteStep);
-        }
-        jac(2 * i, r.knot) = d[0];
-        jac(2 * i + 1, r.knot) = d[1];
+        const StanceRow& r = rows[first + static_cast<std::size_t>(i)];
+        const Eigen::Vector2d dp = (margins(r, z, p + kFiniteStep, s) - margins(r, z, p - kFiniteStep, s)) / (2.0 * kFiniteStep);
+        const Eigen::Vector2d ds = (margins(r, z, p, s + kFiniteStep) - margins(r, z, p, s - kFiniteStep)) / (2.0 * kFiniteStep);
+        jac.row(2 * i) << 1.0, dp[0], ds[0];
+        jac.row(2 * i + 1) << -1.0, dp[1], ds[1];
       }
     };
     prog.AddNonlinearConstraint(limits);
+    first = last;
   }
 
   const auto bound_distance = [&](const Eigen::VectorXd& x) {
     double worst = std::numeric_limits<double>::infinity();
-    for (const StanceRow& r : rows) {
-      worst = std::min(worst, margins(r, x[zb.start + r.knot], x[pb.start + r.knot], x[sb.start + r.knot]).minCoeff());
-    }
+    for (const StanceRow& r : rows) worst = std::min(worst, margins(r, x[Z(r.knot)], x[P(r.knot)], x[S(r.knot)]).minCoeff());
     return worst;
   };
 
@@ -219,9 +222,9 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
   for (int k = 0; k < n; ++k) {
     BodyState& b = (*out)[static_cast<std::size_t>(k)];
     b.t = t0 + k * dt;
-    b.z = x[zb.start + k];
-    b.pitch = x[pb.start + k];
-    b.com_shift = x[sb.start + k];
+    b.z = x[Z(k)];
+    b.pitch = x[P(k)];
+    b.com_shift = x[S(k)];
     b.x = neutral_x[k] + heading * b.com_shift;
     b.y = neutral_y[k];
     b.yaw = schedule.yaw();
