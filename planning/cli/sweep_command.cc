@@ -6,11 +6,13 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "geometry/field_error.h"
 #include "planning/cli/cli_common.h"
 #include "planning/plan_pipeline.h"
+#include "planning/simulation/sweep_physics.h"
 #include "planning/sweep/sweep_runner.h"
 
 namespace stairplan::cli {
@@ -22,6 +24,7 @@ struct SweepOptions {
   int threads = 1;
   double validation_step = 0.05;
   bool times = false;
+  bool simulate = false;
 };
 
 SweepGrid ParseGrid(const SweepOptions& o) {
@@ -39,7 +42,8 @@ SweepGrid ParseGrid(const SweepOptions& o) {
 }
 
 // One grid point through the same pipeline as `stairplan plan`, validation included.
-SweepRow Evaluate(const SweepPoint& point, const RobotModel& robot, Facing facing, double validation_step) {
+SweepRow Evaluate(const SweepPoint& point, const RobotModel& robot, Facing facing, double validation_step,
+                  SweepPhysics* physics) {
   SweepRow row;
   row.point = point;
   try {
@@ -48,6 +52,7 @@ SweepRow Evaluate(const SweepPoint& point, const RobotModel& robot, Facing facin
     options.facing = facing;
     options.validation.time_step = validation_step;
     const PipelineResult result = RunPipeline(robot, stairs, options);
+    if (physics != nullptr) physics->Record(point, robot, stairs, result);
     row.cadence_s = result.plan.cadence_s;
     row.footsteps = static_cast<int>(result.plan.footsteps.size());
     for (const auto& [stage, us] : result.plan.timing_us) (stage == "validate" ? row.validate_us : row.plan_us) += us;
@@ -96,6 +101,8 @@ int RunSweepCommand(const std::vector<std::string>& args) {
   app.add_option("--validation-step", o.validation_step, "Validator replay step [s] (default 0.05; plan uses 0.02)")
       ->check(CLI::Range(1e-3, 1.0));
   app.add_flag("--times", o.times, "Add plan_us and validate_us columns (not reproducible)");
+  app.add_flag("--simulate", o.simulate,
+               "Also execute every plan in MuJoCo: physics columns in <csv>.physics.csv, agreement on stdout");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("sweep", [&] {
     SweepGrid grid;
@@ -110,8 +117,9 @@ int RunSweepCommand(const std::vector<std::string>& args) {
     const std::vector<SweepPoint> points = EnumeratePoints(grid);
     const bool terminal = isatty(STDERR_FILENO) != 0;
     const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<SweepPhysics> physics = o.simulate ? std::make_unique<SweepPhysics>() : nullptr;
     const std::vector<SweepRow> rows = RunSweep(
-        points, [&](const SweepPoint& p) { return Evaluate(p, robot, grid.facing, o.validation_step); }, o.threads, shard,
+        points, [&](const SweepPoint& p) { return Evaluate(p, robot, grid.facing, o.validation_step, physics.get()); }, o.threads, shard,
         terminal ? SweepProgress(ShowProgress) : SweepProgress());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     WriteFileAtomically(o.csv, SweepToCsv(rows, o.times));
@@ -121,6 +129,10 @@ int RunSweepCommand(const std::vector<std::string>& args) {
     std::cout << "stairplan sweep: " << rows.size() << " points, " << valid << " valid; " << seconds << " s on "
               << o.threads << " thread(s), " << (seconds > 0 ? rows.size() / seconds / o.threads : 0.0)
               << " points/s per thread\n";
+    if (physics) {
+      WriteFileAtomically(o.csv + ".physics.csv", physics->Csv());
+      std::cout << AgreementToText(physics->Agreement());
+    }
     return kExitOk;
   });
 }

@@ -1,0 +1,79 @@
+#include "planning/simulation/sweep_physics.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "planning/simulation/plan_executor.h"
+
+namespace stairplan {
+namespace {
+
+std::string Quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+SweepPhysics::SweepPhysics(const SimSettings& settings) : settings_(settings) { settings_.Validate(); }
+
+void SweepPhysics::Record(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs,
+                          const PipelineResult& result) {
+  if (result.plan.status != PlanStatus::kOk) return;
+  PhysicsRow row;
+  row.index = point.index;
+  std::ostringstream label;
+  label << ToString(point.direction) << " steps=" << point.steps << " rise=" << point.rise << " run=" << point.run
+        << " nosing=" << point.nosing;
+  row.label = label.str();
+  row.validator = result.validation.ok ? "valid" : "invalid";
+  if (!result.validation.violations.empty()) {
+    const Violation& v = result.validation.violations.front();
+    row.validator_cause = std::string(ToString(v.kind)) + " " + v.leg + (v.detail.empty() ? "" : " " + v.detail);
+  }
+  try {
+    const SimulationOutcome o = Simulate(robot, stairs, result.plan, settings_);
+    row.status = ToString(o.status);
+    row.passed = o.Passed();
+    row.cause = o.FirstCause();
+    row.landings = static_cast<int>(o.landings.size());
+    row.max_landing_error_m = o.MaxLandingError();
+    row.other_contacts = static_cast<int>(o.other_contacts.size());
+    row.max_torque_ratio = o.max_torque_ratio;
+    row.real_time_factor = o.real_time_factor;
+  } catch (const std::exception& e) {
+    row.status = "error";
+    row.cause = e.what();
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  rows_.push_back(row);
+}
+
+std::vector<PhysicsRow> SweepPhysics::Rows() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<PhysicsRow> rows = rows_;
+  std::sort(rows.begin(), rows.end(), [](const PhysicsRow& a, const PhysicsRow& b) { return a.index < b.index; });
+  return rows;
+}
+
+std::string SweepPhysics::Csv() const {
+  std::ostringstream csv;
+  csv << "index,point,validator,validator_cause,physics_status,physics_passed,physics_cause,landings,"
+         "max_landing_error_m,other_contacts,max_torque_ratio,real_time_factor\n";
+  for (const PhysicsRow& r : Rows()) {
+    csv << r.index << "," << Quoted(r.label) << "," << r.validator << "," << Quoted(r.validator_cause) << ","
+        << r.status << "," << (r.passed ? 1 : 0) << "," << Quoted(r.cause) << "," << r.landings << ","
+        << r.max_landing_error_m << "," << r.other_contacts << "," << r.max_torque_ratio << "," << r.real_time_factor
+        << "\n";
+  }
+  return csv.str();
+}
+
+AgreementReport SweepPhysics::Agreement() const {
+  std::vector<VerdictPair> pairs;
+  for (const PhysicsRow& r : Rows()) pairs.push_back({r.label, r.validator == "valid", r.validator_cause, r.passed, r.cause});
+  return CompareVerdicts(pairs);
+}
+
+}  // namespace stairplan

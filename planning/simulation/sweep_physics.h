@@ -1,0 +1,55 @@
+// The physics outcome of every point of a sweep (`stairplan sweep --simulate`): each planned point
+// is executed in MuJoCo and its verdict set beside the validator's, for a CSV of physics columns
+// keyed by point index and the validator/physics agreement report.
+#pragma once
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "planning/plan_pipeline.h"
+#include "planning/simulation/sim_settings.h"
+#include "planning/simulation/verdict_agreement.h"
+#include "planning/sweep/sweep_grid.h"
+
+namespace stairplan {
+
+/// One sweep point's physics outcome, condensed.
+struct PhysicsRow {
+  int index = 0;
+  std::string label;             ///< "up rise=0.17 run=0.27"
+  std::string validator;         ///< "valid" or "invalid"
+  std::string validator_cause;
+  std::string status;            ///< SimStatus, or "error" when the simulation could not run
+  bool passed = false;
+  std::string cause;             ///< SimulationOutcome::FirstCause()
+  int landings = 0;
+  double max_landing_error_m = 0.0;
+  int other_contacts = 0;
+  double max_torque_ratio = 0.0;
+  double real_time_factor = 0.0;
+};
+
+/// Collects physics rows from a sweep's worker threads.
+class SweepPhysics {
+ public:
+  explicit SweepPhysics(const SimSettings& settings = {});
+
+  /// Simulates `result`'s plan when it has one (status ok); points without a plan are skipped.
+  /// Thread-safe; never throws (a failed simulation gives status "error").
+  void Record(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs, const PipelineResult& result);
+
+  /// Rows in point order.
+  std::vector<PhysicsRow> Rows() const;
+  /// index,direction_label,validator,physics_status,physics_passed,physics_cause,... CSV text.
+  std::string Csv() const;
+  /// Validator against physics over the simulated points.
+  AgreementReport Agreement() const;
+
+ private:
+  SimSettings settings_;
+  mutable std::mutex mutex_;
+  std::vector<PhysicsRow> rows_;
+};
+
+}  // namespace stairplan
