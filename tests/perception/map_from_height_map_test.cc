@@ -58,8 +58,11 @@ TEST_CASE("constrained map from a cloud: step regions match the analytic map (Io
   noise.seed = 5;
   stairplan::testing::Scene scene;  // the default 160 x 120 camera: treads near eye level are grazed
   scene.cloud = TransformCloud(ScanStairs(truth, PinholeCamera{}, stairplan::testing::CameraOnBottomLanding(), noise), yaw, offset);
-  for (const auto& [travel, facing] : {std::pair{TravelDirection::kUp, Facing::kForward}, std::pair{TravelDirection::kDown, Facing::kBackward},
-                                       std::pair{TravelDirection::kDown, Facing::kForward}}) {
+  for (const auto& case_ : {std::pair{TravelDirection::kUp, Facing::kForward}, std::pair{TravelDirection::kDown, Facing::kBackward},
+                            std::pair{TravelDirection::kDown, Facing::kForward}}) {
+    // Named, not a structured binding: C++17 lambdas cannot capture those (clang rejects it).
+    const TravelDirection travel = case_.first;
+    const Facing facing = case_.second;
     StairPerceptionSettings settings;
     settings.regions.travel = travel;
     settings.regions.facing = facing;
