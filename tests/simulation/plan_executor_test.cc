@@ -113,3 +113,23 @@ TEST_CASE("simulation settings name the offending field", "[simulation]") {
   Plan empty;
   CHECK_THROWS_WITH(Simulate(robot, stairs, empty), Catch::Contains("plan.body"));
 }
+
+TEST_CASE("ANYmal C climbs low stairs its validator accepts, in MuJoCo", "[simulation]") {
+  if (testing::SharedDir().empty()) {
+    WARN("skipped: ../shared not found");
+    return;
+  }
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath("data/robots/anymal_c.urdf"));
+  StairSpec spec;
+  spec.rise = 0.10;
+  spec.run = 0.28;
+  const Staircase stairs(spec);
+  const PipelineResult planned = RunPipeline(robot, stairs);
+  REQUIRE(planned.validation.ok);
+  const SimulationOutcome o = Simulate(robot, stairs, planned.plan);
+  INFO(Describe(o));
+  CHECK(o.Passed());
+  CHECK(o.landings.size() == planned.plan.footsteps.size());
+  CHECK(o.MaxLandingError() < 0.03);
+  CHECK(o.final_base_W.z() > stairs.total_rise());
+}
