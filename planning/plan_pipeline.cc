@@ -53,12 +53,10 @@ Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const C
   CrawlSettings crawl = options.crawl;
   if (selection.status == PlanStatus::kOk && selection.cadence_s > 0.0) crawl.swing_duration = selection.cadence_s;
   Plan plan = PlanCrawl(robot, stairs, map, crawl);
+  // When no controller is admissible everywhere, the crawl keeps its default cadence and the
+  // validator has the last word; the controllers' rule-out reasons stay in the plan.
   plan.controllers = selection.controllers;
-  plan.selected = selection.selected;
-  if (selection.status != PlanStatus::kOk && plan.status == PlanStatus::kOk) {
-    plan.status = PlanStatus::kInfeasible;
-    plan.status_reason = "step planner: " + selection.status_reason;
-  }
+  plan.selected = selection.status == PlanStatus::kOk ? selection.selected : -1;
   return plan;
 }
 
@@ -76,27 +74,30 @@ StepPlannerSettings CrawlControllers() {
   return settings;
 }
 
+void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
+                             ConstrainedMap& map) {
+  if (!options.robot_regions) return;
+  const RobotKinematics kinematics(robot);
+  const RobotCollisionModel collision(kinematics);
+  RobotRegionSettings regions = options.regions;
+  regions.hip_height_fraction = options.crawl.body.hip_height_fraction;  // the posture the plan will use
+  AddRobotCollisionRegions(kinematics, collision, stairs, map, regions);
+}
+
 ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
-  if (options.robot_regions) {
-    const RobotKinematics kinematics(robot);
-    const RobotCollisionModel collision(kinematics);
-    RobotRegionSettings regions = options.regions;
-    regions.hip_height_fraction = options.crawl.body.hip_height_fraction;  // the posture the plan will use
-    AddRobotCollisionRegions(kinematics, collision, stairs, map, regions);
-  }
+  AddPipelineRobotRegions(robot, stairs, options, map);
   return map;
 }
 
-PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
+PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
+                                const PipelineOptions& options) {
   PipelineResult result;
-  const auto t_map = std::chrono::steady_clock::now();
-  result.map = BuildPipelineMap(robot, stairs, options);
-  const double map_us = MicrosSince(t_map);
+  result.map = std::move(map);
   const auto t_plan = std::chrono::steady_clock::now();
   result.plan = options.footsteps == FootstepSource::kStepPlanner ? StepPlannerPlan(robot, stairs, result.map, options)
                                                                    : SelectedCrawlPlan(robot, stairs, result.map, options);
-  result.plan.timing_us = {{"map", map_us}, {"plan", MicrosSince(t_plan)}};
+  result.plan.timing_us = {{"plan", MicrosSince(t_plan)}};
   if (options.validate && result.plan.status == PlanStatus::kOk) {
     const auto t_validate = std::chrono::steady_clock::now();
     TraversalValidator validator(robot, stairs, result.map, options.validation);
@@ -104,6 +105,15 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
     result.validated = true;
     result.plan.timing_us.emplace_back("validate", MicrosSince(t_validate));
   }
+  return result;
+}
+
+PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
+  const auto t_map = std::chrono::steady_clock::now();
+  ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
+  const double map_us = MicrosSince(t_map);
+  PipelineResult result = RunPipelineOnMap(robot, stairs, std::move(map), options);
+  result.plan.timing_us.insert(result.plan.timing_us.begin(), {"map", map_us});
   return result;
 }
 

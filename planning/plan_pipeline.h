@@ -53,6 +53,14 @@ struct PipelineResult {
 /// collision regions.
 ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options);
 
+/// Adds the robot's own collision regions to `map` when the options ask for them.
+void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
+                             ConstrainedMap& map);
+
+/// Plans `stairs` for `robot` on a map made elsewhere (perception); the rest as RunPipeline.
+PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
+                                const PipelineOptions& options = {});
+
 /// Plans `stairs` for `robot`. Throws std::invalid_argument only for invalid options; a staircase
 /// the robot cannot traverse gives a plan with status kInfeasible.
 PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options = {});

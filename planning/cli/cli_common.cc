@@ -39,6 +39,9 @@ int Parse(CLI::App& app, const std::vector<std::string>& args) {
 int Guarded(const std::string& command, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const NoSolution& e) {
+    std::cerr << "stairplan " << command << ": " << e.what() << "\n";
+    return kExitInfeasible;
   } catch (const BadInput& e) {
     std::cerr << "stairplan " << command << ": " << e.what() << "\n";
   } catch (const std::invalid_argument& e) {

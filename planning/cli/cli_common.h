@@ -23,6 +23,12 @@ class BadInput : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The input is well formed but has no solution (e.g. a cloud with no stairs): exit 3.
+class NoSolution : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// One sub-command: `stairplan <name> ...`. `run` gets the arguments after the name.
 struct Command {
   std::string name;
@@ -41,7 +47,7 @@ struct CommandRegistrar {
 /// Parses `args` with `app`; returns -1 to go on, or the exit code (0 after --help, 2 on errors).
 int Parse(CLI::App& app, const std::vector<std::string>& args);
 
-/// Runs `body`, turning bad-input exceptions into a message on stderr and exit code 2.
+/// Runs `body`, turning bad-input exceptions into a message on stderr and exit code 2 (NoSolution: 3).
 int Guarded(const std::string& command, const std::function<int()>& body);
 
 /// Writes `contents` to `path` through a temporary file and a rename; throws BadInput on failure.

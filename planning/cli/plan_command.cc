@@ -2,6 +2,11 @@
 #include <chrono>
 #include <iostream>
 
+#include <optional>
+
+#include "geometry/point_cloud.h"
+#include "geometry/stair_perception.h"
+#include "geometry/stair_spec_yaml.h"
 #include "planning/cli/cli_common.h"
 #include "planning/cli/stair_flags.h"
 #include "planning/plan_pipeline.h"
@@ -16,6 +21,7 @@ struct PlanOptions {
   StairFlags stairs;
   std::string facing = "forward";
   std::string planner = "crawl";
+  std::string cloud;
   std::string out = "stairplan-out";
   bool json = false;
 };
@@ -24,6 +30,8 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
   app.add_option("--robot", o.robot, "Robot URDF file (default: the built-in stairbot)");
   AddStairFlags(app, o.stairs);
   app.add_option("--facing", o.facing, "forward or backward, default forward");
+  app.add_option("--cloud", o.cloud,
+                 "Plan on the stairs perceived in this point cloud (PLY or XYZ; the stairs flags are ignored)");
   app.add_option("--planner", o.planner,
                  "crawl: the step planner picks the cadence, feet at step-region centres (default); "
                  "step: the step planner's own footsteps");
@@ -48,6 +56,34 @@ void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& 
             << "  wrote:     " << out << "/plan.json, " << out << "/plan.svg\n";
 }
 
+// The stairs and their constrained map as perceived from a cloud, in the stairs' own frame.
+struct CloudStairs {
+  Staircase stairs;
+  ConstrainedMap map;
+  nlohmann::json fitted;  // the tracker's model, its residuals, and how to place the plan in the world
+};
+
+CloudStairs PerceiveCloud(const std::string& path, const StairFlags& flags, Facing facing) {
+  StairPerceptionSettings settings;
+  settings.regions.travel = flags.direction ? ParseDirection(*flags.direction, "--direction") : TravelDirection::kUp;
+  settings.regions.facing = facing;
+  const StairPerception seen = PerceiveStairs(ReadPointCloud(path), settings);
+  if (!seen.stairs) throw NoSolution(path + ": no stairs found: " + seen.fit.reason);
+  const StairModel& m = seen.fit.model;
+  const Eigen::Vector3d origin = m.StairToWorld(Eigen::Vector3d::Zero(), settings.regions.travel);
+  nlohmann::json fitted = {{"steps", m.steps},
+                           {"rise", m.rise},
+                           {"run", m.run},
+                           {"width", m.width},
+                           {"yaw_rad", m.yaw()},
+                           {"level_rms_m", seen.fit.level_rms},
+                           {"edge_rms_m", seen.fit.edge_rms},
+                           {"point_rms_m", seen.fit.point_rms},
+                           {"plan_frame_origin_W", {origin.x(), origin.y(), origin.z()}},
+                           {"plan_frame_yaw_rad", m.TravelYaw(settings.regions.travel)}};
+  return {seen.stairs->stairs, seen.stairs->map, fitted};
+}
+
 void PrintValidation(const PipelineResult& result) {
   if (!result.validated) return;
   const ValidationReport& v = result.validation;
@@ -67,7 +103,6 @@ int RunPlan(const std::vector<std::string>& args) {
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("plan", [&] {
     const auto t0 = std::chrono::steady_clock::now();
-    const Staircase stairs = ResolveStairs(o.stairs);
     PipelineOptions options;
     options.facing = ParseFacing(o.facing);
     if (o.planner != "crawl" && o.planner != "step") {
@@ -75,12 +110,18 @@ int RunPlan(const std::vector<std::string>& args) {
     }
     options.footsteps = ParseFootstepSource(o.planner);
     const RobotModel robot = LoadRobot(o.robot);
+    std::optional<CloudStairs> perceived;
+    if (!o.cloud.empty()) perceived = PerceiveCloud(o.cloud, o.stairs, options.facing);
+    const Staircase stairs = perceived ? perceived->stairs : ResolveStairs(o.stairs);
     const double load_us = MicrosSince(t0);
-    PipelineResult result = RunPipeline(robot, stairs, options);
+    if (perceived) AddPipelineRobotRegions(robot, stairs, options, perceived->map);
+    PipelineResult result = perceived ? RunPipelineOnMap(robot, stairs, perceived->map, options)
+                                      : RunPipeline(robot, stairs, options);
     Plan& plan = result.plan;
-    plan.timing_us.insert(plan.timing_us.begin(), {"load", load_us});
+    plan.timing_us.insert(plan.timing_us.begin(), {perceived ? "perceive" : "load", load_us});
     nlohmann::json json = PlanToJson(plan, stairs, result.map);
     if (result.validated) json["validation"] = ValidationToJson(result.validation);
+    if (perceived) json["fitted"] = perceived->fitted;
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");
     WriteFileAtomically(o.out + "/plan.svg", PlanToSvg(plan, stairs, result.map));
