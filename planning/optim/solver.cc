@@ -33,8 +33,13 @@ bool Solver::DataIsValid(const Program& p) {
     if (p.constraint_matrix().hasNaN()) return false;
     checked_matrix_revision_ = p.matrix_revision();
   }
-  return !(p.linear_cost().hasNaN() || p.row_lower().hasNaN() || p.row_upper().hasNaN() ||
-           p.variable_lower().hasNaN() || p.variable_upper().hasNaN() || p.initial_guess().hasNaN() ||
+  // A lower bound of +inf or an upper bound of -inf (1e400 in a file, or >= 1e20 normalised) is no
+  // bound any value meets: without this check "x1 + x2 >= 1e400" was reported solved at x = 0.
+  const auto impossible = [](const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+    return lower.hasNaN() || upper.hasNaN() || (lower.array() == kInf).any() || (upper.array() == -kInf).any();
+  };
+  return !(p.linear_cost().hasNaN() || impossible(p.row_lower(), p.row_upper()) ||
+           impossible(p.variable_lower(), p.variable_upper()) || p.initial_guess().hasNaN() ||
            std::isnan(p.constant()));
 }
 
