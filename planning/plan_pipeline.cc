@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "planning/body/plan_body.h"
 #include "planning/body_path.h"
 #include "planning/step/ik_reach_model.h"
 #include "planning/step/step_planner_driver.h"
@@ -98,6 +99,16 @@ PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs
   result.plan = options.footsteps == FootstepSource::kStepPlanner ? StepPlannerPlan(robot, stairs, result.map, options)
                                                                    : SelectedCrawlPlan(robot, stairs, result.map, options);
   result.plan.timing_us = {{"plan", MicrosSince(t_plan)}};
+  if (options.body == BodySource::kRecedingHorizonQp && result.plan.status == PlanStatus::kOk) {
+    const std::vector<std::pair<std::string, double>> timing = result.plan.timing_us;
+    result.plan = PlanBody(robot, stairs, result.map, result.plan, options.body_qp);
+    if (!options.body_nlp.empty() && result.plan.status == PlanStatus::kOk) {
+      BodyNlpSettings nlp = options.nlp;
+      nlp.solver = options.body_nlp;
+      result.plan = RefineBodyNlp(robot, stairs, result.map, result.plan, options.body_qp, nlp);
+    }
+    result.plan.timing_us.insert(result.plan.timing_us.begin(), timing.begin(), timing.end());
+  }
   if (options.validate && result.plan.status == PlanStatus::kOk) {
     const auto t_validate = std::chrono::steady_clock::now();
     TraversalValidator validator(robot, stairs, result.map, options.validation);

@@ -7,6 +7,8 @@
 #include "geometry/staircase.h"
 #include "kinematics/robot_model.h"
 #include "planning/crawl_planner.h"
+#include "planning/body/body_nlp.h"
+#include "planning/body/body_planner_settings.h"
 #include "planning/plan.h"
 #include "planning/step/step_planner_settings.h"
 #include "planning/validation/traversal_validator.h"
@@ -22,6 +24,15 @@ enum class FootstepSource {
   /// path. Its plans do not all validate yet (shank clearances at nosings).
   kStepPlanner,
 };
+/// Where the body trajectory comes from.
+enum class BodySource {
+  /// The quasi-static path: COM over the stance triangle while a leg swings (validates today).
+  kQuasiStaticPath,
+  /// The receding-horizon body QP (height, pitch, forward COM shift), optionally refined by the
+  /// NLP. It does not shift the COM sideways, so crawls fail the validator's stability check.
+  kRecedingHorizonQp,
+};
+
 /// "crawl" or "step"; throws std::invalid_argument otherwise.
 FootstepSource ParseFootstepSource(const std::string& text);
 
@@ -33,6 +44,10 @@ struct PipelineOptions {
   FootstepSource footsteps = FootstepSource::kSelectedCrawl;
   /// The step planner's controllers; the executed gait is quasi-static, so crawls only by default.
   StepPlannerSettings step = CrawlControllers();
+  BodySource body = BodySource::kQuasiStaticPath;
+  BodyPlannerSettings body_qp;   ///< for kRecedingHorizonQp (knots = the horizon)
+  std::string body_nlp;          ///< "", "ipopt" or "nlopt": refine the QP body with the NLP
+  BodyNlpSettings nlp;
   ConstrainedMapSettings map;
   /// Trim step regions where this robot's legs would hit a riser or nosing (collision module).
   bool robot_regions = true;

@@ -21,6 +21,9 @@ struct PlanOptions {
   StairFlags stairs;
   std::string facing = "forward";
   std::string planner = "crawl";
+  std::string body = "path";
+  std::optional<int> horizon;
+  std::string nlp;
   std::string cloud;
   std::string out = "stairplan-out";
   bool json = false;
@@ -30,6 +33,10 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
   app.add_option("--robot", o.robot, "Robot URDF file (default: the built-in stairbot)");
   AddStairFlags(app, o.stairs);
   app.add_option("--facing", o.facing, "forward or backward, default forward");
+  app.add_option("--body", o.body,
+                 "path: quasi-static COM path (default); qp: the receding-horizon body QP");
+  app.add_option("--horizon", o.horizon, "Knots of the body QP's horizon, 25 ms apart (implies --body qp; default 40)");
+  app.add_option("--nlp", o.nlp, "Refine the QP body with the exact NLP: ipopt or nlopt (implies --body qp)");
   app.add_option("--cloud", o.cloud,
                  "Plan on the stairs perceived in this point cloud (PLY or XYZ; the stairs flags are ignored)");
   app.add_option("--planner", o.planner,
@@ -54,6 +61,18 @@ void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& 
             << "  footsteps: " << plan.footsteps.size() << " (" << in_region << " inside step regions)\n"
             << "  duration:  " << plan.duration() << " s\n"
             << "  wrote:     " << out << "/plan.json, " << out << "/plan.svg\n";
+}
+
+void SetBodyOptions(const PlanOptions& o, PipelineOptions& options) {
+  if (o.body != "path" && o.body != "qp") throw BadInput("--body: must be 'path' or 'qp' (got '" + o.body + "')");
+  if (!o.nlp.empty() && o.nlp != "ipopt" && o.nlp != "nlopt") {
+    throw BadInput("--nlp: must be 'ipopt' or 'nlopt' (got '" + o.nlp + "')");
+  }
+  if (o.horizon && (*o.horizon < 4 || *o.horizon > 400)) throw BadInput("--horizon: must be from 4 to 400 knots");
+  const bool qp = o.body == "qp" || o.horizon || !o.nlp.empty();
+  options.body = qp ? BodySource::kRecedingHorizonQp : BodySource::kQuasiStaticPath;
+  if (o.horizon) options.body_qp.knots = *o.horizon;
+  options.body_nlp = o.nlp;
 }
 
 // The stairs and their constrained map as perceived from a cloud, in the stairs' own frame.
@@ -109,6 +128,7 @@ int RunPlan(const std::vector<std::string>& args) {
       throw BadInput("--planner: must be 'crawl' or 'step' (got '" + o.planner + "')");
     }
     options.footsteps = ParseFootstepSource(o.planner);
+    SetBodyOptions(o, options);
     const RobotModel robot = LoadRobot(o.robot);
     std::optional<CloudStairs> perceived;
     if (!o.cloud.empty()) perceived = PerceiveCloud(o.cloud, o.stairs, options.facing);
