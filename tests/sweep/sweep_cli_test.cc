@@ -1,0 +1,70 @@
+// `stairplan sweep` end to end: the CSV does not depend on the thread count, shards merge into the
+// unsharded CSV, and points it calls valid are valid when planned and validated again alone.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_paths.h"
+
+using namespace stairplan::testing;
+
+namespace {
+
+int Run(const std::string& args, const std::string& dir) {
+  return RunCommand(BinDir() + "/stairplan " + args, dir + "/out.txt", dir + "/err.txt");
+}
+
+std::vector<std::vector<std::string>> Rows(const std::string& csv) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::istringstream fs(line);
+    for (std::string f; std::getline(fs, f, ',');) fields.push_back(f);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-validate", "[sweep][cli]") {
+  const std::string dir = MakeTempDir("sweep-threads");
+  const std::string grid = "sweep --rise 0.12:0.20:4 --run 0.25:0.33:4 --steps 4";
+  REQUIRE(Run(grid + " --threads 1 --csv " + dir + "/one.csv --svg " + dir + "/map.svg", dir) == 0);
+  REQUIRE(Run(grid + " --threads 2 --csv " + dir + "/two.csv", dir) == 0);
+  const std::string one = ReadFile(dir + "/one.csv");
+  CHECK(one == ReadFile(dir + "/two.csv"));
+  CHECK_THAT(ReadFile(dir + "/map.svg"), Catch::Contains("US residential"));
+  const auto rows = Rows(one);
+  REQUIRE(rows.size() == 16);
+  int checked = 0;
+  for (const auto& r : rows) {
+    if (r[6] != "valid") continue;
+    // Plan the point alone with the finer default validation step.
+    const std::string out = dir + "/p" + r[0];
+    REQUIRE(Run("plan --steps " + r[2] + " --rise " + r[3] + " --run " + r[4] + " --nosing " + r[5] + " --out " + out, dir) == 0);
+    const auto plan = nlohmann::json::parse(ReadFile(out + "/plan.json"));
+    CHECK(plan["validation"]["ok"] == true);
+    ++checked;
+  }
+  CHECK(checked > 0);
+}
+
+TEST_CASE("sweep shards merged equal the unsharded sweep", "[sweep][cli]") {
+  const std::string dir = MakeTempDir("sweep-shards");
+  const std::string grid = "sweep --rise 0.10:0.25:10 --run 0.20:0.35:10 --steps 3 --validation-step 0.1";
+  REQUIRE(Run(grid + " --csv " + dir + "/all.csv --threads 2", dir) == 0);
+  REQUIRE(Run(grid + " --shard 0/2 --csv " + dir + "/a.csv", dir) == 0);
+  REQUIRE(Run(grid + " --shard 1/2 --csv " + dir + "/b.csv", dir) == 0);
+  REQUIRE(Run("sweep-merge --csv " + dir + "/merged.csv " + dir + "/b.csv " + dir + "/a.csv", dir) == 0);
+  CHECK(Rows(ReadFile(dir + "/all.csv")).size() == 100);
+  CHECK(ReadFile(dir + "/merged.csv") == ReadFile(dir + "/all.csv"));
+  CHECK(Run("sweep --rise 0.1:0.2:x --csv " + dir + "/bad.csv", dir) == 2);
+  CHECK_THAT(ReadFile(dir + "/err.txt"), Catch::Contains("--rise"));
+}
