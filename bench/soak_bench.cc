@@ -11,7 +11,12 @@
 //  - the latency tail of Update(): p50, p90, p99, p99.9, p99.99 and max.
 // Exit 0 when the bounds hold, 1 otherwise. Not a unit test: run it by hand (or with --cycles N).
 //
-//   ./soak_bench [--cycles N] [up|down] [forward|backward]
+// Stale cycles are split by cause: the wall-clock cycle budget (kTimeLimit or no time left for a
+// solve: the machine, not the planner) and everything else (a solver failure: the planner). On a
+// shared machine the first kind follows the load; --budget S sets the cycle budget (default the
+// planner's 2.5 ms) so a run can separate the two.
+//
+//   ./soak_bench [--cycles N] [--budget S] [up|down] [forward|backward]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -56,7 +61,9 @@ int main(int argc, char** argv) {
   long cycles = 1000000;
   StairSpec spec;
   Facing facing = Facing::kForward;
+  BodyPlannerSettings settings;
   for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--budget") == 0 && i + 1 < argc) settings.cycle_budget_s = std::atof(argv[++i]);
     if (std::strcmp(argv[i], "--cycles") == 0 && i + 1 < argc) cycles = std::atol(argv[++i]);
     if (std::strcmp(argv[i], "down") == 0) spec.direction = TravelDirection::kDown;
     if (std::strcmp(argv[i], "backward") == 0) facing = Facing::kBackward;
@@ -73,7 +80,7 @@ int main(int argc, char** argv) {
     std::printf("crawl plan infeasible: %s\n", footsteps.status_reason.c_str());
     return 3;
   }
-  BodyPlanner planner(robot, stairs, map, footsteps);
+  BodyPlanner planner(robot, stairs, map, footsteps, settings);
   const double end = planner.schedule().end_time();
 
   // Sized and written (zero-filled) before the baseline, so the measurement itself does not grow
@@ -84,7 +91,7 @@ int main(int argc, char** argv) {
   std::size_t samples = 0;
 
   long warmup_cycles = 0, traversals = 0, restart_cycles = 0;
-  long stale = 0, infeasible = 0, not_fresh = 0, non_finite = 0;
+  long stale = 0, stale_budget = 0, infeasible = 0, not_fresh = 0, non_finite = 0;
   long rss_baseline_kb = 0;
   bool warm = false;
   BodyState state = planner.StartState();
@@ -110,9 +117,12 @@ int main(int argc, char** argv) {
         ++restart_cycles;  // Reset()'s warm-up solves: no budget by design
       } else {
         latency_us[timed++] = us;
-        stale += out.status == BodyPlanStatus::kStale ? 1 : 0;
+        if (out.status == BodyPlanStatus::kStale) {
+          const bool budget = out.solves == 0 || out.solve_status == optim::SolveStatus::kTimeLimit;
+          (budget ? stale_budget : stale) += 1;
+        }
         infeasible += out.status == BodyPlanStatus::kInfeasible ? 1 : 0;
-        not_fresh += (out.solves < 1 || std::abs(out.knots[0].t - now) > 1e-9) ? 1 : 0;
+        not_fresh += std::abs(out.knots[0].t - now) > 1e-9 ? 1 : 0;
         bool finite = true;
         for (const BodyState& k : out.knots) finite = finite && std::isfinite(k.z) && std::isfinite(k.pitch) && std::isfinite(k.com_shift);
         non_finite += finite ? 0 : 1;
@@ -136,7 +146,9 @@ int main(int argc, char** argv) {
   std::printf("  resident memory: %ld kB after warm-up, %ld kB max after, %ld kB at the end: growth %.3f%% (bound 1%%)\n",
               rss_baseline_kb, rss_max_kb, rss_end_kb, 100.0 * growth);
   std::printf("  steady-state cycles: %zu timed, %ld traversal restarts (Reset warm-up, not timed)\n", timed, restart_cycles);
-  std::printf("  stale: %ld, not fresh: %ld, non-finite: %ld, infeasible: %ld\n", stale, not_fresh, non_finite, infeasible);
+  std::printf("  cycle budget %.2f ms; stale from a solver failure: %ld; stale from the wall-clock budget: %ld (%.4f%%)\n",
+              settings.cycle_budget_s * 1e3, stale, stale_budget, timed > 0 ? 100.0 * static_cast<double>(stale_budget) / static_cast<double>(timed) : 0.0);
+  std::printf("  knots not starting now: %ld, non-finite outputs: %ld, infeasible: %ld\n", not_fresh, non_finite, infeasible);
   const double p50 = Percentile(latency_us, 0.5), p90 = Percentile(latency_us, 0.9), p99 = Percentile(latency_us, 0.99),
                p999 = Percentile(latency_us, 0.999), p9999 = Percentile(latency_us, 0.9999), pmax = Percentile(latency_us, 1.0);
   std::printf("  Update latency [us]: p50 %.1f  p90 %.1f  p99 %.1f  p99.9 %.1f  p99.99 %.1f  max %.1f\n", p50, p90, p99, p999,
