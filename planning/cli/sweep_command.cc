@@ -131,7 +131,10 @@ int RunSweepCommand(const std::vector<std::string>& args) {
               << " points/s per thread\n";
     if (physics) {
       WriteFileAtomically(o.csv + ".physics.csv", physics->Csv());
-      std::cout << AgreementToText(physics->Agreement());
+      std::cout << "physics passes: got there, feet in their regions, no other link on the stairs\n"
+                << AgreementToText(physics->Agreement()) << "... and no other link within the validator's "
+                << ValidationSettings{}.min_clearance * 1000 << " mm of the stairs\n"
+                << AgreementToText(physics->Agreement(true));
     }
     return kExitOk;
   });

@@ -146,6 +146,7 @@ void MjcfSettings::Validate() const {
   check("min_mass", min_mass, 1e-9, 1.0);
   check("min_inertia", min_inertia, 1e-12, 1.0);
   check("effort_scale", effort_scale, 1e-3, 1e3);
+  check("detect_margin", detect_margin, 0.0, 0.1);
 }
 
 std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const MjcfSettings& settings) {
@@ -158,7 +159,8 @@ std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const Mj
       << "  <compiler angle='radian' inertiafromgeom='false' boundmass='" << settings.min_mass
       << "' boundinertia='" << settings.min_inertia << "'/>\n"
       << "  <option timestep='" << settings.timestep << "' gravity='0 0 -9.81'/>\n"
-      << "  <default><geom friction='" << settings.friction << " 0.005 0.0001' condim='3'/></default>\n"
+      << "  <default><geom friction='" << settings.friction << " 0.005 0.0001' condim='3' margin='"
+      << settings.detect_margin << "' gap='" << settings.detect_margin << "'/></default>\n"
       << "  <worldbody>\n"
       << "    <light pos='0 -3 4' dir='0 0.6 -0.8' directional='true'/>\n";
   WriteStairs(out, stairs);

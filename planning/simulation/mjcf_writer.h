@@ -19,6 +19,9 @@ struct MjcfSettings {
   double armature = 0.01;         ///< rotor inertia added to every joint [kg m^2], for stability
   double min_mass = 1e-3;         ///< MuJoCo needs positive mass on moving bodies [kg]
   double min_inertia = 1e-6;      ///< ... and positive inertia [kg m^2]
+  /// Geom pairs closer than this are reported as contacts without any force (MuJoCo's margin with
+  /// an equal gap), so that clearances below it can be measured [m]; 0: only real contacts.
+  double detect_margin = 0.0;
   double effort_scale = 1.0;      ///< motor torque limits are the URDF efforts times this (what-if studies)
 
   /// Throws std::invalid_argument naming the field.

@@ -312,15 +312,21 @@ bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
     const int robot_geom = s1 ? con.geom2 : con.geom1;
     const std::string stair = s1 ? n1 : n2;
     const int body = m->geom_bodyid[robot_geom];
+    const bool touching = con.dist <= 0.0;  // farther ones are only within the detection margin
     bool foot = false;
     for (std::size_t i = 0; i < legs_.size(); ++i) {
       if (legs_[i].foot_body == body) {
-        foot_touching[i] = true;
+        foot_touching[i] = foot_touching[i] || touching;
         foot = true;
       }
     }
     if (foot) continue;
     const std::string link = mj_id2name(m, mjOBJ_BODY, body);
+    if (con.dist < outcome_.min_link_clearance_m) {
+      outcome_.min_link_clearance_m = con.dist;
+      outcome_.closest_link = link + " to " + stair;
+    }
+    if (!touching) continue;
     const double depth = -con.dist;
     auto it = std::find_if(outcome_.other_contacts.begin(), outcome_.other_contacts.end(),
                            [&](const LinkContact& l) { return l.link == link; });
@@ -397,6 +403,7 @@ void PlanExecutor::Judge(double tp) {
 SimulationOutcome PlanExecutor::Run() {
   const auto start = std::chrono::steady_clock::now();
   outcome_ = SimulationOutcome{};
+  outcome_.min_link_clearance_m = settings_.world.detect_margin;
   running_ = true;
   for (const LegState& leg : legs_) {
     const LegModel& model = kinematics_.leg(leg.kin).model();

@@ -28,6 +28,10 @@ bool SimulationOutcome::Passed() const {
   return status == SimStatus::kSuccess && other_contacts.empty() && AllLandedInRegions();
 }
 
+bool SimulationOutcome::PassedWithClearance(double clearance) const {
+  return Passed() && min_link_clearance_m > clearance;
+}
+
 std::string SimulationOutcome::FirstCause() const {
   if (status != SimStatus::kSuccess) return std::string(ToString(status)) + ": " + cause;
   if (!other_contacts.empty()) {

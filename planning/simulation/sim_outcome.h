@@ -77,6 +77,10 @@ struct SimulationOutcome {
   double max_height_error = 0.0;   ///< largest |z - planned z| of the base [m]
   std::vector<FootLanding> landings;
   std::vector<LinkContact> other_contacts;  ///< legs (not feet) and the body against the stairs
+  /// Smallest distance of a robot link other than a foot to the stairs seen over the run [m]
+  /// (negative: penetration); the detection margin (MjcfSettings::detect_margin) when none came closer.
+  double min_link_clearance_m = 0.0;
+  std::string closest_link;        ///< "<link> to <stair geom>" for that distance
   std::vector<JointTorquePeak> torques;
   double max_torque_ratio = 0.0;
   double time_scale = 1.0;         ///< how many times slower than planned the plan was played
@@ -93,6 +97,9 @@ struct SimulationOutcome {
   /// The physics verdict to compare with the validator's: success, every foot in its region and
   /// no link other than a foot on the stairs.
   bool Passed() const;
+  /// Passed(), and no link other than a foot ever closer to the stairs than `clearance` (the
+  /// validator's margin), so that the two verdicts ask the same question.
+  bool PassedWithClearance(double clearance) const;
   /// Why Passed() is false, in a few words ("" when it passed).
   std::string FirstCause() const;
 };

@@ -42,6 +42,8 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
                                    {"max_depth_m", c.max_depth},
                                    {"steps", c.steps}});
   }
+  j["min_link_clearance_m"] = o.min_link_clearance_m;
+  j["closest_link"] = o.closest_link;
   j["torques"] = nlohmann::json::array();
   for (const JointTorquePeak& t : o.torques) {
     j["torques"].push_back(

@@ -12,7 +12,13 @@
 namespace stairplan {
 
 struct SimSettings {
-  MjcfSettings world;                ///< contact and integration (friction 0.8, 1 kHz)
+  /// Contact and integration (friction 0.8, 1 kHz), with links reported within 1 cm of the stairs
+  /// so that clearances can be compared with the validator's margin.
+  MjcfSettings world = [] {
+    MjcfSettings w;
+    w.detect_margin = 0.01;
+    return w;
+  }();
   SwingSettings swing;               ///< for footsteps whose plan gives no swing apex
   IkSettings ik;
 

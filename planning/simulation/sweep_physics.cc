@@ -16,7 +16,9 @@ std::string Quoted(const std::string& text) {
 
 }  // namespace
 
-SweepPhysics::SweepPhysics(const SimSettings& settings) : settings_(settings) { settings_.Validate(); }
+SweepPhysics::SweepPhysics(const SimSettings& settings, double clearance) : settings_(settings), clearance_(clearance) {
+  settings_.Validate();
+}
 
 void SweepPhysics::Record(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs,
                           const PipelineResult& result) {
@@ -36,6 +38,9 @@ void SweepPhysics::Record(const SweepPoint& point, const RobotModel& robot, cons
     const SimulationOutcome o = Simulate(robot, stairs, result.plan, settings_);
     row.status = ToString(o.status);
     row.passed = o.Passed();
+    row.passed_with_clearance = o.PassedWithClearance(clearance_);
+    row.min_link_clearance_m = o.min_link_clearance_m;
+    row.closest_link = o.closest_link;
     row.cause = o.FirstCause();
     row.landings = static_cast<int>(o.landings.size());
     row.max_landing_error_m = o.MaxLandingError();
@@ -60,19 +65,27 @@ std::vector<PhysicsRow> SweepPhysics::Rows() const {
 std::string SweepPhysics::Csv() const {
   std::ostringstream csv;
   csv << "index,point,validator,validator_cause,physics_status,physics_passed,physics_cause,landings,"
-         "max_landing_error_m,other_contacts,max_torque_ratio,real_time_factor\n";
+         "max_landing_error_m,other_contacts,min_link_clearance_m,closest_link,passed_with_clearance,max_torque_ratio,"
+         "real_time_factor\n";
   for (const PhysicsRow& r : Rows()) {
     csv << r.index << "," << Quoted(r.label) << "," << r.validator << "," << Quoted(r.validator_cause) << ","
         << r.status << "," << (r.passed ? 1 : 0) << "," << Quoted(r.cause) << "," << r.landings << ","
-        << r.max_landing_error_m << "," << r.other_contacts << "," << r.max_torque_ratio << "," << r.real_time_factor
+        << r.max_landing_error_m << "," << r.other_contacts << "," << r.min_link_clearance_m << ","
+        << Quoted(r.closest_link) << "," << (r.passed_with_clearance ? 1 : 0) << "," << r.max_torque_ratio << "," << r.real_time_factor
         << "\n";
   }
   return csv.str();
 }
 
-AgreementReport SweepPhysics::Agreement() const {
+AgreementReport SweepPhysics::Agreement(bool with_clearance) const {
   std::vector<VerdictPair> pairs;
-  for (const PhysicsRow& r : Rows()) pairs.push_back({r.label, r.validator == "valid", r.validator_cause, r.passed, r.cause});
+  for (const PhysicsRow& r : Rows()) {
+    const bool ok = with_clearance ? r.passed_with_clearance : r.passed;
+    std::ostringstream cause;
+    cause << r.cause;
+    if (with_clearance && r.passed && !ok) cause << "clearance: " << r.closest_link << " " << r.min_link_clearance_m * 1000 << " mm";
+    pairs.push_back({r.label, r.validator == "valid", r.validator_cause, ok, cause.str()});
+  }
   return CompareVerdicts(pairs);
 }
 

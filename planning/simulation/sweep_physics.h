@@ -22,6 +22,9 @@ struct PhysicsRow {
   std::string validator_cause;
   std::string status;            ///< SimStatus, or "error" when the simulation could not run
   bool passed = false;
+  bool passed_with_clearance = false;  ///< passed, and no leg link came within the validator's margin
+  double min_link_clearance_m = 0.0;
+  std::string closest_link;
   std::string cause;             ///< SimulationOutcome::FirstCause()
   int landings = 0;
   double max_landing_error_m = 0.0;
@@ -33,7 +36,8 @@ struct PhysicsRow {
 /// Collects physics rows from a sweep's worker threads.
 class SweepPhysics {
  public:
-  explicit SweepPhysics(const SimSettings& settings = {});
+  /// `clearance` is the validator's margin that PhysicsRow::passed_with_clearance applies.
+  explicit SweepPhysics(const SimSettings& settings = {}, double clearance = 0.005);
 
   /// Simulates `result`'s plan when it has one (status ok); points without a plan are skipped.
   /// Thread-safe; never throws (a failed simulation gives status "error").
@@ -43,11 +47,13 @@ class SweepPhysics {
   std::vector<PhysicsRow> Rows() const;
   /// index,direction_label,validator,physics_status,physics_passed,physics_cause,... CSV text.
   std::string Csv() const;
-  /// Validator against physics over the simulated points.
-  AgreementReport Agreement() const;
+  /// Validator against physics over the simulated points: physics passes when the robot got there
+  /// without any non-foot contact, or, `with_clearance`, also never came within the margin.
+  AgreementReport Agreement(bool with_clearance = false) const;
 
  private:
   SimSettings settings_;
+  double clearance_ = 0.005;
   mutable std::mutex mutex_;
   std::vector<PhysicsRow> rows_;
 };

@@ -30,6 +30,9 @@ TEST_CASE("the built-in robot climbs the default stairs in MuJoCo", "[simulation
   CHECK(o.status == SimStatus::kSuccess);
   CHECK(o.Passed());
   CHECK(o.other_contacts.empty());
+  // The validator finds 19 mm between the legs and the stairs; physics agrees they stay clear.
+  CHECK(o.min_link_clearance_m > 0.005);
+  CHECK(o.PassedWithClearance(0.005));
   // Every footstep of the plan was executed and touched down by contact, inside its step region.
   CHECK(o.landings.size() == planned.plan.footsteps.size());
   for (const FootLanding& l : o.landings) {
@@ -97,6 +100,10 @@ TEST_CASE("the physics verdict needs success, feet in their regions and no other
   CHECK_FALSE(o.Passed());
   CHECK(o.FirstCause().find("RH_THIGH") != std::string::npos);
   o.other_contacts.clear();
+  o.min_link_clearance_m = 0.002;
+  CHECK(o.Passed());
+  CHECK_FALSE(o.PassedWithClearance(0.005));
+  CHECK(o.PassedWithClearance(0.001));
   o.status = SimStatus::kStalled;
   CHECK_FALSE(o.Passed());
 }
