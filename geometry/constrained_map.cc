@@ -57,16 +57,11 @@ const char* ToString(RegionKind kind) {
 }
 
 void ConstrainedMapSettings::Validate() const {
-  const auto check = [](const char* name, double v, double hi) {
-    if (!std::isfinite(v) || v < 0.0 || v > hi) {
-      throw FieldError(name, "must be in [0, " + std::to_string(hi) + "] (got " + std::to_string(v) + ")");
-    }
-  };
-  check("edge_margin", edge_margin, 1.0);
-  check("riser_margin", riser_margin, 1.0);
-  check("side_margin", side_margin, 5.0);
-  check("backward_middle_fraction", backward_middle_fraction, 1.0);
-  check("min_region_depth", min_region_depth, 1.0);
+  RequireInRange("edge_margin", edge_margin, 0.0, 1.0);
+  RequireInRange("riser_margin", riser_margin, 0.0, 1.0);
+  RequireInRange("side_margin", side_margin, 0.0, 5.0);
+  RequireInRange("backward_middle_fraction", backward_middle_fraction, 0.0, 1.0);
+  RequireInRange("min_region_depth", min_region_depth, 0.0, 1.0);
 }
 
 ConstrainedMap ConstrainedMap::FromStaircase(const Staircase& stairs, Facing facing, const ConstrainedMapSettings& settings) {

@@ -2,6 +2,8 @@
 // or the file field the value came from.
 #pragma once
 
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -18,5 +20,13 @@ class FieldError : public std::invalid_argument {
   std::string field_;
   std::string problem_;
 };
+
+/// Settings checks share this: throws FieldError(field, ...) unless `value` is finite and in [lo, hi].
+inline void RequireInRange(const std::string& field, double value, double lo, double hi) {
+  if (std::isfinite(value) && value >= lo && value <= hi) return;
+  std::ostringstream problem;
+  problem << "must be in [" << lo << ", " << hi << "] (got " << value << ")";
+  throw FieldError(field, problem.str());
+}
 
 }  // namespace stairplan

@@ -85,13 +85,10 @@ void CorrectCom(const RobotKinematics& kinematics, const ComModel& com_model, Ro
 }  // namespace
 
 void BodyPathSettings::Validate() const {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
-  };
-  check("hip_height_fraction", hip_height_fraction, 0.05, 1.0);
-  check("sample_period", sample_period, 1e-3, 1.0);
-  check("stability_shift", stability_shift, 0.0, 1.0);
-  check("pitch_fraction", pitch_fraction, 0.0, 1.0);
+  RequireInRange("hip_height_fraction", hip_height_fraction, 0.05, 1.0);
+  RequireInRange("sample_period", sample_period, 1e-3, 1.0);
+  RequireInRange("stability_shift", stability_shift, 0.0, 1.0);
+  RequireInRange("pitch_fraction", pitch_fraction, 0.0, 1.0);
   if (com_passes < 0 || com_passes > 10) throw FieldError("com_passes", "must be from 0 to 10");
 }
 

@@ -74,14 +74,9 @@ Plan Infeasible(Plan plan, const std::string& reason) {
 }  // namespace
 
 void CrawlSettings::Validate() const {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!std::isfinite(v) || v <= lo || v > hi) {
-      throw FieldError(name, "must be in (" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " + std::to_string(v) + ")");
-    }
-  };
-  check("swing_duration", swing_duration, 0.0, 5.0);
-  check("shift_duration", shift_duration, -1e-12, 5.0);
-  check("start_gap", start_gap, -1.0, 5.0);
+  RequireInRange("swing_duration", swing_duration, 0.05, 5.0);
+  RequireInRange("shift_duration", shift_duration, 0.0, 5.0);
+  RequireInRange("start_gap", start_gap, -1.0, 5.0);
   body.Validate();
   swing.Validate();
 }

@@ -18,13 +18,10 @@ double Smooth(double u) {
 }  // namespace
 
 void SwingSettings::Validate() const {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
-  };
-  check("clearance", clearance, 0.0, 1.0);
-  check("min_lift", min_lift, 0.0, 1.0);
-  check("lift_fraction", lift_fraction, 0.01, 0.49);
-  check("lower_fraction", lower_fraction, 0.01, 0.49);
+  RequireInRange("clearance", clearance, 0.0, 1.0);
+  RequireInRange("min_lift", min_lift, 0.0, 1.0);
+  RequireInRange("lift_fraction", lift_fraction, 0.01, 0.49);
+  RequireInRange("lower_fraction", lower_fraction, 0.01, 0.49);
 }
 
 double HighestObstacleBetween(const Staircase& stairs, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {

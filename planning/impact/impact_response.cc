@@ -153,14 +153,11 @@ const char* ToString(ResponseKind kind) {
 }
 
 void ImpactSettings::Validate() const {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
-  };
-  check("early_swing_phase", early_swing_phase, 0.0, 1.0);
-  check("elevate_height", elevate_height, 0.0, 1.0);
-  check("contralateral_clearance", contralateral_clearance, 0.0, 1.0);
-  check("untangle_distance", untangle_distance, 0.0, 1.0);
-  check("knee_forward_distance", knee_forward_distance, 0.0, 1.0);
+  RequireInRange("early_swing_phase", early_swing_phase, 0.0, 1.0);
+  RequireInRange("elevate_height", elevate_height, 0.0, 1.0);
+  RequireInRange("contralateral_clearance", contralateral_clearance, 0.0, 1.0);
+  RequireInRange("untangle_distance", untangle_distance, 0.0, 1.0);
+  RequireInRange("knee_forward_distance", knee_forward_distance, 0.0, 1.0);
 }
 
 ImpactResponse RespondToImpact(const ImpactEvent& event, const ConstrainedMap& map, const ImpactSettings& settings) {

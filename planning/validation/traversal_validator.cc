@@ -52,12 +52,9 @@ const char* ToString(ViolationKind kind) {
 }
 
 void ValidationSettings::Validate() const {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!std::isfinite(v) || v < lo || v > hi) throw FieldError(name, "out of range (got " + std::to_string(v) + ")");
-  };
-  check("time_step", time_step, 1e-4, 1.0);
-  check("min_clearance", min_clearance, -1.0, 1.0);
-  check("min_stability_margin", min_stability_margin, -1.0, 1.0);
+  RequireInRange("time_step", time_step, 1e-4, 1.0);
+  RequireInRange("min_clearance", min_clearance, -1.0, 1.0);
+  RequireInRange("min_stability_margin", min_stability_margin, -1.0, 1.0);
   if (max_violations < 1) throw FieldError("max_violations", "must be at least 1");
   swing.Validate();
   ik.Validate();
