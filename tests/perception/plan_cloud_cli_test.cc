@@ -33,7 +33,7 @@ int PlanCloud(const std::string& cloud, const std::string& dir, std::string* err
 TEST_CASE("plan --cloud plans on the perceived stairs and records the fit", "[cli][cloud]") {
   const std::string dir = MakeTempDir("plan-cloud");
   const Staircase truth{StairSpec{}};
-  const Scene scene = ScanFromBottom(truth, 0.3, {1.0, -0.5, 0.0}, 0.005, 3);
+  const Scene scene = ScanFromBottom(truth, 0.3, {1.0, -0.5, 0.0}, 0.005, 2);
   std::string err;
   const int code = PlanCloud(WriteXyz(scene.cloud, dir + "/stairs.xyz"), dir, &err);
   INFO(err);
@@ -46,10 +46,13 @@ TEST_CASE("plan --cloud plans on the perceived stairs and records the fit", "[cl
   CHECK(plan["fitted"]["yaw_rad"].get<double>() == Approx(0.3).margin(0.02));
   CHECK(plan["stairs"]["steps"] == 7);
   CHECK(plan["status"] == "ok");
-  // Exit 0 exactly when the plan validates on the perceived stairs (plan_from_cloud_test checks
-  // the perception chain's plans against the true stairs).
+  // This scan sees every tread well enough for a step region, and the plan validates on the
+  // perceived stairs (plan_from_cloud_test moves such plans onto the true stairs and validates
+  // them there). Scans where occlusion leaves a tread without a step region make the crawl step
+  // two stairs at once, which the validator rightly rejects (exit 3).
   REQUIRE(plan.contains("validation"));
-  CHECK(plan["validation"]["ok"] == (code == 0));
+  CHECK(code == 0);
+  CHECK(plan["validation"]["ok"] == true);
   CHECK(plan["footsteps"].size() >= 24);
   for (const auto& f : plan["footsteps"]) CHECK(f["in_step_region"] == true);
 }
