@@ -24,7 +24,7 @@ class FootfallGrid {
   }
   template <typename Fn>
   void ForNeighbours(const Eigen::Vector3d& p, Fn fn) const {
-    const auto cx = static_cast<std::int64_t>(std::floor(p.x() / cell_)), cy = static_cast<std::int64_t>(std::floor(p.y() / cell_));
+    const std::int64_t cx = Cell(p.x()), cy = Cell(p.y());
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
         const auto it = cells_.find(Pack(cx + dx, cy + dy));
@@ -35,10 +35,13 @@ class FootfallGrid {
   }
 
  private:
-  static std::int64_t Pack(std::int64_t x, std::int64_t y) { return (x << 32) ^ (y & 0xffffffff); }
-  std::int64_t Key(const Eigen::Vector3d& p) const {
-    return Pack(static_cast<std::int64_t>(std::floor(p.x() / cell_)), static_cast<std::int64_t>(std::floor(p.y() / cell_)));
+  // Shifted as unsigned: a left shift of a negative signed value is undefined in C++17 (UBSan).
+  static std::int64_t Pack(std::int64_t x, std::int64_t y) {
+    return static_cast<std::int64_t>((static_cast<std::uint64_t>(x) << 32) ^ (static_cast<std::uint64_t>(y) & 0xffffffffu));
   }
+  // Clamped before the cast: a coordinate far beyond int64's range of cells would be undefined.
+  std::int64_t Cell(double v) const { return static_cast<std::int64_t>(std::clamp(std::floor(v / cell_), -1e15, 1e15)); }
+  std::int64_t Key(const Eigen::Vector3d& p) const { return Pack(Cell(p.x()), Cell(p.y())); }
   double cell_;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
 };
