@@ -25,11 +25,24 @@ echo "sanitize: build took $(( $(date +%s) - start )) s"
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-# Left out of the sanitized run, for these reasons only:
-#  install.find_package_example  installs the instrumented libraries and builds an uninstrumented
-#                                example against them with the default compiler: a packaging test, not a
-#                                runtime one (the normal build runs it).
+# Left out of the sanitized run, for these reasons only (the normal build runs them all):
+#  - install.find_package_example: installs the instrumented libraries and builds an uninstrumented
+#    example against them with the default compiler; a packaging test, not a runtime one.
+#  - speed: under ASan these take 50-600 s each on 2 cores (measured 2026-11-22; the first timed out
+#    at 600 s), which would take the sanitized run past CI's budget. None had a finding.
+#  - "NLopt's SLSQP solves the same horizon NLP": it requires a body-planner Update to finish inside
+#    the 2.5 ms wall-clock cycle budget first, which ASan's slowdown breaks (status stale); a timing
+#    property, not a memory or UB one.
 exclude='^install\.find_package_example$'
+exclude+='|^every knot of the body plan passes IK, joint limits and clearance'
+exclude+='|^on the flight the body pitches with the s'
+exclude+='|^1,000 Update cycles after warm-up allocate nothing'
+exclude+='|^the NLP refinement of a whole plan'
+exclude+='|^NLopt.s SLSQP solves the same horizon NLP'
+exclude+='|^ANYmal C climbs low stairs'
+exclude+='|^1000 random code-range staircases'
+exclude+='|^sweep CSV is identical for 1 and 2 threads'
+exclude+='|^sweep shards merged equal the unsharded sweep'
 t0=$(date +%s)
 ctest --test-dir "$build" --output-on-failure -j "$jobs" -E "$exclude"
 echo "sanitize: ctest took $(( $(date +%s) - t0 )) s"

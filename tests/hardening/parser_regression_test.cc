@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "geometry/footfall.h"
+#include "geometry/footfall_stairs.h"
 #include "geometry/stair_spec_yaml.h"
 #include "planning/optim/oqp_reader.h"
 #include "planning/plan_json_reader.h"
@@ -56,4 +58,20 @@ TEST_CASE("Online QP sequence: huge sizes in dims.oqp are an error naming it, be
     std::ofstream(dir + "/dims.oqp") << dims;
     CHECK_THAT(ErrorOf([&] { optim::ReadOqpSequence(dir); }), Catch::Contains("dims.oqp"));
   }
+}
+
+TEST_CASE("footfalls: negative and far-away coordinates hash without undefined behaviour", "[hardening][ubsan][footfalls]") {
+  // UBSan in the sanitized suite: the grid key shifted negative cell indices left (undefined in
+  // C++17), and a coordinate beyond int64's range of cells was cast unchecked.
+  std::vector<Footfall> footfalls;
+  const char* legs[] = {"LF", "RF", "LH", "RH"};
+  for (int i = 0; i < 16; ++i) {
+    Footfall f;
+    f.t = 0.5 * i;
+    f.leg = legs[i % 4];
+    f.position = Eigen::Vector3d(-3.0 + 0.1 * i, -2.0 - 0.05 * i, 0.0);
+    footfalls.push_back(f);
+  }
+  footfalls.push_back({9.0, "LF", Eigen::Vector3d(1e30, -1e30, 0.0)});
+  CHECK_NOTHROW(StairsFromFootfalls(footfalls, FootfallStairsSettings{}));
 }
