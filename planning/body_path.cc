@@ -7,6 +7,7 @@
 #include <urdf_model/model.h>
 
 #include "geometry/field_error.h"
+#include "collision/stance_check.h"
 #include "planning/com_model.h"
 
 namespace stairplan {
@@ -82,13 +83,73 @@ void CorrectCom(const RobotKinematics& kinematics, const ComModel& com_model, Ro
   }
 }
 
+// The height change at one instant that puts the four-foot stance inside its feasible range.
+double HeightCorrection(StanceChecker& checker, const std::vector<std::string>& legs,
+                        const std::vector<Eigen::Vector3d>& feet, const BodyPose& pose, double margin) {
+  std::array<Eigen::Vector3d, 4> contacts;
+  for (std::size_t i = 0; i < legs.size() && i < 4; ++i) {
+    contacts[static_cast<std::size_t>(checker.kinematics().LegIndex(legs[i]))] = feet[i];
+  }
+  const double z = pose.position_W.z();
+  const Interval1 window = checker.FeasibleBodyHeights(pose, contacts, z - 0.2, z + 0.1);
+  if (window.empty()) return 0.0;  // no height helps: leave it to the validator to say so
+  const double lo = window.lo + std::min(margin, 0.5 * (window.hi - window.lo));
+  const double hi = window.hi - std::min(margin, 0.5 * (window.hi - window.lo));
+  return std::clamp(z, lo, hi) - z;
+}
+
+// Heights at the start and at every touchdown moved into the stance's feasible range, the
+// corrections interpolated linearly in time between those instants.
+void FitHeightsToStances(const RobotModel& robot, const Staircase& stairs, const std::vector<std::string>& legs,
+                         const std::vector<Eigen::Vector3d>& initial, const std::vector<Footstep>& footsteps,
+                         const BodyPathSettings& settings, std::vector<BodyState>& body) {
+  StanceSettings stance;
+  stance.min_clearance = settings.touchdown_clearance;
+  StanceChecker checker(robot, stairs, stance);
+  std::vector<std::pair<double, double>> keys;  // (t, dz)
+  const auto key_at = [&](double t) {
+    keys.emplace_back(t, HeightCorrection(checker, legs, FeetAt(legs, initial, footsteps, t), BodyPoseAt(body, t),
+                                          settings.height_margin));
+  };
+  key_at(0.0);
+  for (const Footstep& f : footsteps) key_at(f.t_touchdown);
+  std::sort(keys.begin(), keys.end());
+  for (BodyState& b : body) {
+    const auto next = std::upper_bound(keys.begin(), keys.end(), std::make_pair(b.t, 1e300));
+    if (next == keys.begin()) {
+      b.z += keys.front().second;
+    } else if (next == keys.end()) {
+      b.z += keys.back().second;
+    } else {
+      const auto& a = *(next - 1);
+      const double u = next->first > a.first ? (b.t - a.first) / (next->first - a.first) : 0.0;
+      b.z += a.second + u * (next->second - a.second);
+    }
+  }
+}
+
 }  // namespace
+
+BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t) {
+  BodyPose pose;
+  if (body.empty()) return pose;
+  const auto next = std::upper_bound(body.begin(), body.end(), t, [](double v, const BodyState& b) { return v < b.t; });
+  const BodyState& a = next == body.begin() ? body.front() : *(next - 1);
+  const BodyState& b = next == body.end() ? body.back() : *next;
+  const double u = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
+  pose.position_W = {a.x + u * (b.x - a.x), a.y + u * (b.y - a.y), a.z + u * (b.z - a.z)};
+  pose.pitch = a.pitch + u * (b.pitch - a.pitch);
+  pose.yaw = a.yaw + u * (b.yaw - a.yaw);
+  return pose;
+}
 
 void BodyPathSettings::Validate() const {
   RequireInRange("hip_height_fraction", hip_height_fraction, 0.05, 1.0);
   RequireInRange("sample_period", sample_period, 1e-3, 1.0);
   RequireInRange("stability_shift", stability_shift, 0.0, 1.0);
   RequireInRange("pitch_fraction", pitch_fraction, 0.0, 1.0);
+  RequireInRange("touchdown_clearance", touchdown_clearance, -1.0, 0.1);
+  RequireInRange("height_margin", height_margin, 0.0, 0.1);
   if (com_passes < 0 || com_passes > 10) throw FieldError("com_passes", "must be from 0 to 10");
 }
 
@@ -131,7 +192,7 @@ std::vector<Eigen::Vector3d> FeetAt(const std::vector<std::string>& legs, const 
 std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::vector<std::string>& legs,
                                             const std::vector<Eigen::Vector3d>& initial_feet,
                                             const std::vector<Footstep>& footsteps, double yaw,
-                                            const BodyPathSettings& settings) {
+                                            const BodyPathSettings& settings, const Staircase* stairs) {
   settings.Validate();
   const RobotKinematics kinematics(robot);
   const ComModel com_model(kinematics);
@@ -172,6 +233,9 @@ std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::
     b.com_shift = (com - feet_xy).dot(Eigen::Vector2d(std::cos(yaw), std::sin(yaw)));
     CorrectCom(kinematics, com_model, ws, legs, feet, com, settings.com_passes, b);
     body.push_back(b);
+  }
+  if (stairs != nullptr && settings.touchdown_clearance >= 0.0) {
+    FitHeightsToStances(robot, *stairs, legs, initial_feet, footsteps, settings, body);
   }
   return body;
 }

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include "geometry/staircase.h"
+#include "kinematics/body_pose.h"
 #include "kinematics/robot_model.h"
 #include "planning/plan.h"
 
@@ -26,6 +28,11 @@ struct BodyPathSettings {
   /// Correct the body so the COM computed through each leg's IK (not the lumped estimate) sits
   /// where the support polygon wants it; this many fixed-point passes per sample (0: off).
   int com_passes = 2;
+  /// With the stairs known, the body height at every touchdown is moved into the range at which the
+  /// four-foot stance passes the stance check (IK within limits, leg clearance above this), at
+  /// least `height_margin` inside it; heights in between are interpolated. Negative: off.
+  double touchdown_clearance = 0.005;
+  double height_margin = 0.01;
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
@@ -38,10 +45,13 @@ Eigen::Vector3d ApproximateComOffset(const RobotModel& robot);
 std::vector<Eigen::Vector3d> FeetAt(const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& initial,
                                     const std::vector<Footstep>& footsteps, double t, std::vector<bool>* in_stance = nullptr);
 
+/// The body pose at time t, interpolated linearly between body samples.
+BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t);
+
 /// The body states for `footsteps` (sorted by touchdown) starting from `initial_feet`, facing `yaw`.
 std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::vector<std::string>& legs,
                                             const std::vector<Eigen::Vector3d>& initial_feet,
                                             const std::vector<Footstep>& footsteps, double yaw,
-                                            const BodyPathSettings& settings = {});
+                                            const BodyPathSettings& settings = {}, const Staircase* stairs = nullptr);
 
 }  // namespace stairplan

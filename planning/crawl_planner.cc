@@ -156,7 +156,7 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
       plan.footsteps.push_back(step);
     }
   }
-  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, settings.body);
+  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, settings.body, &stairs);
   return plan;
 }
 

@@ -43,7 +43,7 @@ Plan StepPlannerPlan(const RobotModel& robot, const Staircase& stairs, const Con
     f.swing_apex_z = SwingTrajectory(f.from_W, f.position_W, stairs, options.crawl.swing).apex_z();
   }
   const double yaw = options.facing == Facing::kForward ? 0.0 : M_PI;
-  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, options.crawl.body);
+  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, options.crawl.body, &stairs);
   return plan;
 }
 

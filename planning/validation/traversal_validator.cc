@@ -60,19 +60,6 @@ void ValidationSettings::Validate() const {
   ik.Validate();
 }
 
-BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t) {
-  BodyPose pose;
-  if (body.empty()) return pose;
-  const auto next = std::upper_bound(body.begin(), body.end(), t, [](double v, const BodyState& b) { return v < b.t; });
-  const BodyState& a = next == body.begin() ? body.front() : *(next - 1);
-  const BodyState& b = next == body.end() ? body.back() : *next;
-  const double u = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
-  pose.position_W = {a.x + u * (b.x - a.x), a.y + u * (b.y - a.y), a.z + u * (b.z - a.z)};
-  pose.pitch = a.pitch + u * (b.pitch - a.pitch);
-  pose.yaw = a.yaw + u * (b.yaw - a.yaw);
-  return pose;
-}
-
 TraversalValidator::TraversalValidator(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                        const ValidationSettings& settings)
     : stairs_(stairs), map_(map), settings_(settings) {

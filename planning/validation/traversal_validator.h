@@ -11,6 +11,7 @@
 #include "collision/stance_check.h"
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
+#include "planning/body_path.h"
 #include "planning/plan.h"
 #include "planning/swing_trajectory.h"
 #include "planning/com_model.h"
@@ -78,8 +79,5 @@ class TraversalValidator {
   std::unique_ptr<StanceChecker> checker_;
   std::unique_ptr<ComModel> com_;
 };
-
-/// The body pose at time t, interpolated linearly between the plan's body samples.
-BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t);
 
 }  // namespace stairplan
