@@ -77,6 +77,13 @@ RobotModel LoadRobot(const std::string& path) {
   return RobotModel::FromUrdfFile(path);
 }
 
+RobotModel LoadPlanRobot(const PlanFile& file, const std::string& override_path) {
+  if (!override_path.empty()) return LoadRobot(override_path);
+  const std::string& source = file.plan.robot_source;
+  if (source.empty() || source.rfind("builtin:", 0) == 0) return LoadRobot("");
+  return LoadRobot(source);
+}
+
 void MakeOutputDir(const std::string& dir, const std::string& flag) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "kinematics/robot_model.h"
+#include "planning/plan_json_reader.h"
 
 namespace stairplan::cli {
 
@@ -55,6 +56,9 @@ void WriteFileAtomically(const std::string& path, const std::string& contents);
 
 /// The robot named by --robot: the built-in stairbot when `path` is empty; BadInput when missing.
 RobotModel LoadRobot(const std::string& path);
+
+/// The robot a plan.json names (a URDF path or the built-in robot), unless --robot overrides it.
+RobotModel LoadPlanRobot(const PlanFile& file, const std::string& override_path);
 
 /// Creates `dir` (and parents) or throws BadInput naming the flag.
 void MakeOutputDir(const std::string& dir, const std::string& flag);

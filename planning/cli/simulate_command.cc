@@ -14,14 +14,6 @@
 namespace stairplan::cli {
 namespace {
 
-// The robot a plan names: a file path, or the built-in robot (as `validate` does).
-RobotModel PlanRobot(const PlanFile& file, const std::string& override_path) {
-  if (!override_path.empty()) return LoadRobot(override_path);
-  const std::string& source = file.plan.robot_source;
-  if (source.empty() || source.rfind("builtin:", 0) == 0) return LoadRobot("");
-  return LoadRobot(source);
-}
-
 // The base against the plan over time, one row per recorded frame.
 std::string TraceCsv(const SimulationOutcome& outcome) {
   std::ostringstream csv;
@@ -52,7 +44,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("simulate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
-    const RobotModel robot = PlanRobot(file, robot_path);
+    const RobotModel robot = LoadPlanRobot(file, robot_path);
     const Staircase stairs(file.stairs);
     if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--video-frames");
     SimSettings settings;

@@ -9,14 +9,6 @@
 namespace stairplan::cli {
 namespace {
 
-// The robot a plan names: a file path, or the built-in robot.
-RobotModel PlanRobot(const PlanFile& file, const std::string& override_path) {
-  if (!override_path.empty()) return LoadRobot(override_path);
-  const std::string& source = file.plan.robot_source;
-  if (source.empty() || source.rfind("builtin:", 0) == 0) return LoadRobot("");
-  return LoadRobot(source);
-}
-
 int RunValidate(const std::vector<std::string>& args) {
   CLI::App app("Validate a plan: reach, joint limits, clearances, stability, step regions", "validate");
   std::string path, robot_path;
@@ -27,7 +19,7 @@ int RunValidate(const std::vector<std::string>& args) {
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("validate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
-    const RobotModel robot = PlanRobot(file, robot_path);
+    const RobotModel robot = LoadPlanRobot(file, robot_path);
     const Staircase stairs(file.stairs);
     PipelineOptions options;
     options.facing = file.facing;
