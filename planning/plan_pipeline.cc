@@ -66,7 +66,7 @@ Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const C
 FootstepSource ParseFootstepSource(const std::string& text) {
   if (text == "crawl") return FootstepSource::kSelectedCrawl;
   if (text == "step") return FootstepSource::kStepPlanner;
-  throw std::invalid_argument("planner must be 'crawl' or 'step' (got '" + text + "')");
+  throw std::invalid_argument("planner: must be 'crawl' or 'step' (got '" + text + "')");
 }
 
 StepPlannerSettings CrawlControllers() {

@@ -1,7 +1,6 @@
 // `stairplan plan`: plan a traversal of a staircase and write plan.json and plan.svg.
 #include <chrono>
 #include <iostream>
-
 #include <optional>
 
 #include "geometry/point_cloud.h"
@@ -124,10 +123,11 @@ int RunPlan(const std::vector<std::string>& args) {
     const auto t0 = std::chrono::steady_clock::now();
     PipelineOptions options;
     options.facing = ParseFacing(o.facing);
-    if (o.planner != "crawl" && o.planner != "step") {
-      throw BadInput("--planner: must be 'crawl' or 'step' (got '" + o.planner + "')");
+    try {
+      options.footsteps = ParseFootstepSource(o.planner);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(std::string("--") + e.what());
     }
-    options.footsteps = ParseFootstepSource(o.planner);
     SetBodyOptions(o, options);
     const RobotModel robot = LoadRobot(o.robot);
     std::optional<CloudStairs> perceived;
