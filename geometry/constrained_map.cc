@@ -146,10 +146,11 @@ void ConstrainedMap::AddCollisionBand(int index, double x0, double x1, RegionKin
                                                 [](const auto& a, const auto& b) { return a.y() < b.y(); });
   s.collision_regions.push_back({Rectangle(x0, x1, smin->y(), smax->y(), s.z), kind});
   if (s.step_region.empty()) return;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo, ylo = lo, yhi = -lo;
+  const auto [lo, hi] = s.step_region.XExtent();
+  double ylo = std::numeric_limits<double>::infinity(), yhi = -ylo;
   for (const auto& v : s.step_region.vertices) {
-    lo = std::min(lo, v.x()); hi = std::max(hi, v.x());
-    ylo = std::min(ylo, v.y()); yhi = std::max(yhi, v.y());
+    ylo = std::min(ylo, v.y());
+    yhi = std::max(yhi, v.y());
   }
   if (x1 <= lo || x0 >= hi) return;
   const double left = std::max(0.0, x0 - lo);   // what stays before the band

@@ -12,10 +12,7 @@
 namespace stairplan {
 namespace {
 
-struct Interval {
-  double lo = 0.0;
-  double hi = 0.0;
-};
+using Interval = Extent;
 
 // Merges overlapping intervals.
 std::vector<Interval> Merge(std::vector<Interval> v) {
@@ -29,16 +26,6 @@ std::vector<Interval> Merge(std::vector<Interval> v) {
     }
   }
   return out;
-}
-
-// The x range of a polygon (the step regions are rectangles in the stairs' frame).
-Interval XRange(const Polygon2& p) {
-  Interval r{1e300, -1e300};
-  for (const auto& v : p.vertices) {
-    r.lo = std::min(r.lo, v.x());
-    r.hi = std::max(r.hi, v.x());
-  }
-  return r;
 }
 
 // Distance along x to the nearest edge (between its nosing and its riser).
@@ -153,7 +140,7 @@ PerceivedStairs ConstrainedMapFromHeightMap(const HeightMap& map, const StairMod
     for (const Interval& i : Merge(intervals)) {
       // Edges outside the step region are already collision regions of the analytic map.
       if (regions.step_region.empty()) break;
-      const Interval step = XRange(regions.step_region);
+      const Interval step = regions.step_region.XExtent();
       if (kind != RegionKind::kData && (i.hi <= step.lo || i.lo >= step.hi)) continue;
       out.map.AddCollisionBand(k, i.lo, i.hi, kind);
       (kind == RegionKind::kData ? out.data_bands : out.edge_bands) += 1;

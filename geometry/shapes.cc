@@ -62,6 +62,15 @@ double Polygon2::SignedDistance(const Eigen::Vector2d& p) const {
   return -depth;
 }
 
+Extent Polygon2::XExtent() const {
+  Extent e{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (const auto& v : vertices) {
+    e.lo = std::min(e.lo, v.x());
+    e.hi = std::max(e.hi, v.x());
+  }
+  return e;
+}
+
 double Polygon2::Area() const {
   double twice = 0.0;
   const std::size_t n = vertices.size();

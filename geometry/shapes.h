@@ -8,6 +8,12 @@
 
 namespace stairplan {
 
+/// A closed interval [lo, hi] along one axis.
+struct Extent {
+  double lo = 0.0;
+  double hi = 0.0;
+};
+
 /// A convex polygon in the xy plane at height z, vertices counter-clockwise.
 struct Polygon2 {
   std::vector<Eigen::Vector2d> vertices;
@@ -22,6 +28,8 @@ struct Polygon2 {
   /// Signed distance: negative inside (depth to the boundary), positive outside.
   double SignedDistance(const Eigen::Vector2d& p) const;
   double Area() const;
+  /// The polygon's extent along x (step regions are rectangles along the flight).
+  Extent XExtent() const;
   bool empty() const { return vertices.size() < 3; }
 };
 

@@ -14,20 +14,6 @@ namespace {
 // The paper's crawl: one leg at a time, hind right, hind left, front right, front left.
 constexpr std::array<const char*, 4> kCrawlOrder = {"RH", "LH", "RF", "LF"};
 
-struct Interval {
-  double lo = 0.0;
-  double hi = 0.0;
-};
-
-Interval XRange(const Polygon2& poly) {
-  Interval r{poly.vertices.front().x(), poly.vertices.front().x()};
-  for (const auto& v : poly.vertices) {
-    r.lo = std::min(r.lo, v.x());
-    r.hi = std::max(r.hi, v.x());
-  }
-  return r;
-}
-
 double MeanRun(const StairSpec& spec) {
   if (spec.runs.empty()) return spec.run;
   double sum = 0.0;
@@ -40,12 +26,12 @@ double MeanRun(const StairSpec& spec) {
 std::vector<double> FootholdLattice(const Staircase& stairs, const ConstrainedMap& map) {
   const int last = map.size() - 1;
   if (map.stair(0).step_region.empty() || map.stair(last).step_region.empty()) return {};
-  const Interval bottom = XRange(map.stair(0).step_region);
-  const Interval top = XRange(map.stair(last).step_region);
+  const Extent bottom = map.stair(0).step_region.XExtent();
+  const Extent top = map.stair(last).step_region.XExtent();
   std::deque<double> lattice;
   for (int k = 1; k < last; ++k) {
     if (map.stair(k).step_region.empty()) continue;
-    const Interval r = XRange(map.stair(k).step_region);
+    const Extent r = map.stair(k).step_region.XExtent();
     lattice.push_back(0.5 * (r.lo + r.hi));
   }
   if (lattice.empty()) lattice = {bottom.hi, top.lo};
@@ -106,7 +92,7 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
     tracks.push_back(track);
   }
   // Start with the leading feet just before the flight's first step region.
-  const Interval bottom = XRange(map.stair(0).step_region);
+  const Extent bottom = map.stair(0).step_region.XExtent();
   const double body_x0 = bottom.hi - settings.start_gap - front_x;
   const int last_stair = map.size() - 1;
   int first_top = static_cast<int>(lattice.size());

@@ -42,11 +42,7 @@ const char* LegColour(const std::string& leg) {
 
 void DrawBand(std::ostringstream& svg, const SideView& v, const Polygon2& poly, const char* colour, double offset_px) {
   if (poly.empty()) return;
-  double lo = poly.vertices.front().x(), hi = lo;
-  for (const auto& p : poly.vertices) {
-    lo = std::min(lo, p.x());
-    hi = std::max(hi, p.x());
-  }
+  const auto [lo, hi] = poly.XExtent();
   svg << "<line x1='" << v.X(lo) << "' y1='" << v.Y(poly.z) - offset_px << "' x2='" << v.X(hi) << "' y2='"
       << v.Y(poly.z) - offset_px << "' stroke='" << colour << "' stroke-width='5'/>\n";
 }

@@ -7,19 +7,7 @@
 namespace stairplan {
 namespace {
 
-struct Span {
-  double lo = 0.0;
-  double hi = 0.0;
-};
-
-Span XSpan(const Polygon2& p) {
-  Span s{p.vertices.front().x(), p.vertices.front().x()};
-  for (const auto& v : p.vertices) {
-    s.lo = std::min(s.lo, v.x());
-    s.hi = std::max(s.hi, v.x());
-  }
-  return s;
-}
+using Span = Extent;
 
 }  // namespace
 
@@ -30,7 +18,7 @@ GroundProfile GroundProfile::FromMap(const ConstrainedMap& map) {
   std::vector<Span> spans;
   for (const StairRegions& s : map.stairs()) {
     if (s.surface.empty()) throw std::invalid_argument("GroundProfile::FromMap: map: surface " + std::to_string(s.index) + " is empty");
-    spans.push_back(XSpan(s.surface));
+    spans.push_back(s.surface.XExtent());
   }
   const auto add = [&](double x, double z) {
     if (!g.xs_.empty() && x <= g.xs_.back()) return;  // keep the knots strictly increasing
