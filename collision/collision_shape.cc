@@ -7,20 +7,9 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <urdf_model/link.h>
 
+#include "kinematics/urdf_pose.h"
+
 namespace stairplan {
-namespace {
-
-Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
-                   .normalized()
-                   .toRotationMatrix();
-  t.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  return t;
-}
-
-}  // namespace
-
 std::shared_ptr<const fcl::CollisionGeometryd> MakeFclBox(const Eigen::Vector3d& size) {
   auto box = std::make_shared<fcl::Boxd>(size);
   box->computeLocalAABB();
@@ -33,7 +22,7 @@ std::vector<CollisionShape> LinkCollisionShapes(const urdf::Link& link, const st
     if (!collision || !collision->geometry) continue;
     CollisionShape shape;
     shape.link = link.name;
-    shape.local = ToIsometry(collision->origin);
+    shape.local = UrdfPoseToIsometry(collision->origin);
     switch (collision->geometry->type) {
       case urdf::Geometry::BOX: {
         const auto& box = static_cast<const urdf::Box&>(*collision->geometry);

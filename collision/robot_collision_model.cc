@@ -5,17 +5,10 @@
 
 #include <urdf_model/model.h>
 
+#include "kinematics/urdf_pose.h"
+
 namespace stairplan {
 namespace {
-
-Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
-                   .normalized()
-                   .toRotationMatrix();
-  t.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  return t;
-}
 
 struct Attachment {
   int leg = -1;      // -1: the body
@@ -43,7 +36,7 @@ RobotCollisionModel::RobotCollisionModel(const RobotKinematics& kinematics) {
     Eigen::Isometry3d base_in_link = Eigen::Isometry3d::Identity();
     for (urdf::LinkConstSharedPtr link = urdf.getLink(robot.base_link()); link && link->parent_joint &&
                                                                            link->parent_joint->type == urdf::Joint::FIXED;) {
-      base_in_link = ToIsometry(link->parent_joint->parent_to_joint_origin_transform) * base_in_link;
+      base_in_link = UrdfPoseToIsometry(link->parent_joint->parent_to_joint_origin_transform) * base_in_link;
       link = link->getParent();
       if (link && !frames.count(link->name)) frames[link->name] = {-1, -1, base_in_link.inverse(), true};
     }
@@ -55,7 +48,7 @@ RobotCollisionModel::RobotCollisionModel(const RobotKinematics& kinematics) {
     Eigen::Isometry3d link_in_ancestor = Eigen::Isometry3d::Identity();
     urdf::LinkConstSharedPtr at = link;
     while (!frames.count(at->name) && at->parent_joint && at->parent_joint->type == urdf::Joint::FIXED) {
-      link_in_ancestor = ToIsometry(at->parent_joint->parent_to_joint_origin_transform) * link_in_ancestor;
+      link_in_ancestor = UrdfPoseToIsometry(at->parent_joint->parent_to_joint_origin_transform) * link_in_ancestor;
       at = at->getParent();
     }
     const auto frame = frames.find(at->name);

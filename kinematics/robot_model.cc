@@ -11,6 +11,8 @@
 
 #include <urdf_model/model.h>
 
+#include "kinematics/urdf_pose.h"
+
 namespace stairplan {
 namespace {
 
@@ -19,15 +21,6 @@ using LinkPtr = urdf::LinkConstSharedPtr;
 bool IsMovable(const urdf::Joint& joint) {
   return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
          joint.type == urdf::Joint::PRISMATIC;
-}
-
-Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  double x = 0, y = 0, z = 0, w = 1;
-  pose.rotation.getQuaternion(x, y, z, w);
-  t.linear() = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
-  return t;
 }
 
 // Links from the root down to `link`, root first.
@@ -76,7 +69,7 @@ const urdf::Joint* FirstMovableJoint(const LinkPtr& link) {
 double ZeroDistanceFromHip(const LinkPtr& link) {
   Eigen::Isometry3d below_hip = Eigen::Isometry3d::Identity();
   for (LinkPtr l = link; l && l->parent_joint; l = l->getParent()) {
-    below_hip = ToIsometry(l->parent_joint->parent_to_joint_origin_transform) * below_hip;
+    below_hip = UrdfPoseToIsometry(l->parent_joint->parent_to_joint_origin_transform) * below_hip;
     if (l->parent_joint.get() == FirstMovableJoint(link)) break;
   }
   return below_hip.translation().norm();
@@ -150,7 +143,7 @@ LegModel BuildLeg(const LinkPtr& base, const LinkPtr& foot) {
   Eigen::Vector3d previous = Eigen::Vector3d::Zero();
   for (const auto& link : path) {
     const urdf::Joint& joint = *link->parent_joint;
-    base_T = base_T * ToIsometry(joint.parent_to_joint_origin_transform);
+    base_T = base_T * UrdfPoseToIsometry(joint.parent_to_joint_origin_transform);
     leg.link_names.push_back(link->name);
     if (link->inertial) leg.mass += link->inertial->mass;
     if (seen_movable) leg.max_reach += (base_T.translation() - previous).norm();
