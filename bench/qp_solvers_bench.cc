@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -157,49 +158,36 @@ const OqpSequence* Sequence(const std::string& name) {
   return &cache.emplace(name, ReadOqpSequence(dir)).first->second;
 }
 
-void SequenceActiveSet(benchmark::State& state, const std::string& name) {
+// Solves the first `max_qps` QPs of a sequence in order, each from the previous one's state.
+template <typename Solver>
+void SequenceWith(benchmark::State& state, const std::string& name, const std::string& label, int max_qps) {
   const OqpSequence* s = Sequence(name);
   if (s == nullptr) {
     state.SkipWithError("../shared/data/qp/online_qp not found");
     return;
   }
   Program p = s->MakeProgram();
-  ActiveSetQpSolver solver;
+  Solver solver;
   SolveResult r;
   SolveTimer timer;
   for (auto _ : state) {
-    for (int k = 0; k < s->num_qps; ++k) {
+    for (int k = 0; k < std::min(max_qps, s->num_qps); ++k) {
       s->Apply(k, &p);
       timer.Start();
       solver.Solve(p, &r);
       timer.Stop();
     }
   }
-  Record(state, name + "/active-set", timer);
+  Record(state, name + "/" + label, timer);
+}
+
+void SequenceActiveSet(benchmark::State& state, const std::string& name) {
+  SequenceWith<ActiveSetQpSolver>(state, name, "active-set", std::numeric_limits<int>::max());
 }
 
 // Ipopt has no warm start worth the name here; the first 40 QPs of the sequence suffice for a
 // per-QP time.
-void SequenceIpopt(benchmark::State& state, const std::string& name) {
-  const OqpSequence* s = Sequence(name);
-  if (s == nullptr) {
-    state.SkipWithError("../shared/data/qp/online_qp not found");
-    return;
-  }
-  Program p = s->MakeProgram();
-  IpoptSolver solver;
-  SolveResult r;
-  SolveTimer timer;
-  for (auto _ : state) {
-    for (int k = 0; k < std::min(40, s->num_qps); ++k) {
-      s->Apply(k, &p);
-      timer.Start();
-      solver.Solve(p, &r);
-      timer.Stop();
-    }
-  }
-  Record(state, name + "/ipopt", timer);
-}
+void SequenceIpopt(benchmark::State& state, const std::string& name) { SequenceWith<IpoptSolver>(state, name, "ipopt", 40); }
 
 void PrintRatios() {
   const auto& t = MicrosPerSolve();
