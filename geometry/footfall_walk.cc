@@ -83,9 +83,17 @@ std::vector<Footfall> WalkFootfalls(const std::vector<PlacedFlight>& route, cons
       Footfall f;
       f.leg = leg.name;
       f.t = (static_cast<double>(i) + leg.delay) * settings.step_period;
+      // One draw per statement: as function or operator arguments their order is unspecified
+      // (gcc drew right to left, clang left to right), which gave each compiler its own walk for
+      // a seed. This is the order gcc used, so the walks the tests were tuned on stay the same.
+      const double along_scatter = scatter(rng);
+      const double across_scatter = scatter(rng);
+      const double noise_z = noise(rng);
+      const double noise_y = noise(rng);
+      const double noise_x = noise(rng);
       f.position = path[i].point;
-      f.position.head<2>() += (leg.side * settings.half_stance + scatter(rng)) * left + scatter(rng) * along;
-      f.position += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+      f.position.head<2>() += (leg.side * settings.half_stance + across_scatter) * left + along_scatter * along;
+      f.position += Eigen::Vector3d(noise_x, noise_y, noise_z);
       footfalls.push_back(f);
     }
   }
