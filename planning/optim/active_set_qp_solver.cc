@@ -102,9 +102,31 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     }
   }
   if (program.matrix_revision() != matrix_revision_) {
+    if (program.whole_matrix_revision() == whole_matrix_revision_) {
+      // Only some rows changed (SetConstraintCoefficients): the factorisation depends on the
+      // active rows alone, so it stays valid once the changed active rows leave the active set
+      // (the iteration adds them back with their new coefficients if they are still needed).
+      // When many active rows changed, refactorising from the active set (the warm start) is
+      // cheaper than dropping them one by one.
+      int changed_active = 0;
+      for (int k = 0; k < m; ++k) {
+        if (program.row_revision(k) <= matrix_revision_) continue;
+        row_norm_[k] = std::max(program.constraint_matrix().row(k).norm(), 1e-300);
+        if (state_[k] != 0) ++changed_active;
+      }
+      if (changed_active > 0 && (!factorization_valid_ || 4 * changed_active > q_)) {
+        factorization_valid_ = false;
+      } else if (changed_active > 0) {
+        for (int position = q_ - 1; position >= 0; --position) {
+          if (active_[position] < m && program.row_revision(active_[position]) > matrix_revision_) DropConstraint(position);
+        }
+      }
+    } else {
+      whole_matrix_revision_ = program.whole_matrix_revision();
+      factorization_valid_ = false;
+      for (int k = 0; k < m; ++k) row_norm_[k] = std::max(program.constraint_matrix().row(k).norm(), 1e-300);
+    }
     matrix_revision_ = program.matrix_revision();
-    factorization_valid_ = false;
-    for (int k = 0; k < m; ++k) row_norm_[k] = std::max(program.constraint_matrix().row(k).norm(), 1e-300);
   }
 }
 
@@ -356,6 +378,7 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
   // Hot: the kept factorisation is valid (H and A unchanged). Warm: H or A changed, so the
   // factorisation is rebuilt from the previous (or a given) active set. Cold: from nothing.
   const bool hot = settings_.warm_start && factorization_valid_ && !pending_warm_start_;
+  bool started_warm = hot;
   if (hot) {
     x_prox_ = x_;
   } else {
@@ -368,6 +391,7 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
       pending_warm_start_ = true;
     }
     if (pending_warm_start_) {
+      started_warm = true;
       StartFromActiveSet(warm_start_);
       pending_warm_start_ = false;
     } else {
@@ -375,6 +399,29 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
     }
   }
   has_previous_ = true;
+  int outer = 0;
+  SolveStatus status = Run(regularized, &outer);
+  result->info.cold_restarts = 0;
+  // A warm or hot start is only a shortcut: the working set it brings may be one the current
+  // bounds make useless (far from the optimum, or close to dependent after many updates), and
+  // an Infeasible or NumericalError from it is not a certificate. Only the cold start, where
+  // the dual iterates grow from the unconstrained minimum, decides those outcomes.
+  if (started_warm && (status == SolveStatus::kInfeasible || status == SolveStatus::kNumericalError ||
+                       status == SolveStatus::kUnbounded || !x_.allFinite()) &&
+      !OverLimits()) {
+    x_prox_ = program.initial_guess();
+    StartCold();
+    int cold_outer = 0;
+    status = Run(regularized, &cold_outer);
+    outer += cold_outer;
+    result->info.cold_restarts = 1;
+  }
+  result->info.outer_iterations = outer;
+  FillResult(program, status, result);
+}
+
+SolveStatus ActiveSetQpSolver::Run(bool regularized, int* outer_iterations) {
+  const Program& program = *program_;
   const Eigen::VectorXd& g = program.linear_cost();
   SolveStatus status = SolveStatus::kIterationLimit;
   int outer = 0;
@@ -424,8 +471,8 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
     }
     if (outer + 1 == settings_.max_outer_iterations) status = SolveStatus::kIterationLimit;
   }
-  result->info.outer_iterations = outer;
-  FillResult(program, status, result);
+  *outer_iterations = outer;
+  return status;
 }
 
 bool ActiveSetQpSolver::IsUnboundedRay() {

@@ -13,7 +13,9 @@
 //   program.SetVariableBounds(block, lo, hi);
 //   solver.Solve(program, &result);       // hot: last active set and factorisation, no allocation
 //   program.SetConstraintCoefficients(rows, block, coeffs);
-//   solver.Solve(program, &result);       // warm: A changed, refactorised from the last active set
+//   solver.Solve(program, &result);       // still hot: changed rows that were active are dropped
+//   program.MutableConstraintMatrix() = A;
+//   solver.Solve(program, &result);       // warm: A replaced, refactorised from the last active set
 //   solver.SetWarmStart(saved.active_set); // or start from any stored active set
 //   solver.ResetWarmStart();              // or cold
 //
@@ -89,6 +91,8 @@ class ActiveSetQpSolver final : public Solver {
   // multipliers until the start is dual feasible. Returns the number of drops.
   int Restart();
   void ComputePrimalDual();
+  // The proximal (if regularized) and polishing loops around Iterate() from the current start.
+  SolveStatus Run(bool regularized, int* outer_iterations);
   // The Goldfarb-Idnani loop from a dual-feasible start.
   SolveStatus Iterate();
   // Factorisation updates.
@@ -114,6 +118,7 @@ class ActiveSetQpSolver final : public Solver {
   // Cached factorisation of H + rho I: J0 = L^{-T}.
   std::uint64_t hessian_revision_ = 0;
   std::uint64_t matrix_revision_ = 0;
+  std::uint64_t whole_matrix_revision_ = 0;
   double rho_ = 0.0;
   Eigen::MatrixXd hessian_reg_;
   Eigen::LLT<Eigen::MatrixXd> llt_;

@@ -1,6 +1,7 @@
 // Program: building, in-place updates with their checks, and evaluation helpers.
 #include "planning/optim/program.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
@@ -35,7 +36,12 @@ void CheckBoundPair(const Eigen::Ref<const Eigen::VectorXd>& lower, const Eigen:
 }  // namespace
 
 void Program::TouchHessian() { hessian_revision_ = NextRevision(); }
-void Program::TouchMatrix() { matrix_revision_ = NextRevision(); }
+void Program::TouchMatrix() {
+  matrix_revision_ = NextRevision();
+  whole_matrix_revision_ = matrix_revision_;
+  row_revision_.resize(static_cast<std::size_t>(A_.rows()));  // allocates only when rows were added
+  std::fill(row_revision_.begin(), row_revision_.end(), matrix_revision_);
+}
 
 void Program::CheckBlock(const VariableBlock& block, const char* what) const {
   if (block.start < 0 || block.size < 0 || block.start + block.size > num_variables()) {
@@ -216,7 +222,11 @@ void Program::SetConstraintCoefficients(const ConstraintRows& rows, const Variab
                                 block.name + "' have the wrong size or are not finite");
   }
   A_.block(rows.start, block.start, rows.size, block.size) = coefficients;
-  TouchMatrix();
+  // Only these rows changed: solvers keep what depends on the others (the active-set solver its
+  // factorisation, when none of these rows is active).
+  if (row_revision_.size() != static_cast<std::size_t>(A_.rows())) return TouchMatrix();  // resized behind our back
+  matrix_revision_ = NextRevision();
+  for (int k = rows.start; k < rows.start + rows.size; ++k) row_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
 }
 
 void Program::SetInitialGuess(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& x0) {

@@ -161,6 +161,13 @@ class Program {
   std::uint64_t hessian_revision() const { return hessian_revision_; }
   /// Changes whenever A (or the problem's size) changes.
   std::uint64_t matrix_revision() const { return matrix_revision_; }
+  /// Changes when A changes other than through SetConstraintCoefficients (building, resizing,
+  /// MutableConstraintMatrix()): then every row counts as changed.
+  std::uint64_t whole_matrix_revision() const { return whole_matrix_revision_; }
+  /// The matrix revision at which row k's coefficients last changed (SetConstraintCoefficients
+  /// changes only its rows): a solver that saw revision r needs to look again only at rows whose
+  /// revision is above r, as long as whole_matrix_revision() is still what it saw.
+  std::uint64_t row_revision(int k) const { return row_revision_[static_cast<std::size_t>(k)]; }
 
  private:
   void CheckBlock(const VariableBlock& block, const char* what) const;
@@ -181,6 +188,8 @@ class Program {
   std::vector<NonlinearConstraint> nonlinear_constraints_;
   std::uint64_t hessian_revision_ = 0;
   std::uint64_t matrix_revision_ = 0;
+  std::uint64_t whole_matrix_revision_ = 0;
+  std::vector<std::uint64_t> row_revision_;  // per row of A
 };
 
 /// A bound value with +-1e20 and beyond mapped to +-inf.

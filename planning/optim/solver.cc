@@ -30,8 +30,11 @@ bool Solver::DataIsValid(const Program& p) {
     checked_hessian_revision_ = p.hessian_revision();
   }
   if (p.matrix_revision() != checked_matrix_revision_) {
-    if (p.constraint_matrix().hasNaN()) return false;
+    // Rows changed through SetConstraintCoefficients were checked there; whole-matrix changes
+    // (MutableConstraintMatrix) are scanned here.
+    if (p.whole_matrix_revision() != checked_whole_matrix_revision_ && p.constraint_matrix().hasNaN()) return false;
     checked_matrix_revision_ = p.matrix_revision();
+    checked_whole_matrix_revision_ = p.whole_matrix_revision();
   }
   // A lower bound of +inf or an upper bound of -inf (1e400 in a file, or >= 1e20 normalised) is no
   // bound any value meets: without this check "x1 + x2 >= 1e400" was reported solved at x = 0.

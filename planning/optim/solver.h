@@ -43,6 +43,7 @@ class Solver {
 
   std::uint64_t checked_hessian_revision_ = 0;
   std::uint64_t checked_matrix_revision_ = 0;
+  std::uint64_t checked_whole_matrix_revision_ = 0;
 };
 
 /// The automatic choice: quadratic programs to ActiveSetQpSolver, the others to IpoptSolver.
