@@ -28,7 +28,9 @@ struct Footstep {
 };
 
 /// The body (base frame origin) at one instant. Pitch is about the body's y axis, right-hand
-/// rule: nose-up is negative. com_shift is the forward shift of the centre of mass [m].
+/// rule: nose-up is negative. com_shift is the forward shift of the centre of mass [m];
+/// com_shift_y its shift toward the body's left (the body QP's weight shift over the support
+/// triangle) [m]. Both are already included in x and y.
 struct BodyState {
   double t = 0.0;
   double x = 0.0;
@@ -37,6 +39,7 @@ struct BodyState {
   double pitch = 0.0;
   double yaw = 0.0;
   double com_shift = 0.0;
+  double com_shift_y = 0.0;
 };
 
 enum class PlanStatus { kOk, kInfeasible };

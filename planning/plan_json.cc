@@ -68,7 +68,7 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
   nlohmann::json body = nlohmann::json::array();
   for (const BodyState& b : plan.body) {
     body.push_back({{"t", b.t}, {"x", b.x}, {"y", b.y}, {"z", b.z}, {"pitch", b.pitch}, {"yaw", b.yaw},
-                    {"com_shift", b.com_shift}});
+                    {"com_shift", b.com_shift}, {"com_shift_y", b.com_shift_y}});
   }
   nlohmann::json controllers = nlohmann::json::array();
   for (const ControllerScore& c : plan.controllers) {

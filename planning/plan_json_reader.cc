@@ -117,6 +117,7 @@ BodyState ReadBody(const Reader& r, const json& node, const std::string& path) {
   if (node.contains("y")) b.y = r.Number(node, "y", path);
   if (node.contains("yaw")) b.yaw = r.Number(node, "yaw", path);
   if (node.contains("com_shift")) b.com_shift = r.Number(node, "com_shift", path);
+  if (node.contains("com_shift_y")) b.com_shift_y = r.Number(node, "com_shift_y", path);
   return b;
 }
 

@@ -225,8 +225,9 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
     b.z = x[Z(k)];
     b.pitch = x[P(k)];
     b.com_shift = x[S(k)];
+    b.com_shift_y = guess[static_cast<std::size_t>(k)].com_shift_y;  // the QP's sideways shift is kept
     b.x = neutral_x[k] + heading * b.com_shift;
-    b.y = neutral_y[k];
+    b.y = neutral_y[k] + heading * b.com_shift_y;
     b.yaw = schedule.yaw();
   }
   return window;

@@ -87,6 +87,11 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
   previous_z_.setZero(n);
   previous_pitch_.setZero(n);
   previous_shift_.setZero(n);
+  previous_lateral_.setZero(n);
+  phases_.resize(static_cast<std::size_t>((n + 1) * kBodyLegs));
+  std::array<Eigen::Vector3d, kBodyLegs> contacts;
+  for (int l = 0; l < kBodyLegs; ++l) contacts[static_cast<std::size_t>(l)] = schedule_.Phase(l, 0.0).foot_W;
+  com_ = CalibrateComEstimate(robot, contacts, StartState());
   neutral_x_.setZero(n);
   neutral_y_.setZero(n);
   leg_lo_.setConstant(n * kBodyLegs, -optim::kInf);
@@ -134,7 +139,11 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
   BodyQp& qp = *qp_;
   const int n = settings_.knots;
   const double dt = settings_.knot_dt, pmax = settings_.max_pitch, smax = settings_.max_shift;
+  const double ymax = settings_.max_lateral_shift;
   const double heading = schedule_.heading();
+  for (int k = 0; k <= n; ++k) {
+    for (int l = 0; l < kBodyLegs; ++l) phases_[static_cast<std::size_t>(k * kBodyLegs + l)] = schedule_.Phase(l, now + k * dt);
+  }
   for (int k = 0; k < n; ++k) {
     const double t = now + k * dt;
     const Eigen::Vector2d xy = schedule_.NeutralBodyXY(t);
@@ -144,7 +153,11 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.z_lo[0] = qp.z_hi[0] = state.z;
       qp.pitch_lo[0] = qp.pitch_hi[0] = state.pitch;
       qp.shift_lo[0] = qp.shift_hi[0] = state.com_shift;
+      qp.lateral_lo[0] = qp.lateral_hi[0] = state.com_shift_y;
     } else {
+      const double y0 = std::clamp(has_previous_ ? PreviousAt(previous_lateral_, t) : state.com_shift_y, -ymax, ymax);
+      qp.lateral_lo[k] = std::max(-ymax, y0 - settings_.trust_lateral);
+      qp.lateral_hi[k] = std::min(ymax, y0 + settings_.trust_lateral);
       const double p0 = std::clamp(has_previous_ ? PreviousAt(previous_pitch_, t) : state.pitch, -pmax, pmax);
       const double s0 = std::clamp(has_previous_ ? PreviousAt(previous_shift_, t) : state.com_shift, -smax, smax);
       qp.z_lo[k] = -optim::kInf;
@@ -158,6 +171,11 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     qp.pitch_ref[k] = std::clamp(feet_pitch + command.pitch_offset, -pmax, pmax);
     const double stairness = stairs_pitch_ > 0.0 ? std::clamp(std::abs(feet_pitch) / stairs_pitch_, 0.0, 1.0) : 0.0;
     qp.shift_ref[k] = settings_.stairs_com_shift * stairness;
+    qp.lateral_ref[k] = 0.0;
+    // The reach rows assume the hips at their nominal sideways offset from the feet; a sideways
+    // shift y lengthens the leg by about y^2 / (2 h).
+    const double y_far = std::max(std::abs(qp.lateral_lo[k]), std::abs(qp.lateral_hi[k]));
+    const double lateral_pad = y_far * y_far / (2.0 * hip_height_);
 
     const double pl = qp.pitch_lo[k], ph = qp.pitch_hi[k], pm = 0.5 * (pl + ph);
     double narrowest = optim::kInf;  // the stance legs' narrowest hip-height range at this knot
@@ -170,7 +188,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       leg_lo_[k * kBodyLegs + l] = -optim::kInf;
       leg_hi_[k * kBodyLegs + l] = optim::kInf;
       const double c = qp.row_coefficient(l);
-      const LegPhase phase = schedule_.Phase(l, t);
+      const LegPhase& phase = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
       qp.height_ref[k * kBodyLegs + l] = phase.foot_W.z() + hip_height_ + command.height_offset - (HipDz(l, pm) - c * pm);
       if (!phase.stance || k == 0) continue;
       // The exact hip offsets over the pitch interval: sampled at its ends and middle, padded by
@@ -190,7 +208,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       box.pitch_lo = pl;
       box.pitch_hi = ph;
       const HeightRange range = bounds_->HipHeight(box);
-      const double lo = range.lo + contact.z() - e_min, hi = range.hi + contact.z() - e_max;
+      const double lo = range.lo + contact.z() - e_min, hi = range.hi + contact.z() - e_max - lateral_pad;
       narrowest = std::min(narrowest, range.empty() ? -1.0 : hi - lo);
       // The previous plan (the centre of the trust region) is kept feasible: where it breaks a
       // bound, the bound gives way to it and the row counts as a conflict. So the QP always has
@@ -222,6 +240,80 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.hip_hi[row] = row_hi;
     }
     if (k > 0 && narrowest < kRestoreWidth) RestoreShift(k, t, xy.x(), pl, ph, narrowest);
+    SupportRows(k, t, pm);
+  }
+}
+
+void BodyPlanner::SupportRows(int k, double t, double pitch) {
+  BodyQp& qp = *qp_;
+  constexpr int kRows = BodyQp::kSupportRows;
+  for (int r = 0; r < kRows; ++r) {
+    qp.support_lo[k * kRows + r] = -optim::kInf;
+    qp.support_hi[k * kRows + r] = optim::kInf;
+  }
+  if (k == 0 || settings_.stability_margin < 0.0) return;  // knot 0 is the measured state
+  // The legs standing on the same foothold at knots k-1, k and k+1: the body moves linearly
+  // between knots, so a COM inside their polygon at every knot stays inside the polygon of
+  // whatever legs stand in between (a swing starting or ending between two knots included).
+  std::array<int, kBodyLegs> foothold{};
+  int standing = 0;
+  Eigen::Vector2d feet_sum = Eigen::Vector2d::Zero();
+  for (int l = 0; l < kBodyLegs; ++l) {
+    const LegPhase& now = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
+    const LegPhase& before = phases_[static_cast<std::size_t>((k - 1) * kBodyLegs + l)];
+    const LegPhase& after = phases_[static_cast<std::size_t>((k + 1) * kBodyLegs + l)];
+    feet_sum += now.foot_W.head<2>();
+    const bool stands = now.stance && before.stance && after.stance && before.foothold == now.foothold &&
+                        after.foothold == now.foothold;
+    foothold[static_cast<std::size_t>(l)] = stands ? now.foothold : -1;
+    standing += stands ? 1 : 0;
+  }
+  if (standing < 3) return;  // no polygon: the gait is not quasi-static here
+  const double heading = schedule_.heading();
+  const Eigen::Vector2d com_base = com_.At(Eigen::Vector2d(neutral_x_[k], neutral_y_[k]), feet_sum, pitch);
+  const double previous_x = has_previous_ ? PreviousAt(previous_shift_, t) : 0.0;
+  const double previous_y = has_previous_ ? PreviousAt(previous_lateral_, t) : 0.0;
+  const auto contact = [&](int l) -> Eigen::Vector2d {
+    return schedule_.footholds()[static_cast<std::size_t>(foothold[static_cast<std::size_t>(l)])].contact_W.head<2>();
+  };
+  for (int r = 0; r < kRows; ++r) {
+    const auto [i, j] = BodyQp::SupportPair(r);
+    if (foothold[static_cast<std::size_t>(i)] < 0 || foothold[static_cast<std::size_t>(j)] < 0) continue;
+    const Eigen::Vector2d pi = contact(i), d = contact(j) - pi;
+    const double length = d.norm();
+    if (!(length > 1e-6)) continue;
+    const Eigen::Vector2d normal(d.y() / length, -d.x() / length);
+    // An edge of the polygon when every other standing foot is on one side of it.
+    int below = 0, above = 0;
+    for (int o = 0; o < kBodyLegs; ++o) {
+      if (o == i || o == j || foothold[static_cast<std::size_t>(o)] < 0) continue;
+      const double side = normal.dot(contact(o) - pi);
+      below += side < -1e-9 ? 1 : 0;
+      above += side > 1e-9 ? 1 : 0;
+    }
+    if ((below > 0) == (above > 0)) continue;  // a diagonal of the polygon (or degenerate)
+    // COM = com_base + gain .* (heading * (shift, lateral)): the row is normal . COM.
+    const int row = k * kRows + r;
+    qp.support_cx[row] = normal.x() * com_.gain.x() * heading;
+    qp.support_cy[row] = normal.y() * com_.gain.y() * heading;
+    const double edge = normal.dot(pi) - normal.dot(com_base);
+    const double previous = qp.support_cx[row] * previous_x + qp.support_cy[row] * previous_y;
+    // A previous plan beyond the row (a swing that just came into the horizon) must come back by
+    // half of what the trust region lets the row move per cycle: the row gives way to it, as the
+    // hip rows do, so the QP stays feasible. In the retry (pull_in_ = 0) it only holds it.
+    const double pull = pull_in_ > 0.0 ? std::max(pull_in_, 0.5 * (std::abs(qp.support_cx[row]) * settings_.trust_shift +
+                                                                   std::abs(qp.support_cy[row]) * settings_.trust_lateral))
+                                       : 0.0;
+    if (below > 0) {
+      // The others below: normal . COM <= edge - margin.
+      double hi = edge - settings_.stability_margin;
+      if (has_previous_ && previous > hi) hi = std::max(hi, previous - pull);
+      qp.support_hi[row] = hi;
+    } else {
+      double lo = edge + settings_.stability_margin;
+      if (has_previous_ && previous < lo) lo = std::min(lo, previous + pull);
+      qp.support_lo[row] = lo;
+    }
   }
 }
 
@@ -276,6 +368,7 @@ void BodyPlanner::StoreSolution(const optim::SolveResult& result, double now) {
   previous_z_ = result.x.segment(qp_->z().start, n);
   previous_pitch_ = result.x.segment(qp_->pitch().start, n);
   previous_shift_ = result.x.segment(qp_->shift().start, n);
+  previous_lateral_ = result.x.segment(qp_->lateral().start, n);
   has_previous_ = true;
 }
 
@@ -284,8 +377,9 @@ BodyState BodyPlanner::Interpolate(double t) const {
   const Eigen::Vector2d xy = schedule_.NeutralBodyXY(t);
   s.t = t;
   s.com_shift = PreviousAt(previous_shift_, t);
+  s.com_shift_y = PreviousAt(previous_lateral_, t);
   s.x = xy.x() + schedule_.heading() * s.com_shift;
-  s.y = xy.y();
+  s.y = xy.y() + schedule_.heading() * s.com_shift_y;
   s.z = PreviousAt(previous_z_, t);
   s.pitch = PreviousAt(previous_pitch_, t);
   s.yaw = schedule_.yaw();
@@ -299,8 +393,9 @@ void BodyPlanner::FillOutput(double now) {
     BodyState& s = output_.knots[static_cast<std::size_t>(k)];
     s.t = t;
     s.com_shift = PreviousAt(previous_shift_, t);
+    s.com_shift_y = PreviousAt(previous_lateral_, t);
     s.x = neutral_x_[k] + schedule_.heading() * s.com_shift;
-    s.y = neutral_y_[k];
+    s.y = neutral_y_[k] + schedule_.heading() * s.com_shift_y;
     s.z = PreviousAt(previous_z_, t);
     s.pitch = PreviousAt(previous_pitch_, t);
     s.yaw = schedule_.yaw();
@@ -325,6 +420,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
   CheckFinite(state.z, "state.z");
   CheckFinite(state.pitch, "state.pitch");
   CheckFinite(state.com_shift, "state.com_shift");
+  CheckFinite(state.com_shift_y, "state.com_shift_y");
   CheckFinite(command.height_offset, "command.height_offset");
   CheckFinite(command.pitch_offset, "command.pitch_offset");
   output_.solves = 0;
@@ -339,6 +435,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
     previous_z_.setConstant(state.z);
     previous_pitch_.setConstant(state.pitch);
     previous_shift_.setConstant(state.com_shift);
+    previous_lateral_.setConstant(state.com_shift_y);
     has_previous_ = true;
     for (int i = 0; i < settings_.warmup_solves; ++i) {
       const Clock::time_point t0 = Clock::now();
@@ -350,6 +447,16 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
       ++output_.solves;
       output_.iterations += result_.info.iterations;
       solved = result_.solved() && result_.x.allFinite();
+      if (!solved && i > 0) {
+        // As in the cycle: rows that only hold the last iterate (which satisfies them) where
+        // pulling it in is too much at once.
+        pull_in_ = 0.0;
+        Linearise(state, command, now);
+        pull_in_ = kPullIn;
+        qp_->Solve(optim::kInf, &result_);
+        ++output_.solves;
+        solved = result_.solved() && result_.x.allFinite();
+      }
       if (!solved) {
         has_previous_ = false;
         break;
@@ -358,7 +465,8 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
       const double change =
           i > 0 ? std::max({(result_.x.segment(qp_->z().start, n) - previous_z_).lpNorm<Eigen::Infinity>(),
                                     (result_.x.segment(qp_->pitch().start, n) - previous_pitch_).lpNorm<Eigen::Infinity>(),
-                                    (result_.x.segment(qp_->shift().start, n) - previous_shift_).lpNorm<Eigen::Infinity>()})
+                                    (result_.x.segment(qp_->shift().start, n) - previous_shift_).lpNorm<Eigen::Infinity>(),
+                                    (result_.x.segment(qp_->lateral().start, n) - previous_lateral_).lpNorm<Eigen::Infinity>()})
                         : optim::kInf;
       StoreSolution(result_, now);
       if (change < kWarmupTolerance) break;
@@ -380,11 +488,10 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
       if (!solved && result_.status != optim::SolveStatus::kTimeLimit) {
         // Pulling a plan that breaks a bound back inside may be too much for one cycle (the
         // acceleration limits): try once more with rows that only hold it where it is, which
-        // the shifted previous plan satisfies, from cold (a degenerate active set also fails).
+        // the shifted previous plan satisfies (warm: the solver re-checks a warm Infeasible cold).
         pull_in_ = 0.0;
         Linearise(state, command, now);
         pull_in_ = kPullIn;
-        qp_->ResetWarmStart();
         const double left_us = settings_.cycle_budget_s * 1e6 - MicrosSince(start);
         if (left_us > 0.0) {
           qp_->Solve(left_us * 1e-6, &result_);
@@ -414,6 +521,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
     previous_z_.setConstant(state.z);
     previous_pitch_.setConstant(state.pitch);
     previous_shift_.setConstant(state.com_shift);
+    previous_lateral_.setConstant(state.com_shift_y);
   }
   FillOutput(now);
   output_.timings.total_us = MicrosSince(start);

@@ -1,7 +1,8 @@
 // The control-loop body planner (seed 000 [0050]-[0052], claims 3-4): a receding-horizon QP over
-// the body's height, pitch and forward weight shift, bounded by every stance leg's reach and by
-// the height below which a leg would touch the stairs, re-linearised around the previous
-// solution and re-solved warm once per cycle.
+// the body's height, pitch and forward and sideways weight shift, bounded by every stance leg's
+// reach, by the height below which a leg would touch the stairs and by the support polygon the
+// centre of mass must stay over (quasi-static gaits), re-linearised around the previous solution
+// and re-solved warm once per cycle.
 //
 //   BodyPlanner planner(robot, stairs, map, PlanCrawl(robot, stairs, map), settings);  // once
 //   BodyState state = planner.StartState();
@@ -27,6 +28,7 @@
 #include "planning/body/body_bounds.h"
 #include "planning/body/body_planner_settings.h"
 #include "planning/body/body_qp.h"
+#include "planning/body/com_estimate.h"
 #include "planning/body/foot_schedule.h"
 #include "planning/optim/solve_result.h"
 #include "planning/plan.h"
@@ -118,6 +120,9 @@ class BodyPlanner {
   void Initialise(const RobotModel& robot, const Staircase& stairs);
   // Fills the QP's inputs around the previous plan; returns the number of conflicting rows.
   void Linearise(const BodyState& state, const BodyCommand& command, double now);
+  // Knot k's support rows: the COM estimate inside the polygon of the legs standing through
+  // knots k-1..k+1, shrunk by the stability margin (rows free where no polygon applies).
+  void SupportRows(int k, double t, double pitch);
   // Moves knot k's shift reference to the shift that widens its narrowest stance-leg range.
   void RestoreShift(int k, double t, double neutral_x, double pitch_lo, double pitch_hi, double width);
   // Previous plan's pitch and shift at time t (held beyond its ends).
@@ -139,7 +144,9 @@ class BodyPlanner {
 
   bool has_previous_ = false;
   double previous_t0_ = 0.0;
-  Eigen::VectorXd previous_z_, previous_pitch_, previous_shift_;
+  Eigen::VectorXd previous_z_, previous_pitch_, previous_shift_, previous_lateral_;
+  ComEstimate com_;
+  std::vector<LegPhase> phases_;  // (knots + 1) * 4: each leg at now + k * knot_dt, this cycle
   Eigen::VectorXd neutral_x_, neutral_y_;  // this cycle's neutral body xy per knot
   Eigen::VectorXd leg_lo_, leg_hi_;        // each stance leg's own row bounds, k * 4 + leg
   optim::SolveResult result_;

@@ -33,6 +33,11 @@ void BodyPlannerSettings::Validate() const {
   CheckRange("max_height_accel", max_height_accel, 0.0, 1e3);
   CheckRange("max_pitch_accel", max_pitch_accel, 0.0, 1e4);
   CheckRange("max_shift_accel", max_shift_accel, 0.0, 1e3);
+  if (!std::isfinite(stability_margin) || stability_margin > 0.2) throw FieldError("stability_margin", "must be finite and at most 0.2 m");
+  CheckRange("lateral_weight", lateral_weight, 0.0, 1e9);
+  CheckRange("max_lateral_shift", max_lateral_shift, 0.0, 1.0);
+  CheckRange("max_lateral_accel", max_lateral_accel, 0.0, 1e3);
+  CheckRange("trust_lateral", trust_lateral, 0.0, 1.0);
   if (!(reach_margin >= 0.0 && reach_margin <= 0.5)) throw FieldError("reach_margin", "must be in [0, 0.5] m");
   if (!(clearance_margin >= 0.0 && clearance_margin <= 0.5)) throw FieldError("clearance_margin", "must be in [0, 0.5] m");
   CheckRange("grid_dx", grid_dx, 0.0, 0.5);

@@ -31,6 +31,18 @@ struct BodyPlannerSettings {
   double max_pitch_accel = 20.0;   ///< |pitch''| [rad/s^2]
   double max_shift_accel = 2.0;    ///< |com_shift''| [m/s^2]
 
+  // --- Static stability (the crawl's quasi-static balance): the centre of mass kept inside the
+  // support polygon of the legs that stand through each knot and its neighbours, shifting the
+  // weight sideways (com_shift_y) and fore-aft (com_shift) over the support triangle.
+  /// How far inside [m]; the validator asks for 1 cm, the rest covers the QP's COM estimate
+  /// (com_estimate.h) and the swing legs' own motion. Negative: no stability rows. Off by
+  /// default for now: with 0.03 the default stairs up-forward pass the stability check (27 mm),
+  /// but the sideways shift costs the swing legs joint range and descending plans their reach.
+  double stability_margin = -1.0;
+  double lateral_weight = 1e3;     ///< per m^2 of sideways weight shift
+  double max_lateral_shift = 0.1;  ///< |com_shift_y| bound [m]
+  double max_lateral_accel = 6.0;  ///< |com_shift_y''| [m/s^2]
+
   // --- Bounds from kinematics and collision.
   double reach_margin = 0.01;      ///< hip height kept this far inside the IK-feasible range [m]
   /// Every stance leg's links at least this far from the stairs [m]. The lower legs of real robots
@@ -44,6 +56,8 @@ struct BodyPlannerSettings {
   // and the bounds hold over that whole box (so the linear rows stay conservative).
   double trust_pitch = 0.02;       ///< [rad]
   double trust_shift = 0.004;      ///< [m]
+  /// Sideways shift per cycle [m]; the legs' reach is padded for the sideways hip offset it allows.
+  double trust_lateral = 0.006;
 
   // --- Control loop.
   /// Wall-clock budget of one Update [s]; a solve that would overrun returns the shifted

@@ -43,6 +43,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   z_ = program_.AddVariables("height", n);
   pitch_ = program_.AddVariables("pitch", n);
   shift_ = program_.AddVariables("com_shift", n);
+  lateral_ = program_.AddVariables("com_shift_y", n);
 
   // Costs (0.5 x'Hx + g'x: a weight w on (a'x - r)^2 adds 2w aa' to H).
   const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
@@ -57,6 +58,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   program_.AddQuadraticCost(pitch_, (2.0 * wh * sum_c2 + 2.0 * settings_.pitch_weight) * identity + smooth, zero);
   program_.AddCrossQuadraticCost(z_, pitch_, 2.0 * wh * sum_c * identity);
   program_.AddQuadraticCost(shift_, 2.0 * settings_.shift_weight * identity + smooth, zero);
+  program_.AddQuadraticCost(lateral_, 2.0 * settings_.lateral_weight * identity + smooth, zero);
 
   // Hip rows: z_k + c_g pitch_k, row k * groups + g.
   Eigen::MatrixXd a_z = Eigen::MatrixXd::Zero(groups_ * n, n), a_p = a_z;
@@ -72,27 +74,50 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
 
   // Acceleration limits.
   const Eigen::MatrixXd zeros = Eigen::MatrixXd::Zero(n - 2, n);
-  Eigen::MatrixXd accel_z(3 * (n - 2), n), accel_p(3 * (n - 2), n), accel_s(3 * (n - 2), n);
-  accel_z << d2, zeros, zeros;
-  accel_p << zeros, d2, zeros;
-  accel_s << zeros, zeros, d2;
-  Eigen::VectorXd accel_hi(3 * (n - 2));
+  Eigen::MatrixXd accel_z(4 * (n - 2), n), accel_p(4 * (n - 2), n), accel_s(4 * (n - 2), n), accel_y(4 * (n - 2), n);
+  accel_z << d2, zeros, zeros, zeros;
+  accel_p << zeros, d2, zeros, zeros;
+  accel_s << zeros, zeros, d2, zeros;
+  accel_y << zeros, zeros, zeros, d2;
+  Eigen::VectorXd accel_hi(4 * (n - 2));
   accel_hi << Eigen::VectorXd::Constant(n - 2, settings_.max_height_accel * dt * dt),
       Eigen::VectorXd::Constant(n - 2, settings_.max_pitch_accel * dt * dt),
-      Eigen::VectorXd::Constant(n - 2, settings_.max_shift_accel * dt * dt);
-  accel_rows_ = program_.AddLinearConstraint({{z_, accel_z}, {pitch_, accel_p}, {shift_, accel_s}}, -accel_hi, accel_hi,
-                                             "acceleration");
+      Eigen::VectorXd::Constant(n - 2, settings_.max_shift_accel * dt * dt),
+      Eigen::VectorXd::Constant(n - 2, settings_.max_lateral_accel * dt * dt);
+  accel_rows_ = program_.AddLinearConstraint(
+      {{z_, accel_z}, {pitch_, accel_p}, {shift_, accel_s}, {lateral_, accel_y}}, -accel_hi, accel_hi, "acceleration");
 
-  for (Eigen::VectorXd* v : {&z_lo, &pitch_lo, &shift_lo}) v->setConstant(n, -optim::kInf);
-  for (Eigen::VectorXd* v : {&z_hi, &pitch_hi, &shift_hi}) v->setConstant(n, optim::kInf);
+  // Support rows: free until the planner gives them feet.
+  const Eigen::MatrixXd no_coefficients = Eigen::MatrixXd::Zero(kSupportRows * n, n);
+  const Eigen::VectorXd support_free = Eigen::VectorXd::Constant(kSupportRows * n, optim::kInf);
+  support_rows_ = program_.AddLinearConstraint({{shift_, no_coefficients}, {lateral_, no_coefficients}}, -support_free,
+                                               support_free, "support");
+  support_cx.setZero(kSupportRows * n);
+  support_cy.setZero(kSupportRows * n);
+  pushed_cx_ = support_cx;
+  pushed_cy_ = support_cy;
+  support_lo = -support_free;
+  support_hi = support_free;
+  coefficient_row_.setZero(1, n);
+  single_row_ = {support_rows_.name, support_rows_.start, 1};
+
+  for (Eigen::VectorXd* v : {&z_lo, &pitch_lo, &shift_lo, &lateral_lo}) v->setConstant(n, -optim::kInf);
+  for (Eigen::VectorXd* v : {&z_hi, &pitch_hi, &shift_hi, &lateral_hi}) v->setConstant(n, optim::kInf);
   hip_lo = free_lo;
   hip_hi = free_hi;
   height_ref.setZero(kBodyLegs * n);
   pitch_ref.setZero(n);
   shift_ref.setZero(n);
+  lateral_ref.setZero(n);
   g_z_.setZero(n);
   g_pitch_.setZero(n);
   g_shift_.setZero(n);
+  g_lateral_.setZero(n);
+}
+
+std::array<int, 2> BodyQp::SupportPair(int r) {
+  static constexpr std::array<std::array<int, 2>, kSupportRows> kPairs{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
+  return kPairs[static_cast<std::size_t>(r)];
 }
 
 void BodyQp::PushInputs() {
@@ -107,14 +132,32 @@ void BodyQp::PushInputs() {
     g_z_[k] = gz;
     g_pitch_[k] = gp - 2.0 * settings_.pitch_weight * pitch_ref[k];
     g_shift_[k] = -2.0 * settings_.shift_weight * shift_ref[k];
+    g_lateral_[k] = -2.0 * settings_.lateral_weight * lateral_ref[k];
   }
   program_.SetLinearCost(z_, g_z_);
   program_.SetLinearCost(pitch_, g_pitch_);
   program_.SetLinearCost(shift_, g_shift_);
+  program_.SetLinearCost(lateral_, g_lateral_);
   program_.SetVariableBounds(z_, z_lo, z_hi);
   program_.SetVariableBounds(pitch_, pitch_lo, pitch_hi);
   program_.SetVariableBounds(shift_, shift_lo, shift_hi);
+  program_.SetVariableBounds(lateral_, lateral_lo, lateral_hi);
   program_.SetConstraintBounds(hip_rows_, hip_lo, hip_hi);
+  // Only rows whose feet changed get new coefficients: the solver keeps its factorisation when
+  // they are inactive (the planner changes a pair's feet only while its row is free).
+  for (int row = 0; row < static_cast<int>(support_cx.size()); ++row) {
+    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row]) continue;
+    const int k = row / kSupportRows;
+    single_row_.start = support_rows_.start + row;
+    coefficient_row_(0, k) = support_cx[row];
+    program_.SetConstraintCoefficients(single_row_, shift_, coefficient_row_);
+    coefficient_row_(0, k) = support_cy[row];
+    program_.SetConstraintCoefficients(single_row_, lateral_, coefficient_row_);
+    coefficient_row_(0, k) = 0.0;
+    pushed_cx_[row] = support_cx[row];
+    pushed_cy_[row] = support_cy[row];
+  }
+  program_.SetConstraintBounds(support_rows_, support_lo, support_hi);
 }
 
 void BodyQp::Solve(double time_limit_s, optim::SolveResult* result) {

@@ -1,14 +1,18 @@
 // The body planner's QP (seed 000 [0050]-[0052]): per knot the body height z, the pitch and the
-// forward shift of the centre of mass. Built once; every cycle only bounds and linear terms change,
-// so ActiveSetQpSolver re-solves warm from the last active set without allocating.
+// forward and sideways shifts of the centre of mass. Built once; every cycle the bounds and linear
+// terms change, and the few support rows whose feet changed get new coefficients (inactive rows:
+// ActiveSetQpSolver keeps its factorisation), so it re-solves warm without allocating.
 //
 //   min  sum_k [ sum_legs w_h (z_k + c_l pitch_k - height_ref_kl)^2       hip height above the feet
 //              + w_p (pitch_k - pitch_ref_k)^2 + w_s (shift_k - shift_ref_k)^2 ]
 //        + velocity and acceleration terms (finite differences over the knots)
 //   s.t. hip_lo_kg <= z_k + c_g pitch_k <= hip_hi_kg    one row per knot and hip group
-//        (legs whose hips share c, e.g. the front pair, share a row: identical rows would make
-//        the active set degenerate)
-//        |second differences| <= max accel * dt^2        height, pitch, shift
+//        (legs whose hips share c, e.g. the front pair, share a row: half the rows to scan;
+//        the solver copes with identical rows, tests/optim/active_set_degenerate_test.cc)
+//        |second differences| <= max accel * dt^2        height, pitch, shift, lateral
+//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k <= support_hi_kr
+//                                 one row per knot and pair r of legs (6): the COM on the inner
+//                                 side of the support polygon's edge between the two feet
 //        variable bounds (limits intersected with the cycle's trust region; knot 0 pinned)
 //
 // c_l = -hip_x_l cos(pitch_nominal) is the hip's height change per unit pitch at the flight's
@@ -44,11 +48,18 @@ class BodyQp {
   /// The row coefficient used for leg `leg` (its group's).
   double row_coefficient(int leg) const { return group_c_[static_cast<std::size_t>(group_of(leg))]; }
 
+  /// Support rows per knot: one per pair of legs (i < j), in the order of SupportPair().
+  static constexpr int kSupportRows = 6;
+  static std::array<int, 2> SupportPair(int r);
+
   // ---- per-cycle inputs, filled in place by the planner (sizes fixed at construction) ----
-  Eigen::VectorXd z_lo, z_hi, pitch_lo, pitch_hi, shift_lo, shift_hi;  ///< knots
+  Eigen::VectorXd z_lo, z_hi, pitch_lo, pitch_hi, shift_lo, shift_hi, lateral_lo, lateral_hi;  ///< knots
   Eigen::VectorXd hip_lo, hip_hi;      ///< knots * groups(), row k * groups() + group; +-inf: none
   Eigen::VectorXd height_ref;          ///< knots * 4: wanted value of z + c_l pitch
-  Eigen::VectorXd pitch_ref, shift_ref;  ///< knots
+  Eigen::VectorXd pitch_ref, shift_ref, lateral_ref;  ///< knots
+  /// Support rows, k * kSupportRows + r: coefficients of shift_k and lateral_k and the bounds
+  /// (+-inf: none). Coefficients are pushed only where they changed.
+  Eigen::VectorXd support_cx, support_cy, support_lo, support_hi;
 
   /// Pushes the inputs into the program and solves warm; `time_limit_s` may be +inf.
   /// Allocation-free after the first call.
@@ -60,6 +71,8 @@ class BodyQp {
   const optim::VariableBlock& z() const { return z_; }
   const optim::VariableBlock& pitch() const { return pitch_; }
   const optim::VariableBlock& shift() const { return shift_; }
+  const optim::VariableBlock& lateral() const { return lateral_; }
+  const optim::ConstraintRows& support_rows() const { return support_rows_; }
   const optim::ConstraintRows& hip_rows() const { return hip_rows_; }
   /// Writes the linear cost of the current inputs into the program (done by Solve too); lets
   /// other solvers (Ipopt, for comparison) solve the same QP.
@@ -73,10 +86,13 @@ class BodyQp {
   std::array<int, kBodyLegs> group_of_{};
   std::array<double, kBodyLegs> group_c_{};
   optim::Program program_;
-  optim::VariableBlock z_, pitch_, shift_;
-  optim::ConstraintRows hip_rows_, accel_rows_;
+  optim::VariableBlock z_, pitch_, shift_, lateral_;
+  optim::ConstraintRows hip_rows_, accel_rows_, support_rows_;
   optim::ActiveSetQpSolver solver_;
-  Eigen::VectorXd g_z_, g_pitch_, g_shift_;
+  Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
+  Eigen::VectorXd pushed_cx_, pushed_cy_;  // support coefficients in the program
+  Eigen::MatrixXd coefficient_row_;        // 1 x knots, zero but for one entry
+  optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
 };
 
 }  // namespace stairplan
