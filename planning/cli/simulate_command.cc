@@ -39,7 +39,8 @@ int RunSimulate(const std::vector<std::string>& args) {
   app.add_option("--frame-ms", frame_ms, "Interval between frames [ms] (default 100)")->check(CLI::Range(1.0, 10000.0));
   app.add_option("--friction", friction, "Sliding friction of every contact (default 0.8)")->check(CLI::Range(0.0, 10.0));
   app.add_option("--out", out, "Also write the JSON result to this file");
-  app.add_option("--set", overrides, "Override a simulation setting, name=value (e.g. kp_per_kg=10)");
+  app.add_option("--set", overrides,
+                 "Override a simulation setting, name=value (e.g. kp_per_kg=10; time_scale=3 replays 3x slower than planned)");
   app.add_option("--trace", trace, "Write a CSV of the base (measured and planned) every --frame-ms");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("simulate", [&] {
@@ -84,8 +85,9 @@ int RunSimulate(const std::vector<std::string>& args) {
     std::cerr << "stairplan simulate: " << path << ": " << ToString(outcome.status)
               << (outcome.Passed() ? "" : " (" + outcome.FirstCause() + ")") << "; " << outcome.landings.size()
               << " landings, max error " << outcome.MaxLandingError() * 1000 << " mm; peak torque "
-              << outcome.max_torque_ratio * 100 << "% of the limit; real-time factor " << outcome.real_time_factor
-              << "\n";
+              << outcome.max_torque_ratio * 100 << "% of the limit; pace " << outcome.time_scale
+              << "x slower than planned, plan ZMP margin " << outcome.plan_zmp_margin_m * 1000
+              << " mm; real-time factor " << outcome.real_time_factor << "\n";
     return outcome.Passed() ? kExitOk : kExitInfeasible;
   });
 }

@@ -10,13 +10,14 @@
 
 #include "collision/stance_check.h"
 #include "planning/plan_pipeline.h"
+#include "planning/simulation/body_reference.h"
+#include "planning/simulation/plan_dynamics.h"
 #include "planning/validation/traversal_validator.h"
 
 namespace stairplan {
 namespace {
 
 constexpr double kMaxTargetSpeed = 20.0;  // joint target velocity cap [rad/s]: IK branch jumps are not velocities
-constexpr double kFrictionUse = 0.7;      // share of the friction cone the stance forces may use
 constexpr double kBlendTime = 0.1;        // a leg's aim moves between planned and measured body over this [s]
 
 double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
@@ -44,7 +45,12 @@ struct PlanExecutor::LegState {
 
 PlanExecutor::PlanExecutor(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const Plan& plan,
                            const SimSettings& settings)
-    : stairs_(stairs), map_(map), plan_(plan), settings_(settings), kinematics_(robot), ws_(kinematics_) {
+    : stairs_(stairs), map_(map), plan_(plan), settings_(settings), kinematics_(robot), ws_(kinematics_),
+      force_qp_([&] {
+        StanceForceSettings s = settings.stance;
+        s.friction = settings.world.friction;
+        return s;
+      }()) {
   settings_.Validate();
   if (plan.body.empty()) throw std::invalid_argument("plan.body: no body samples to execute");
   if (plan.legs.size() != 4 || plan.initial_feet_W.size() != 4) {
@@ -126,6 +132,35 @@ Eigen::Vector3d PlanExecutor::FootContactPoint(const LegState& leg) const {
   return {p[0], p[1], p[2] - leg.foot_radius};
 }
 
+double PlanExecutor::LoadShare(const LegState& leg, double tp) const {
+  if (!leg.stance) return 0.0;
+  const double ramp = settings_.load_ramp_time / settings_.time_scale;  // in plan time
+  if (ramp <= 0.0) return 1.0;
+  double share = std::clamp((tp - leg.t_switch) / ramp, 0.0, 1.0);
+  const std::vector<int>& steps = leg_steps_[static_cast<std::size_t>(&leg - legs_.data())];
+  if (leg.next < static_cast<int>(steps.size())) {
+    const double liftoff = plan_.footsteps[static_cast<std::size_t>(steps[static_cast<std::size_t>(leg.next)])].t_liftoff;
+    share = std::min(share, std::clamp((liftoff - tp) / ramp, 0.0, 1.0));
+  }
+  return share;
+}
+
+Eigen::Matrix3d PlanExecutor::CompositeInertia() const {
+  const mjModel* m = world_->model();
+  const mjData* d = const_cast<MujocoWorld&>(*world_).data();
+  const Eigen::Vector3d com(d->subtree_com[3 * base_body_], d->subtree_com[3 * base_body_ + 1],
+                            d->subtree_com[3 * base_body_ + 2]);
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  for (int b = base_body_; b < m->nbody; ++b) {
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(d->ximat + 9 * b);
+    const Eigen::Vector3d principal(m->body_inertia[3 * b], m->body_inertia[3 * b + 1], m->body_inertia[3 * b + 2]);
+    const Eigen::Vector3d p = Eigen::Vector3d(d->xipos[3 * b], d->xipos[3 * b + 1], d->xipos[3 * b + 2]) - com;
+    inertia += r * principal.asDiagonal() * r.transpose() +
+               m->body_mass[b] * (p.squaredNorm() * Eigen::Matrix3d::Identity() - p * p.transpose());
+  }
+  return inertia;
+}
+
 void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touching) {
   for (std::size_t i = 0; i < legs_.size(); ++i) {
     LegState& leg = legs_[i];
@@ -177,7 +212,8 @@ void PlanExecutor::Control(double tp) {
   const mjModel* m = world_->model();
   mjData* d = world_->data();
   const double t_plan = std::clamp(tp, 0.0, plan_.duration());
-  const BodyPose planned = BodyPoseAt(plan_.body, t_plan);
+  const BodyReferenceState reference = BodyReferenceAt(plan_.body, t_plan);
+  const BodyPose& planned = reference.pose;
   const bool started = running_;
   const BodyPose measured = started ? MeasuredPose() : planned;
   // Swing legs aim from the measured body so that they land on their world targets even when the
@@ -194,58 +230,14 @@ void PlanExecutor::Control(double tp) {
     return pose;
   };
 
-  // Virtual-model forces of the stance feet: the wrench that carries the body's weight and pulls
-  // its position and attitude onto the plan (PD on the measured base pose and velocity), split over
-  // the stance feet by least norm, then kept in their friction cones and never pulling.
+  // Each leg's joint targets (IK of its foothold or swing point from its aim pose) and its own
+  // torques: PD towards the targets plus gravity and Coriolis compensation (qfrc_bias). A loaded
+  // stance leg keeps only stance_pd_scale of its PD: its contact force does the carrying, and a
+  // stiff PD would fight the force distribution. It stiffens again as it unloads.
   const Eigen::Matrix3d r_measured = measured.ToIsometry().linear();
-  std::vector<Eigen::Vector3d> force(legs_.size(), Eigen::Vector3d::Zero());
-  std::vector<int> stance;
-  for (std::size_t i = 0; i < legs_.size(); ++i) {
-    if (legs_[i].stance) stance.push_back(static_cast<int>(i));
-  }
-  if (started && !stance.empty()) {
-    const double* com = d->subtree_com + 3 * base_body_;
-    constexpr double kH = 0.005;  // planned velocity by central difference [s]
-    const BodyPose ahead = BodyPoseAt(plan_.body, std::clamp(tp + kH, 0.0, plan_.duration()));
-    const BodyPose behind = BodyPoseAt(plan_.body, std::clamp(tp - kH, 0.0, plan_.duration()));
-    const Eigen::Vector3d v_plan = (ahead.position_W - behind.position_W) / (2 * kH * settings_.time_scale);
-    const Eigen::Vector3d v(d->qvel[0], d->qvel[1], d->qvel[2]);
-    const Eigen::Vector3d omega_W = r_measured * Eigen::Vector3d(d->qvel[3], d->qvel[4], d->qvel[5]);
-    const Eigen::Vector3d kp(settings_.xy_kp, settings_.xy_kp, settings_.height_kp);
-    const Eigen::Vector3d kd(settings_.xy_kd, settings_.xy_kd, settings_.height_kd);
-    const Eigen::Vector3d wrench_f =
-        mass_ * (Eigen::Vector3d(0, 0, 9.81) + kp.cwiseProduct(planned.position_W - measured.position_W) +
-                 kd.cwiseProduct(v_plan - v));
-    const Eigen::AngleAxisd rotation_error(planned.ToIsometry().linear() * r_measured.transpose());
-    const Eigen::Vector3d inertia =
-        mass_ / 4 * Eigen::Vector3d(std::pow(std::max(kinematics_.robot().hip_width(), 0.1), 2),
-                                    std::pow(std::max(kinematics_.robot().hip_length(), 0.2), 2),
-                                    std::pow(std::max(kinematics_.robot().hip_length(), 0.2), 2));
-    const Eigen::Vector3d wrench_t = inertia.cwiseProduct(settings_.attitude_kp * rotation_error.angle() *
-                                                              rotation_error.axis() -
-                                                          settings_.attitude_kd * omega_W);
-    // Vertical forces give the vertical force and the roll and pitch moments about the centre of
-    // mass (least norm over the stance feet); the force along the ground is shared equally. Internal
-    // forces between the feet would only load the joints and risk slipping.
-    const auto n = static_cast<Eigen::Index>(stance.size());
-    Eigen::MatrixXd a(3, n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const Eigen::Vector3d r = FootContactPoint(legs_[static_cast<std::size_t>(stance[static_cast<std::size_t>(k)])]) -
-                                Eigen::Vector3d(com[0], com[1], com[2]);
-      a.col(k) << 1.0, r.y(), -r.x();
-    }
-    const Eigen::Vector3d wrench(wrench_f.z(), wrench_t.x(), wrench_t.y());
-    const Eigen::MatrixXd gram = a * a.transpose() + 1e-6 * Eigen::MatrixXd::Identity(3, 3);
-    const Eigen::VectorXd f = a.transpose() * gram.ldlt().solve(wrench);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      Eigen::Vector3d fk(wrench_f.x() / static_cast<double>(n), wrench_f.y() / static_cast<double>(n), f(k));
-      fk.z() = std::clamp(fk.z(), 0.0, 3.0 * mass_ * 9.81);
-      const double tangential = fk.head<2>().norm(), cone = kFrictionUse * settings_.world.friction * fk.z();
-      if (tangential > cone) fk.head<2>() *= cone / tangential;
-      force[static_cast<std::size_t>(stance[static_cast<std::size_t>(k)])] = fk;
-    }
-  }
-
+  std::array<double, 4> load{};
+  std::array<Eigen::Vector3d, 4> own_torque;
+  std::array<StanceForceQp::Foot, 4> feet;
   for (std::size_t i = 0; i < legs_.size(); ++i) {
     LegState& leg = legs_[i];
     const LegKinematics& kin = kinematics_.leg(leg.kin);
@@ -273,20 +265,63 @@ void PlanExecutor::Control(double tp) {
     leg.has_target = true;
     if (!started) continue;
 
-    Eigen::Vector3d q, qd;
+    Eigen::Vector3d q, qd, bias;
     for (int j = 0; j < 3; ++j) {
       q(j) = d->qpos[leg.qpos[static_cast<std::size_t>(j)]];
       qd(j) = d->qvel[leg.dof[static_cast<std::size_t>(j)]];
+      bias(j) = d->qfrc_bias[leg.dof[static_cast<std::size_t>(j)]];
     }
     const Eigen::Vector3d qd_target =
         ((leg.q_target - leg.q_target_prev) / (m->opt.timestep * settings_.time_scale)).cwiseMax(-kMaxTargetSpeed).cwiseMin(kMaxTargetSpeed);
-    Eigen::Vector3d tau = kp_ * (leg.q_target - q) + kd_ * (qd_target - qd);
-    if (leg.stance && force[i].z() > 0.0) {
-      // The ground pushes the foot with f: the joints hold it with -J^T f (base frame).
-      tau -= kin.FootJacobian(q, lws).transpose() * (r_measured.transpose() * force[i]);
-    }
+    load[i] = LoadShare(leg, tp);
+    const double pd = 1.0 - load[i] * (1.0 - settings_.stance_pd_scale);
+    own_torque[i] = pd * (kp_ * (leg.q_target - q) + kd_ * (qd_target - qd)) + bias;
+    StanceForceQp::Foot& foot = feet[i];
+    foot.position_W = FootContactPoint(leg);
+    foot.max_normal = load[i] * 3.0 * mass_ * 9.81;
+    // The ground pushes the foot with f: the joints hold it with -J^T f (base frame).
+    foot.torque_map = -kin.FootJacobian(q, lws).transpose() * r_measured.transpose();
+    const Eigen::Vector3d effort = settings_.stance.torque_use * Eigen::Vector3d(leg.effort[0], leg.effort[1], leg.effort[2]);
+    foot.torque_lo = -effort - own_torque[i];
+    foot.torque_hi = effort - own_torque[i];
+  }
+  if (!started) return;
+
+  // The stance feet carry the wrench that moves the body as planned (the plan's acceleration fed
+  // forward, PD on the measured base pose and velocity, gravity), distributed by the stance-force
+  // QP: forces in their friction pyramids and the motors' room, never pulling, the moments of all
+  // force components about the centre of mass included. A foot takes its load over
+  // load_ramp_time after touchdown and gives it up over the same time before its liftoff.
+  const double ts = settings_.time_scale;
+  const bool moving = tp > 0.0 && tp < plan_.duration();
+  const Eigen::Vector3d a_plan = moving ? Eigen::Vector3d(reference.acceleration_W / (ts * ts)) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d v_plan = moving ? Eigen::Vector3d(reference.velocity_W / ts) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d v(d->qvel[0], d->qvel[1], d->qvel[2]);
+  const Eigen::Vector3d omega_W = r_measured * Eigen::Vector3d(d->qvel[3], d->qvel[4], d->qvel[5]);
+  const Eigen::Vector3d kp(settings_.xy_kp, settings_.xy_kp, settings_.height_kp);
+  const Eigen::Vector3d kd(settings_.xy_kd, settings_.xy_kd, settings_.height_kd);
+  const Eigen::Vector3d force_W =
+      mass_ * (Eigen::Vector3d(0, 0, 9.81) + settings_.acceleration_feedforward * a_plan +
+               kp.cwiseProduct(planned.position_W - measured.position_W) + kd.cwiseProduct(v_plan - v));
+  const Eigen::AngleAxisd rotation_error(planned.ToIsometry().linear() * r_measured.transpose());
+  const Eigen::Vector3d pitch_axis_W(-std::sin(planned.yaw), std::cos(planned.yaw), 0.0);
+  const Eigen::Vector3d omega_plan_W =
+      moving ? Eigen::Vector3d((reference.pitch_rate * pitch_axis_W + reference.yaw_rate * Eigen::Vector3d::UnitZ()) / ts)
+             : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d moment_W =
+      CompositeInertia() * (settings_.attitude_kp * rotation_error.angle() * rotation_error.axis() +
+                            settings_.attitude_kd * (omega_plan_W - omega_W));
+  const double* com = d->subtree_com + 3 * base_body_;
+  std::array<Eigen::Vector3d, 4> force;
+  if (!force_qp_.Solve(feet, Eigen::Vector3d(com[0], com[1], com[2]), force_W, moment_W, force)) {
+    ++outcome_.force_qp_failures;
+  }
+
+  for (std::size_t i = 0; i < legs_.size(); ++i) {
+    const LegState& leg = legs_[i];
+    const Eigen::Vector3d tau = own_torque[i] + feet[i].torque_map * force[i];
     for (std::size_t j = 0; j < 3; ++j) {
-      const double demanded = tau(static_cast<Eigen::Index>(j)) + d->qfrc_bias[leg.dof[j]];
+      const double demanded = tau(static_cast<Eigen::Index>(j));
       JointTorquePeak& peak = outcome_.torques[i * 3 + j];
       if (std::abs(demanded) > peak.peak) {
         peak.peak = std::abs(demanded);
@@ -448,6 +483,16 @@ SimulationOutcome PlanExecutor::Run() {
     outcome_.max_torque_ratio = std::max(outcome_.max_torque_ratio, peak.ratio);
   }
   outcome_.time_scale = settings_.time_scale;
+  const ZmpMargin zmp = PlanZmpMargin(kinematics_.robot(), plan_, settings_.time_scale);
+  outcome_.plan_zmp_margin_m = zmp.margin_m;
+  outcome_.plan_zmp_t = zmp.t;
+  outcome_.plan_max_acceleration = zmp.max_acceleration;
+  if (outcome_.status == SimStatus::kFall && zmp.margin_m < 0.0) {
+    std::ostringstream why;
+    why << "; at this pace the plan's ZMP leaves its support polygon by up to " << -zmp.margin_m << " m (t=" << zmp.t
+        << " s; body acceleration up to " << zmp.max_acceleration << " m/s^2): the feet cannot carry that motion";
+    outcome_.cause += why.str();
+  }
   outcome_.sim_time_s = world_->time();
   outcome_.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   outcome_.real_time_factor = outcome_.wall_time_s > 0.0 ? outcome_.sim_time_s / outcome_.wall_time_s : 0.0;

@@ -1,9 +1,10 @@
 // The executor: plays a plan on the simulated robot. Every millisecond the plan's body pose and
 // each foot's contact point (its foothold, or the point on its swing trajectory) become joint
 // targets through our IK; joint PD with gravity compensation tracks them, and stance legs add the
-// torques that carry the body's weight, distributed over the stance feet with feedback on the
-// base height and attitude. Touchdown is driven by contact (seed 000 [0055]): a swinging foot that
-// touches the stairs in the second half of its swing becomes a stance foot where it touched.
+// torques of their contact forces: the wrench that moves the body as planned (acceleration fed
+// forward, feedback on the base pose) distributed over the stance feet by a small QP. Touchdown
+// is driven by contact (seed 000 [0055]): a swinging foot that touches the stairs in the second
+// half of its swing becomes a stance foot where it touched.
 #pragma once
 
 #include <array>
@@ -17,6 +18,7 @@
 #include "planning/simulation/mujoco_world.h"
 #include "planning/simulation/sim_outcome.h"
 #include "planning/simulation/sim_settings.h"
+#include "planning/simulation/stance_force_qp.h"
 
 namespace stairplan {
 
@@ -45,6 +47,11 @@ class PlanExecutor {
   bool CheckContacts(double tp, std::vector<bool>& foot_touching);
   Eigen::Vector3d FootContactPoint(const LegState& leg) const;
   BodyPose MeasuredPose() const;
+  /// How much of a full load a leg may carry now: 0 in swing, rising after touchdown and falling
+  /// before the next liftoff over load_ramp_time.
+  double LoadShare(const LegState& leg, double tp) const;
+  /// The whole robot's rotational inertia about its centre of mass, world frame [kg m^2].
+  Eigen::Matrix3d CompositeInertia() const;
   void RecordFrame(double tp);
   void Judge(double tp);
 
@@ -60,6 +67,7 @@ class PlanExecutor {
   double mass_ = 0.0;
   int base_body_ = -1;
   double kp_ = 0.0, kd_ = 0.0;
+  StanceForceQp force_qp_;
   SimulationOutcome outcome_;
   bool fallen_ = false;
   bool running_ = false;  // false while placing the robot: targets only, no torques

@@ -83,6 +83,13 @@ struct SimulationOutcome {
   std::string closest_link;        ///< "<link> to <stair geom>" for that distance
   std::vector<JointTorquePeak> torques;
   double max_torque_ratio = 0.0;
+  /// The plan's own dynamic feasibility at this pace (PlanZmpMargin): the smallest margin of its
+  /// zero-moment point inside the support polygon [m] (negative: no stance can carry that motion),
+  /// when, and the largest horizontal body acceleration it asks for [m/s^2].
+  double plan_zmp_margin_m = 0.0;
+  double plan_zmp_t = 0.0;
+  double plan_max_acceleration = 0.0;
+  int force_qp_failures = 0;       ///< control steps whose stance-force QP did not solve (forces zero then)
   double time_scale = 1.0;         ///< how many times slower than planned the plan was played
   int sim_steps = 0;
   double sim_time_s = 0.0;

@@ -51,6 +51,10 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
   }
   j["max_torque_ratio"] = o.max_torque_ratio;
   j["time_scale"] = o.time_scale;
+  j["force_qp_failures"] = o.force_qp_failures;
+  j["plan_zmp_margin_m"] = o.plan_zmp_margin_m;
+  j["plan_zmp_t"] = o.plan_zmp_t;
+  j["plan_max_acceleration"] = o.plan_max_acceleration;
   j["sim_steps"] = o.sim_steps;
   j["sim_time_s"] = o.sim_time_s;
   j["wall_time_s"] = o.wall_time_s;

@@ -23,6 +23,10 @@ void SimSettings::Validate() const {
   check("height_kd", height_kd, 0.0, 1e4);
   check("attitude_kp", attitude_kp, 0.0, 1e5);
   check("attitude_kd", attitude_kd, 0.0, 1e4);
+  stance.Validate();
+  check("acceleration_feedforward", acceleration_feedforward, 0.0, 2.0);
+  check("stance_pd_scale", stance_pd_scale, 0.0, 1.0);
+  check("load_ramp_time", load_ramp_time, 0.0, 1.0);
   check("swing_pose_feedback", swing_pose_feedback, 0.0, 1.0);
   check("time_scale", time_scale, 0.1, 100.0);
   check("settle_time", settle_time, 0.0, 10.0);
@@ -46,7 +50,12 @@ void SimSettings::Set(const std::string& name, double value) {
       {"attitude_kd", &attitude_kd}, {"swing_pose_feedback", &swing_pose_feedback}, {"settle_time", &settle_time}, {"time_scale", &time_scale},
       {"hold_time", &hold_time}, {"touchdown_phase", &touchdown_phase}, {"late_descent_speed", &late_descent_speed},
       {"late_descent_max", &late_descent_max}, {"fall_angle", &fall_angle}, {"goal_tolerance", &goal_tolerance},
-      {"frame_interval", &frame_interval}};
+      {"frame_interval", &frame_interval}, {"acceleration_feedforward", &acceleration_feedforward},
+      {"stance_pd_scale", &stance_pd_scale}, {"load_ramp_time", &load_ramp_time},
+      {"stance.friction_use", &stance.friction_use}, {"stance.torque_use", &stance.torque_use},
+      {"stance.min_normal", &stance.min_normal},
+      {"stance.force_weight", &stance.force_weight}, {"stance.moment_weight", &stance.moment_weight},
+      {"stance.regularization", &stance.regularization}};
   const auto it = fields.find(name);
   if (it == fields.end()) throw FieldError(name, "no such simulation setting");
   *it->second = value;

@@ -1,5 +1,5 @@
 // Settings of a physics run: the simulated world, the executor's controller (joint PD with gravity
-// compensation and a weight-distributing feed-forward), touchdown handling, and what counts as a
+// compensation, stance forces from a QP over the stance feet), touchdown handling, and what counts as a
 // fall, a stall or a success.
 #pragma once
 
@@ -7,6 +7,7 @@
 
 #include "kinematics/leg_ik.h"
 #include "planning/simulation/mjcf_writer.h"
+#include "planning/simulation/stance_force_qp.h"
 #include "planning/swing_trajectory.h"
 
 namespace stairplan {
@@ -30,19 +31,26 @@ struct SimSettings {
   double xy_kd = 40.0;               ///< [1/s]
   double height_kp = 800.0;          ///< base height feedback [1/s^2] (times mass)
   double height_kd = 60.0;           ///< [1/s]
-  double attitude_kp = 300.0;        ///< base roll/pitch feedback [1/s^2] (times mass and hip length^2)
+  double attitude_kp = 300.0;        ///< base attitude feedback [1/s^2] (times the robot's inertia about its COM)
   double attitude_kd = 30.0;         ///< [1/s]
+  /// Share of the plan's body acceleration the stance forces feed forward (1: all of it).
+  double acceleration_feedforward = 1.0;
+  /// A loaded stance leg keeps this share of its joint PD; its contact force does the carrying.
+  double stance_pd_scale = 0.3;
+  /// A foot takes its load over this time after touchdown and gives it up over this time before
+  /// its liftoff [s].
+  double load_ramp_time = 0.05;
+  /// How the stance forces are distributed (friction: the world's).
+  StanceForceSettings stance;
   /// Share of the body-pose error (measured - planned) a swing leg follows so that it lands where
   /// the plan says in the world even when the body lags: 1 = fully, 0 = not at all.
   double swing_pose_feedback = 1.0;
 
   // Timing and touchdown.
-  /// Plays the plan this many times slower (1: as planned). The crawl baseline's body shifts (about
-  /// 10 cm in 0.25 s, starting and stopping at once) are too abrupt for this quasi-static controller
-  /// at the plan's own pace: the stairbot rolls over within 2 s at 1 and 1.5, falls late at 2 and
-  /// climbs at 3. A quasi-static plan must survive any slowing, so 3 is the default and the pace is
-  /// reported with every outcome.
-  double time_scale = 3.0;
+  /// Plays the plan this many times slower (1: as planned). A plan is executed at its own pace;
+  /// slowing it divides its accelerations by the square and hides plans that are dynamically
+  /// infeasible (every outcome reports the plan's ZMP margin at the pace it was played).
+  double time_scale = 1.0;
   double settle_time = 0.5;          ///< standing on the initial footholds before the plan starts [s]
   double hold_time = 1.0;            ///< standing after the plan ends before judging [s]
   double touchdown_phase = 0.5;      ///< a foot contact counts as touchdown from this swing phase on
