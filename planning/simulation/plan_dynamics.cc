@@ -44,13 +44,13 @@ double MarginInHull(std::vector<Eigen::Vector2d> points, const Eigen::Vector2d& 
 
 }  // namespace
 
-ZmpMargin PlanZmpMargin(const RobotModel& robot, const Plan& plan, double time_scale, double dt) {
+ZmpMargin PlanZmpMargin(const RobotModel& robot, const Plan& plan, double time_scale, double dt, double until) {
   if (!(time_scale > 0.0) || !(dt > 0.0)) throw std::invalid_argument("PlanZmpMargin: time_scale and dt must be positive");
   ZmpMargin worst;
   worst.margin_m = std::numeric_limits<double>::infinity();
   if (plan.body.empty() || plan.initial_feet_W.size() != plan.legs.size()) return worst;
   const Eigen::Vector3d com_B = ApproximateComOffset(robot);
-  const double duration = plan.duration();
+  const double duration = std::min(plan.duration(), until);
   std::vector<Eigen::Vector2d> stance_xy;
   for (double t = 0.0; t <= duration + 1e-9; t += dt) {
     std::vector<bool> in_stance;

@@ -6,6 +6,8 @@
 // the plan s times slower divides the accelerations by s^2: this is what a slowed replay hides.
 #pragma once
 
+#include <limits>
+
 #include "kinematics/robot_model.h"
 #include "planning/plan.h"
 
@@ -21,7 +23,9 @@ struct ZmpMargin {
 
 /// The ZMP margin of `plan` for `robot` played `time_scale` times slower than planned, sampled
 /// every `dt` of plan time, with the body's acceleration from the executor's reference (the
-/// cubic spline through the body samples). Instants with fewer than three feet down are skipped.
-ZmpMargin PlanZmpMargin(const RobotModel& robot, const Plan& plan, double time_scale, double dt = 0.005);
+/// cubic spline through the body samples), up to plan time `until` (the whole plan by default).
+/// Instants with fewer than three feet down are skipped.
+ZmpMargin PlanZmpMargin(const RobotModel& robot, const Plan& plan, double time_scale, double dt = 0.005,
+                        double until = std::numeric_limits<double>::infinity());
 
 }  // namespace stairplan

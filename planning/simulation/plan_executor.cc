@@ -487,10 +487,13 @@ SimulationOutcome PlanExecutor::Run() {
   outcome_.plan_zmp_margin_m = zmp.margin_m;
   outcome_.plan_zmp_t = zmp.t;
   outcome_.plan_max_acceleration = zmp.max_acceleration;
-  if (outcome_.status == SimStatus::kFall && zmp.margin_m < 0.0) {
+  // A fall the plan asked for: its ZMP left the support polygon before the robot fell.
+  const ZmpMargin before_fall = PlanZmpMargin(kinematics_.robot(), plan_, settings_.time_scale, 0.005, tp);
+  if (outcome_.status == SimStatus::kFall && before_fall.margin_m < 0.0) {
     std::ostringstream why;
-    why << "; at this pace the plan's ZMP leaves its support polygon by up to " << -zmp.margin_m << " m (t=" << zmp.t
-        << " s; body acceleration up to " << zmp.max_acceleration << " m/s^2): the feet cannot carry that motion";
+    why << "; before it, at this pace, the plan's ZMP left its support polygon by " << -before_fall.margin_m
+        << " m (t=" << before_fall.t << " s; body acceleration " << before_fall.max_acceleration
+        << " m/s^2): more than the feet can carry";
     outcome_.cause += why.str();
   }
   outcome_.sim_time_s = world_->time();
