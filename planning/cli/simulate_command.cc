@@ -85,9 +85,9 @@ int RunSimulate(const std::vector<std::string>& args) {
     std::cerr << "stairplan simulate: " << path << ": " << ToString(outcome.status)
               << (outcome.Passed() ? "" : " (" + outcome.FirstCause() + ")") << "; " << outcome.landings.size()
               << " landings, max error " << outcome.MaxLandingError() * 1000 << " mm; peak torque "
-              << outcome.max_torque_ratio * 100 << "% of the limit; pace " << outcome.time_scale
-              << "x slower than planned, plan ZMP margin " << outcome.plan_zmp_margin_m * 1000
-              << " mm; real-time factor " << outcome.real_time_factor << "\n";
+              << outcome.max_torque_ratio * 100 << "% of the limit; time_scale " << outcome.time_scale
+              << ", plan ZMP margin " << outcome.plan_zmp_margin_m * 1000 << " mm; real-time factor "
+              << outcome.real_time_factor << "\n";
     return outcome.Passed() ? kExitOk : kExitInfeasible;
   });
 }
