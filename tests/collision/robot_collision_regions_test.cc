@@ -12,7 +12,7 @@ using namespace stairplan;
 
 namespace {
 
-struct Fixture {
+struct RegionsFixture {
   RobotKinematics kinematics{BuiltinRobot()};
   RobotCollisionModel robot{kinematics};
 };
@@ -26,7 +26,7 @@ bool CoversMiddle(const RobotRegion& r, const Staircase& stairs) {
 }  // namespace
 
 TEST_CASE("ascending forwards, only the foot's own width before each riser is a region", "[robot_regions]") {
-  Fixture f;
+  RegionsFixture f;
   const Staircase stairs{StairSpec{}};
   const auto regions = FindRobotCollisionRegions(f.kinematics, f.robot, stairs, Facing::kForward);
   for (int k = 1; k < stairs.steps(); ++k) {
@@ -49,7 +49,7 @@ TEST_CASE("ascending forwards, only the foot's own width before each riser is a 
 }
 
 TEST_CASE("ascending facing backwards, the forward-bent knees reach the nosing: wider regions", "[robot_regions]") {
-  Fixture f;
+  RegionsFixture f;
   const Staircase stairs{StairSpec{}};
   const auto regions = FindRobotCollisionRegions(f.kinematics, f.robot, stairs, Facing::kBackward);
   int wide = 0;
@@ -65,7 +65,7 @@ TEST_CASE("ascending facing backwards, the forward-bent knees reach the nosing: 
 }
 
 TEST_CASE("descending forwards, the shins meet the step behind: regions at the back of each tread", "[robot_regions]") {
-  Fixture f;
+  RegionsFixture f;
   StairSpec spec;
   spec.direction = TravelDirection::kDown;
   const Staircase stairs{spec};
@@ -82,7 +82,7 @@ TEST_CASE("descending forwards, the shins meet the step behind: regions at the b
 }
 
 TEST_CASE("robot regions merge into the constrained map and trim its step regions", "[robot_regions]") {
-  Fixture f;
+  RegionsFixture f;
   const Staircase stairs{StairSpec{}};
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kBackward);
   const ConstrainedMap analytic = map;

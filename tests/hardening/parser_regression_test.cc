@@ -21,7 +21,7 @@ namespace {
 
 // The parser's error for `text`, or "accepted".
 template <typename Parse>
-std::string ErrorOf(Parse parse) {
+std::string ParseErrorOf(Parse parse) {
   try {
     parse();
   } catch (const std::invalid_argument& e) {
@@ -35,9 +35,9 @@ std::string ErrorOf(Parse parse) {
 TEST_CASE("stairs YAML: a key that is not a field name is a FieldError naming the file", "[hardening][fuzz][yaml]") {
   // fuzz_stairs_yaml, first minute: a complex key made yaml-cpp throw TypedBadConversion.
   const std::string found("? down\x06steps: 3z ", 17);
-  CHECK_THAT(ErrorOf([&] { StairSpecFromYaml(found, "found.yaml"); }), Catch::Contains("found.yaml"));
-  CHECK_THAT(ErrorOf([&] { StairSpecFromYaml("[steps]: 3\n", "list-key.yaml"); }), Catch::Contains("list-key.yaml"));
-  CHECK_THAT(ErrorOf([&] { StairSpecFromYaml("? {rise: 1}\n: 3\n", "map-key.yaml"); }), Catch::Contains("map-key.yaml"));
+  CHECK_THAT(ParseErrorOf([&] { StairSpecFromYaml(found, "found.yaml"); }), Catch::Contains("found.yaml"));
+  CHECK_THAT(ParseErrorOf([&] { StairSpecFromYaml("[steps]: 3\n", "list-key.yaml"); }), Catch::Contains("list-key.yaml"));
+  CHECK_THAT(ParseErrorOf([&] { StairSpecFromYaml("? {rise: 1}\n: 3\n", "map-key.yaml"); }), Catch::Contains("map-key.yaml"));
 }
 
 TEST_CASE("plan.json: a stair_index outside int's range is an error naming the field", "[hardening][ubsan][plan_json]") {
@@ -47,7 +47,7 @@ TEST_CASE("plan.json: a stair_index outside int's range is an error naming the f
   for (const char* value : {"1e300", "-5", "2.5"}) {
     std::string edited = plan;
     edited.replace(edited.find("\"stair_index\":"), 14, std::string("\"stair_index\": ") + value + ", \"x0\":");
-    const std::string error = ErrorOf([&] { ReadPlanJson(edited, "index.json"); });
+    const std::string error = ParseErrorOf([&] { ReadPlanJson(edited, "index.json"); });
     CHECK_THAT(error, Catch::Contains("index.json") && Catch::Contains("stair_index"));
   }
 }
@@ -56,7 +56,7 @@ TEST_CASE("Online QP sequence: huge sizes in dims.oqp are an error naming it, be
   const std::string dir = stairplan::testing::MakeTempDir("oqp-dims");
   for (const char* dims : {"1e300 2 1 0\n", "100000 100000 100000 0\n", "nan 2 1 0\n", "2.5 2 1 0\n"}) {
     std::ofstream(dir + "/dims.oqp") << dims;
-    CHECK_THAT(ErrorOf([&] { optim::ReadOqpSequence(dir); }), Catch::Contains("dims.oqp"));
+    CHECK_THAT(ParseErrorOf([&] { optim::ReadOqpSequence(dir); }), Catch::Contains("dims.oqp"));
   }
 }
 
