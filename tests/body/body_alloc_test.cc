@@ -5,6 +5,7 @@
 #include "kinematics/builtin_robot.h"
 #include "planning/body/body_planner.h"
 #include "planning/crawl_planner.h"
+#include "sanitized.h"
 
 using namespace stairplan;
 
@@ -18,7 +19,8 @@ TEST_CASE("1,000 Update cycles after warm-up allocate nothing", "[body][alloc]")
   settings.cycle_budget_s = 1.0;  // every cycle solves (the timing of this machine must not matter)
   BodyPlanner planner(robot, stairs, map, footsteps, settings);
   constexpr double kPeriod = 0.003;
-  constexpr int kCycles = 1000;
+  // Under the sanitizers 100 cycles (each solve is ~20x slower there); still after the warm-up pass.
+  constexpr int kCycles = testing::FullOrSanitized(1000, 100);
   // Start on the flight's first steps, where the bounds are active. The first pass is the
   // warm-up: it fills the planner's caches for exactly this trajectory.
   const double start = 2.0;

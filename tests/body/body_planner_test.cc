@@ -11,6 +11,7 @@
 #include "planning/body/body_planner.h"
 #include "planning/body/plan_body.h"
 #include "planning/crawl_planner.h"
+#include "sanitized.h"
 
 using namespace stairplan;
 
@@ -103,6 +104,8 @@ TEST_CASE("on the flight the body pitches with the stairs and shifts its weight 
   const RobotModel& robot = BuiltinRobot();
   for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
     for (const Facing facing : {Facing::kForward, Facing::kBackward}) {
+      // Under the sanitizers two of the four plans: up facing forward, down facing backward.
+      if (testing::kSanitized && (direction == TravelDirection::kUp) != (facing == Facing::kForward)) continue;
       const Scenario s = Crawl(direction, facing);
       const Plan plan = PlanBody(robot, s.stairs, s.map, s.footsteps);
       INFO(ToString(direction) << " " << ToString(facing) << ": " << plan.status_reason);
