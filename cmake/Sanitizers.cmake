@@ -2,6 +2,9 @@
 # libFuzzer targets (tests/fuzz). Both need clang; scripts/sanitize.sh configures build-asan with both.
 option(STAIRPLAN_SANITIZE "Build everything with -fsanitize=address,undefined (clang)" OFF)
 option(STAIRPLAN_FUZZ "Build the libFuzzer targets in tests/fuzz (clang; implies coverage instrumentation)" OFF)
+# The sanitized build is built from scratch in CI, so it trades incremental rebuilds for a shorter
+# first build: each test program compiles as a few unity sources over one shared precompiled header.
+option(STAIRPLAN_QUICK_TEST_BUILD "Unity sources and one precompiled header for the test programs" OFF)
 
 if(STAIRPLAN_SANITIZE OR STAIRPLAN_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
@@ -12,7 +15,30 @@ if(STAIRPLAN_SANITIZE OR STAIRPLAN_FUZZ)
   add_link_options(-fsanitize=address,undefined -fno-sanitize-recover=all)
 endif()
 
+if(STAIRPLAN_SANITIZE)
+  # Tests that take minutes under the sanitizers run fewer samples (tests/sanitized.h).
+  add_compile_definitions(STAIRPLAN_SANITIZED)
+endif()
+
 if(STAIRPLAN_FUZZ)
   # Coverage feedback for libFuzzer in every library; only the fuzz targets link libFuzzer's main.
   add_compile_options(-fsanitize=fuzzer-no-link)
 endif()
+
+# Called by stairplan_add_test. The first test program precompiles the headers nearly every test
+# includes; the others reuse its precompiled header (their flags and definitions are the same).
+function(stairplan_quick_test_build target)
+  if(NOT STAIRPLAN_QUICK_TEST_BUILD)
+    return()
+  endif()
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 16)
+  get_property(pch_target GLOBAL PROPERTY STAIRPLAN_TEST_PCH_TARGET)
+  if(pch_target)
+    target_precompile_headers(${target} REUSE_FROM ${pch_target})
+  else()
+    target_precompile_headers(${target} PRIVATE
+      <catch2/catch.hpp> <Eigen/Dense> <nlohmann/json.hpp> <random> <fstream> <sstream> <string> <vector>
+      [["kinematics/robot_kinematics.h"]] [["collision/stair_collision_model.h"]] [["planning/plan.h"]])
+    set_property(GLOBAL PROPERTY STAIRPLAN_TEST_PCH_TARGET ${target})
+  endif()
+endfunction()

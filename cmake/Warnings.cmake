@@ -26,5 +26,6 @@ function(stairplan_add_test name)
   target_compile_definitions(${name} PRIVATE
     STAIRPLAN_SHARED_DIR="${STAIRPLAN_SHARED_DIR}" STAIRPLAN_SOURCE_DIR="${STAIRPLAN_SOURCE_DIR}"
     STAIRPLAN_BIN_DIR="${PROJECT_BINARY_DIR}/bin")
+  stairplan_quick_test_build(${name})
   catch_discover_tests(${name} PROPERTIES TIMEOUT 600)
 endfunction()

@@ -6,6 +6,11 @@ packages=(
   libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev liborocos-kdl-dev liburdfdom-dev
   libfcl-dev libccd-dev catch2 libbenchmark-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libmujoco-dev libqhull-dev
 )
+# `setup.sh sanitize` (scripts/sanitize.sh, run by scripts/test.sh) also installs the sanitizer
+# toolchain: clang 14 with its ASan/UBSan/libFuzzer runtimes, lld and Ninja for a faster build.
+if [ "${1:-}" = sanitize ]; then
+  packages+=(clang-14 libclang-rt-14-dev lld-14 ninja-build)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
