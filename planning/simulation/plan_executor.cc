@@ -18,6 +18,7 @@ namespace stairplan {
 namespace {
 
 constexpr double kMaxTargetSpeed = 20.0;  // joint target velocity cap [rad/s]: IK branch jumps are not velocities
+constexpr double kMaxTargetAcceleration = 500.0;  // ... and acceleration cap [rad/s^2]
 constexpr double kBlendTime = 0.1;        // a leg's aim moves between planned and measured body over this [s]
 
 double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
@@ -39,6 +40,7 @@ struct PlanExecutor::LegState {
   std::unique_ptr<SwingTrajectory> swing;
   Eigen::Vector3d q_target = Eigen::Vector3d::Zero();
   Eigen::Vector3d q_target_prev = Eigen::Vector3d::Zero();
+  Eigen::Vector3d qd_target_prev = Eigen::Vector3d::Zero();
   bool has_target = false;
   double t_switch = -1e9;                   // plan time of the last liftoff or touchdown [s]
 };
@@ -61,6 +63,7 @@ PlanExecutor::PlanExecutor(const RobotModel& robot, const Staircase& stairs, con
   mjData* d = world_->data();
   mass_ = world_->RobotMass();
   base_body_ = mj_name2id(m, mjOBJ_BODY, robot.base_link().c_str());
+  full_inertia_.assign(static_cast<std::size_t>(m->nv * m->nv), 0.0);
   kp_ = settings_.kp_per_kg * mass_;
   kd_ = settings_.kd_per_kg * mass_;
   legs_.resize(4);
@@ -238,6 +241,7 @@ void PlanExecutor::Control(double tp) {
   std::array<double, 4> load{};
   std::array<Eigen::Vector3d, 4> own_torque;
   std::array<StanceForceQp::Foot, 4> feet;
+  if (started) mj_fullM(m, full_inertia_.data(), d->qM);
   for (std::size_t i = 0; i < legs_.size(); ++i) {
     LegState& leg = legs_[i];
     const LegKinematics& kin = kinematics_.leg(leg.kin);
@@ -271,11 +275,23 @@ void PlanExecutor::Control(double tp) {
       qd(j) = d->qvel[leg.dof[static_cast<std::size_t>(j)]];
       bias(j) = d->qfrc_bias[leg.dof[static_cast<std::size_t>(j)]];
     }
+    const double dt = m->opt.timestep * settings_.time_scale;  // plan time per step
     const Eigen::Vector3d qd_target =
-        ((leg.q_target - leg.q_target_prev) / (m->opt.timestep * settings_.time_scale)).cwiseMax(-kMaxTargetSpeed).cwiseMin(kMaxTargetSpeed);
+        ((leg.q_target - leg.q_target_prev) / dt).cwiseMax(-kMaxTargetSpeed).cwiseMin(kMaxTargetSpeed);
+    const Eigen::Vector3d qdd_target = ((qd_target - leg.qd_target_prev) / m->opt.timestep)
+                                           .cwiseMax(-kMaxTargetAcceleration)
+                                           .cwiseMin(kMaxTargetAcceleration);
+    leg.qd_target_prev = qd_target;
     load[i] = LoadShare(leg, tp);
     const double pd = 1.0 - load[i] * (1.0 - settings_.stance_pd_scale);
+    // A swinging leg's own inertia times its target acceleration (the leg block of MuJoCo's mass
+    // matrix): without it the PD lags the swing and a foot stepping down lands short and fast.
+    Eigen::Matrix3d inertia;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) inertia(r, c) = full_inertia_[static_cast<std::size_t>(leg.dof[r] * m->nv + leg.dof[c])];
+    }
     own_torque[i] = pd * (kp_ * (leg.q_target - q) + kd_ * (qd_target - qd)) + bias;
+    if (!leg.stance) own_torque[i] += settings_.swing_inertia_feedforward * inertia * qdd_target;
     StanceForceQp::Foot& foot = feet[i];
     foot.position_W = FootContactPoint(leg);
     foot.max_normal = load[i] * 3.0 * mass_ * 9.81;

@@ -68,6 +68,7 @@ class PlanExecutor {
   int base_body_ = -1;
   double kp_ = 0.0, kd_ = 0.0;
   StanceForceQp force_qp_;
+  std::vector<double> full_inertia_;  // MuJoCo's mass matrix, nv x nv, sized once
   SimulationOutcome outcome_;
   bool fallen_ = false;
   bool running_ = false;  // false while placing the robot: targets only, no torques

@@ -25,6 +25,7 @@ void SimSettings::Validate() const {
   check("attitude_kd", attitude_kd, 0.0, 1e4);
   stance.Validate();
   check("acceleration_feedforward", acceleration_feedforward, 0.0, 2.0);
+  check("swing_inertia_feedforward", swing_inertia_feedforward, 0.0, 2.0);
   check("stance_pd_scale", stance_pd_scale, 0.0, 1.0);
   check("load_ramp_time", load_ramp_time, 0.0, 1.0);
   check("swing_pose_feedback", swing_pose_feedback, 0.0, 1.0);
@@ -51,7 +52,7 @@ void SimSettings::Set(const std::string& name, double value) {
       {"hold_time", &hold_time}, {"touchdown_phase", &touchdown_phase}, {"late_descent_speed", &late_descent_speed},
       {"late_descent_max", &late_descent_max}, {"fall_angle", &fall_angle}, {"goal_tolerance", &goal_tolerance},
       {"frame_interval", &frame_interval}, {"acceleration_feedforward", &acceleration_feedforward},
-      {"stance_pd_scale", &stance_pd_scale}, {"load_ramp_time", &load_ramp_time},
+      {"stance_pd_scale", &stance_pd_scale}, {"swing_inertia_feedforward", &swing_inertia_feedforward}, {"load_ramp_time", &load_ramp_time},
       {"stance.friction_use", &stance.friction_use}, {"stance.torque_use", &stance.torque_use},
       {"stance.min_normal", &stance.min_normal},
       {"stance.force_weight", &stance.force_weight}, {"stance.moment_weight", &stance.moment_weight},

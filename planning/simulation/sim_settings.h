@@ -35,6 +35,8 @@ struct SimSettings {
   double attitude_kd = 30.0;         ///< [1/s]
   /// Share of the plan's body acceleration the stance forces feed forward (1: all of it).
   double acceleration_feedforward = 1.0;
+  /// Share of a swinging leg's inertia times its target acceleration added to its torques.
+  double swing_inertia_feedforward = 1.0;
   /// A loaded stance leg keeps this share of its joint PD; its contact force does the carrying.
   double stance_pd_scale = 0.3;
   /// A foot takes its load over this time after touchdown and gives it up over this time before
