@@ -78,6 +78,29 @@ double Polygon2::Area() const {
   return 0.5 * twice;
 }
 
+// Andrew's monotone chain.
+Polygon2 ConvexHull(std::vector<Eigen::Vector2d> points) {
+  if (points.size() < 3) return Polygon2{points, 0.0};
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  Polygon2 polygon;
+  polygon.vertices = hull;
+  return polygon;
+}
+
 Polygon2 Rectangle(double x0, double x1, double y0, double y1, double z) {
   Polygon2 poly;
   poly.z = z;

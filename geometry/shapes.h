@@ -33,6 +33,9 @@ struct Polygon2 {
   bool empty() const { return vertices.size() < 3; }
 };
 
+/// The convex hull of `points` (counter-clockwise; fewer than three vertices when degenerate).
+Polygon2 ConvexHull(std::vector<Eigen::Vector2d> points);
+
 /// An axis-aligned rectangle [x0,x1] x [y0,y1], as a convex polygon.
 Polygon2 Rectangle(double x0, double x1, double y0, double y1, double z);
 

@@ -68,3 +68,31 @@ Eigen::Vector3d SwingTrajectory::At(double s) const {
 }
 
 }  // namespace stairplan
+
+namespace stairplan {
+
+std::vector<Eigen::Vector3d> FeetAlongSwings(const std::vector<std::string>& legs,
+                                             const std::vector<Eigen::Vector3d>& initial,
+                                             const std::vector<Footstep>& footsteps, double t, const Staircase& stairs,
+                                             const SwingSettings& settings, std::vector<bool>* in_stance) {
+  std::vector<Eigen::Vector3d> feet = initial;
+  if (in_stance != nullptr) in_stance->assign(legs.size(), true);
+  for (const Footstep& f : footsteps) {
+    if (f.t_liftoff >= t) continue;
+    const auto leg = static_cast<std::size_t>(std::find(legs.begin(), legs.end(), f.leg) - legs.begin());
+    if (leg >= legs.size()) continue;
+    if (t >= f.t_touchdown) {
+      feet[leg] = f.position_W;
+      continue;
+    }
+    const double phase = (t - f.t_liftoff) / (f.t_touchdown - f.t_liftoff);
+    const SwingTrajectory swing = std::isfinite(f.swing_apex_z)
+                                      ? SwingTrajectory(f.from_W, f.position_W, f.swing_apex_z, settings)
+                                      : SwingTrajectory(f.from_W, f.position_W, stairs, settings);
+    feet[leg] = swing.At(phase);
+    if (in_stance != nullptr) (*in_stance)[leg] = false;
+  }
+  return feet;
+}
+
+}  // namespace stairplan

@@ -3,9 +3,13 @@
 // validator, the simulator and the drawings all move the foot the same way.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "geometry/staircase.h"
+#include "planning/plan.h"
 
 namespace stairplan {
 
@@ -38,6 +42,14 @@ class SwingTrajectory {
   double apex_z_ = 0.0;
   SwingSettings settings_;
 };
+
+/// Where each foot (legs in `legs` order) is at time t as a plan is executed: stance feet on their
+/// contact points, swinging feet along their swing trajectories (the footstep's apex when it states
+/// one, else the apex `stairs` ask for). `in_stance`, when given, says which feet are down.
+std::vector<Eigen::Vector3d> FeetAlongSwings(const std::vector<std::string>& legs,
+                                             const std::vector<Eigen::Vector3d>& initial,
+                                             const std::vector<Footstep>& footsteps, double t, const Staircase& stairs,
+                                             const SwingSettings& settings, std::vector<bool>* in_stance = nullptr);
 
 /// The highest stair surface (with its nosing lip) under the segment from a to b in xy [m].
 double HighestObstacleBetween(const Staircase& stairs, const Eigen::Vector2d& a, const Eigen::Vector2d& b);

@@ -12,28 +12,6 @@ namespace {
 
 constexpr double kTouchTolerance = 1e-4;  // a foot sphere this deep in its tread still only touches [m]
 
-// Convex hull of the stance feet in xy, counter-clockwise (Andrew's monotone chain).
-Polygon2 SupportPolygon(std::vector<Eigen::Vector2d> points) {
-  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  std::vector<Eigen::Vector2d> hull(2 * points.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k > 1 ? k - 1 : k);
-  Polygon2 polygon;
-  polygon.vertices = hull;
-  return polygon;
-}
-
 bool QuasiStatic(const std::string& gait) { return gait.rfind("crawl", 0) == 0; }
 
 }  // namespace
@@ -110,24 +88,15 @@ void TraversalValidator::CheckTouchdowns(const Plan& plan, ValidationReport& rep
 void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationReport& report) {
   const RobotKinematics& kinematics = checker_->kinematics();
   const BodyPose body = BodyPoseAt(plan.body, t);
+  std::vector<bool> down;
+  const std::vector<Eigen::Vector3d> feet =
+      FeetAlongSwings(plan.legs, plan.initial_feet_W, plan.footsteps, t, stairs_, settings_.swing, &down);
   std::array<Eigen::Vector3d, 4> contacts;
   std::array<bool, 4> stance{true, true, true, true};
   for (std::size_t i = 0; i < plan.legs.size() && i < 4; ++i) {
     const auto l = static_cast<std::size_t>(kinematics.LegIndex(plan.legs[i]));
-    contacts[l] = plan.initial_feet_W.at(i);
-    for (const Footstep& f : plan.footsteps) {
-      if (f.leg != plan.legs[i] || f.t_liftoff >= t) continue;
-      if (t >= f.t_touchdown) {
-        contacts[l] = f.position_W;
-        continue;
-      }
-      const double phase = (t - f.t_liftoff) / (f.t_touchdown - f.t_liftoff);
-      const SwingTrajectory swing = std::isfinite(f.swing_apex_z)
-                                        ? SwingTrajectory(f.from_W, f.position_W, f.swing_apex_z, settings_.swing)
-                                        : SwingTrajectory(f.from_W, f.position_W, stairs_, settings_.swing);
-      contacts[l] = swing.At(phase);
-      stance[l] = false;
-    }
+    contacts[l] = feet[i];
+    stance[l] = down[i];
   }
   const StanceResult r = checker_->Check(body, contacts);
   // One entry per leg and kind: the first time it happens.
@@ -168,11 +137,11 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
     std::array<Eigen::Vector3d, 4> q;
     for (int l = 0; l < 4; ++l) q[static_cast<std::size_t>(l)] = r.legs[static_cast<std::size_t>(l)].ik.q;
     const Eigen::Vector3d com = com_->Com(body, q, checker_->workspace());
-    std::vector<Eigen::Vector2d> feet;
+    std::vector<Eigen::Vector2d> support;
     for (int l = 0; l < 4; ++l) {
-      if (stance[static_cast<std::size_t>(l)]) feet.push_back(contacts[static_cast<std::size_t>(l)].head<2>());
+      if (stance[static_cast<std::size_t>(l)]) support.push_back(contacts[static_cast<std::size_t>(l)].head<2>());
     }
-    const double margin = -SupportPolygon(feet).SignedDistance(com.head<2>());
+    const double margin = -ConvexHull(support).SignedDistance(com.head<2>());
     report.min_stability_margin_m = std::min(report.min_stability_margin_m, margin);
     if (margin < settings_.min_stability_margin) add("body", ViolationKind::kStability, margin, "");
   }

@@ -115,3 +115,27 @@ TEST_CASE("bad margins are rejected", "[map]") {
   m.edge_margin = -0.1;
   CHECK_THROWS_AS(ConstrainedMap::FromStaircase(stairs, Facing::kForward, m), std::invalid_argument);
 }
+
+TEST_CASE("the convex hull of random points contains them all and is counter-clockwise", "[map][hull]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<Eigen::Vector2d> points;
+    const int n = 3 + trial % 6;
+    for (int i = 0; i < n; ++i) {
+      const double x = coordinate(rng);
+      const double y = coordinate(rng);
+      points.emplace_back(x, y);
+    }
+    const Polygon2 hull = ConvexHull(points);
+    REQUIRE(hull.vertices.size() >= 3);
+    REQUIRE(hull.vertices.size() <= points.size());
+    for (const Eigen::Vector2d& p : points) CHECK(hull.Contains(p, 1e-12));
+    CHECK(hull.Area() > 0.0);  // counter-clockwise
+  }
+  // A square with a point inside: the inside point is dropped.
+  const Polygon2 square = ConvexHull({{0, 0}, {1, 0}, {0.5, 0.5}, {1, 1}, {0, 1}});
+  CHECK(square.vertices.size() == 4);
+  CHECK(square.Area() == Approx(1.0));
+  CHECK(ConvexHull({{0, 0}, {1, 1}}).empty());
+}
