@@ -62,10 +62,18 @@ StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollision
     }
     out_of_reach = out_of_reach || stance.ik.status == IkStatus::kOutOfReach;
     limits = limits || stance.ik.status == IkStatus::kJointLimits;
+    if (settings.stop_at_first_failure && (out_of_reach || limits)) {
+      result.status = out_of_reach ? StanceStatus::kOutOfReach : StanceStatus::kJointLimits;
+      return result;
+    }
     stance.stairs = LegStairClearance(kinematics, robot, stairs, l, stance.ik.q, body, ws, settings.clearance);
     if (stance.stairs.distance < result.min_clearance) {
       result.min_clearance = stance.stairs.distance;
       result.worst_leg = l;
+    }
+    if (settings.stop_at_first_failure && !(stance.stairs.distance > settings.min_clearance)) {
+      result.status = StanceStatus::kCollision;
+      return result;
     }
   }
   result.body = BodyStairClearance(robot, stairs, body);
@@ -86,6 +94,8 @@ StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollision
 StanceChecker::StanceChecker(const RobotModel& robot, const Staircase& stairs, const StanceSettings& settings)
     : kinematics_(robot), collision_(kinematics_), stairs_(stairs), settings_(settings), ws_(kinematics_) {
   settings_.Validate();
+  verdict_settings_ = settings_;
+  verdict_settings_.stop_at_first_failure = true;
 }
 
 StanceResult StanceChecker::Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W) {
@@ -93,14 +103,14 @@ StanceResult StanceChecker::Check(const BodyPose& body, const std::array<Eigen::
 }
 
 Interval1 StanceChecker::FeasibleBodyHeights(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W,
-                                             double z_lo, double z_hi, double step) {
-  if (!(step > 0.0) || !(z_hi >= z_lo) || !std::isfinite(z_lo) || !std::isfinite(z_hi)) {
-    throw std::invalid_argument("StanceChecker::FeasibleBodyHeights: need finite z_lo <= z_hi and step > 0");
+                                             double z_lo, double z_hi, double step, double tolerance) {
+  if (!(step > 0.0) || !(tolerance > 0.0) || !(z_hi >= z_lo) || !std::isfinite(z_lo) || !std::isfinite(z_hi)) {
+    throw std::invalid_argument("StanceChecker::FeasibleBodyHeights: need finite z_lo <= z_hi, step > 0, tolerance > 0");
   }
   BodyPose probe = body;
   const auto passes = [&](double z) {
     probe.position_W.z() = z;
-    return Check(probe, contacts_W).ok();
+    return CheckStance(kinematics_, collision_, stairs_, probe, contacts_W, ws_, verdict_settings_).ok();
   };
   double run_lo = 0.0, best_lo = 0.0, best_hi = -1.0;
   bool in_run = false;
@@ -120,16 +130,15 @@ Interval1 StanceChecker::FeasibleBodyHeights(const BodyPose& body, const std::ar
   }
   Interval1 result;
   if (best_hi < best_lo) return result;
-  constexpr double kTolerance = 1e-3;
   double in = best_lo, out = best_lo - step;
-  while (in - out > kTolerance && out >= z_lo - step) {
+  while (in - out > tolerance && out >= z_lo - step) {
     const double mid = 0.5 * (in + out);
     (passes(mid) ? in : out) = mid;
   }
   result.lo = in;
   in = best_hi;
   out = best_hi + step;
-  while (out - in > kTolerance) {
+  while (out - in > tolerance) {
     const double mid = 0.5 * (in + out);
     (passes(mid) ? in : out) = mid;
   }

@@ -16,6 +16,9 @@ struct StanceSettings {
   IkSettings ik;                ///< IK of each foot (from the leg's nominal seed)
   double min_clearance = 0.0;   ///< every leg link must be farther than this from the stairs [m]
   bool check_contralateral = true;  ///< also LF-RF and LH-RH clearances
+  /// Return at the first failing leg or pair (searches that need only the verdict); the figures
+  /// of the legs not reached are then left at their defaults.
+  bool stop_at_first_failure = false;
   ClearanceOptions clearance;
 
   /// Throws std::invalid_argument naming the field.
@@ -69,9 +72,9 @@ class StanceChecker {
 
   /// The body heights (body.position_W.z, the rest of `body` fixed) at which Check() passes: the
   /// longest passing run found scanning [z_lo, z_hi] in `step`, its ends refined by bisection to
-  /// 1 mm. Empty when no height passes. A planner picks its height inside (e.g. the middle).
+  /// `tolerance`. Empty when no height passes. A planner picks its height inside (e.g. the middle).
   Interval1 FeasibleBodyHeights(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W, double z_lo,
-                                double z_hi, double step = 0.01);
+                                double z_hi, double step = 0.01, double tolerance = 1e-3);
 
   const RobotKinematics& kinematics() const { return kinematics_; }
   const RobotCollisionModel& collision_model() const { return collision_; }
@@ -83,6 +86,7 @@ class StanceChecker {
   RobotCollisionModel collision_;
   StairCollisionModel stairs_;
   StanceSettings settings_;
+  StanceSettings verdict_settings_;  ///< settings_ stopping at the first failure (height searches)
   RobotWorkspace ws_;
 };
 

@@ -1,0 +1,52 @@
+// Going down: the crawl with the pipeline's posture retries gives the built-in robot plans for the
+// default stairs that the validator accepts, facing forward and backward (the shanks stay off the
+// nosings behind the feet, every touchdown inside its step region).
+#include <catch2/catch.hpp>
+
+#include "kinematics/builtin_robot.h"
+#include "planning/plan_pipeline.h"
+
+using namespace stairplan;
+
+namespace {
+
+PipelineResult PlanDescent(Facing facing, bool posture_retries) {
+  StairSpec spec;
+  spec.direction = TravelDirection::kDown;
+  const Staircase stairs(spec);
+  PipelineOptions options;
+  options.facing = facing;
+  if (!posture_retries) options.posture_retries.clear();
+  return RunPipeline(BuiltinRobot(), stairs, options);
+}
+
+std::string FirstViolation(const ValidationReport& r) {
+  if (r.violations.empty()) return "none";
+  const Violation& v = r.violations.front();
+  return "t=" + std::to_string(v.t) + " " + v.leg + " " + ToString(v.kind) + " " + v.detail;
+}
+
+}  // namespace
+
+TEST_CASE("the built-in robot's default descents validate, facing forward and backward", "[validator][descent]") {
+  for (const Facing facing : {Facing::kForward, Facing::kBackward}) {
+    const PipelineResult r = PlanDescent(facing, true);
+    INFO((facing == Facing::kForward ? "forward" : "backward") << ": first violation " << FirstViolation(r.validation));
+    REQUIRE(r.plan.status == PlanStatus::kOk);
+    REQUIRE(r.validated);
+    CHECK(r.validation.ok);
+    CHECK(r.validation.min_clearance_m > 0.005);
+    CHECK(r.validation.min_stability_margin_m > 0.01);
+    // It really goes down the flight (1.19 m): the body ends more than a metre lower.
+    REQUIRE(r.plan.body.size() > 2);
+    CHECK(r.plan.body.front().z - r.plan.body.back().z > 1.0);
+    for (const Footstep& f : r.plan.footsteps) CHECK(f.in_step_region);
+  }
+}
+
+TEST_CASE("without posture retries the forward descent is rejected: the retries are what make it pass",
+          "[validator][descent]") {
+  const PipelineResult r = PlanDescent(Facing::kForward, false);
+  REQUIRE(r.validated);
+  CHECK_FALSE(r.validation.ok);
+}
