@@ -83,48 +83,99 @@ void CorrectCom(const RobotKinematics& kinematics, const ComModel& com_model, Ro
   }
 }
 
-// The height change at one instant that puts the four-foot stance inside its feasible range.
-double HeightCorrection(StanceChecker& checker, const std::vector<std::string>& legs,
-                        const std::vector<Eigen::Vector3d>& feet, const BodyPose& pose, double margin) {
-  std::array<Eigen::Vector3d, 4> contacts;
-  for (std::size_t i = 0; i < legs.size() && i < 4; ++i) {
-    contacts[static_cast<std::size_t>(checker.kinematics().LegIndex(legs[i]))] = feet[i];
-  }
+// A posture correction at one instant: a shift along the flight and a height change.
+struct PostureKey {
+  double t = 0.0;
+  double dx = 0.0;
+  double dz = 0.0;
+};
+
+// The feasible body heights at one instant with the body shifted by dx along the flight.
+Interval1 HeightWindow(StanceChecker& checker, const std::array<Eigen::Vector3d, 4>& contacts, BodyPose pose, double dx) {
+  pose.position_W.x() += dx;
   const double z = pose.position_W.z();
-  const Interval1 window = checker.FeasibleBodyHeights(pose, contacts, z - 0.2, z + 0.1);
-  if (window.empty()) return 0.0;  // no height helps: leave it to the validator to say so
-  const double lo = window.lo + std::min(margin, 0.5 * (window.hi - window.lo));
-  const double hi = window.hi - std::min(margin, 0.5 * (window.hi - window.lo));
-  return std::clamp(z, lo, hi) - z;
+  return checker.FeasibleBodyHeights(pose, contacts, z - 0.2, z + 0.1, 0.02, 0.004);
 }
 
-// Heights at the start and at every touchdown moved into the stance's feasible range, the
-// corrections interpolated linearly in time between those instants.
-void FitHeightsToStances(const RobotModel& robot, const Staircase& stairs, const std::vector<std::string>& legs,
-                         const std::vector<Eigen::Vector3d>& initial, const std::vector<Footstep>& footsteps,
-                         const BodyPathSettings& settings, std::vector<BodyState>& body) {
-  StanceSettings stance;
-  stance.min_clearance = settings.touchdown_clearance;
-  StanceChecker checker(robot, stairs, stance);
-  std::vector<std::pair<double, double>> keys;  // (t, dz)
-  const auto key_at = [&](double t) {
-    keys.emplace_back(t, HeightCorrection(checker, legs, FeetAt(legs, initial, footsteps, t), BodyPoseAt(body, t),
-                                          settings.height_margin));
-  };
-  key_at(0.0);
-  for (const Footstep& f : footsteps) key_at(f.t_touchdown);
-  std::sort(keys.begin(), keys.end());
+// The correction that puts the posture at one instant (swing feet where their swings are) inside
+// its feasible height range, kept height_centering of the range's width from either end. When the
+// range at the planned position is narrow, shifts along the flight that keep the COM target
+// `shift_margin` inside the support polygon are tried and the widest range wins. False when no
+// posture is feasible (a swing foot grazing its tread, or a posture nothing here repairs).
+bool FitPosture(StanceChecker& checker, const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& feet,
+                const std::vector<bool>& stance, const BodyPose& pose, const Eigen::Vector2d& com,
+                const BodyPathSettings& settings, PostureKey& key) {
+  std::array<Eigen::Vector3d, 4> contacts;
+  std::vector<Eigen::Vector2d> support;
+  for (std::size_t i = 0; i < legs.size() && i < 4; ++i) {
+    contacts[static_cast<std::size_t>(checker.kinematics().LegIndex(legs[i]))] = feet[i];
+    if (stance[i]) support.push_back(feet[i].head<2>());
+  }
+  const Polygon2 polygon = ConvexHull(support);
+  Interval1 best;
+  const int shifts = static_cast<int>(std::floor(settings.max_shift / settings.shift_step + 1e-9));
+  for (int k = 0; k <= 2 * shifts; ++k) {
+    const double dx = (k % 2 == 0 ? -1.0 : 1.0) * ((k + 1) / 2) * settings.shift_step;  // 0, +s, -s, +2s, ...
+    if (k > 0 && -polygon.SignedDistance(com + Eigen::Vector2d(dx, 0.0)) < settings.shift_margin) continue;
+    const Interval1 window = HeightWindow(checker, contacts, pose, dx);
+    if (window.empty() || (!best.empty() && window.hi - window.lo <= best.hi - best.lo)) continue;
+    best = window;
+    key.dx = dx;
+    if (best.hi - best.lo >= settings.wide_height_range) break;
+  }
+  if (best.empty()) return false;
+  const double z = pose.position_W.z(), width = best.hi - best.lo;
+  const double keep = std::min(0.5 * width, std::max(settings.height_margin, settings.height_centering * width));
+  key.dz = std::clamp(z, best.lo + keep, best.hi - keep) - z;
+  return true;
+}
+
+// The instants at which the height is fitted: the start, every liftoff and touchdown, and every
+// height_key_period in between.
+std::vector<double> HeightKeyTimes(const std::vector<Footstep>& footsteps, double duration, double period) {
+  std::vector<double> times = {0.0};
+  for (const Footstep& f : footsteps) {
+    times.push_back(f.t_liftoff);
+    times.push_back(f.t_touchdown);
+  }
+  const int count = static_cast<int>(std::floor(duration / period));
+  for (int k = 1; k <= count; ++k) times.push_back(k * period);
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end(), [](double a, double b) { return b - a < 1e-6; }), times.end());
+  return times;
+}
+
+// The key corrections interpolated linearly in time (held before the first and after the last).
+PostureKey CorrectionAt(const std::vector<PostureKey>& keys, double t) {
+  const auto next = std::upper_bound(keys.begin(), keys.end(), t, [](double v, const PostureKey& k) { return v < k.t; });
+  if (next == keys.begin()) return keys.front();
+  if (next == keys.end()) return keys.back();
+  const PostureKey& a = *(next - 1);
+  const double u = next->t > a.t ? (t - a.t) / (next->t - a.t) : 0.0;
+  return {t, a.dx + u * (next->dx - a.dx), a.dz + u * (next->dz - a.dz)};
+}
+
+// Postures fitted at the key instants (FitPosture), the corrections interpolated between them.
+void FitPosturesToStances(const RobotModel& robot, const Staircase& stairs, const std::vector<std::string>& legs,
+                          const std::vector<Eigen::Vector3d>& initial, const std::vector<Footstep>& footsteps,
+                          const std::vector<Keyframe>& com_keys, const BodyPathSettings& settings,
+                          std::vector<BodyState>& body) {
+  StanceSettings stance_settings;
+  stance_settings.min_clearance = settings.touchdown_clearance;
+  StanceChecker checker(robot, stairs, stance_settings);
+  std::vector<PostureKey> keys;
+  const double duration = body.empty() ? 0.0 : body.back().t;
+  for (double t : HeightKeyTimes(footsteps, duration, settings.height_key_period)) {
+    std::vector<bool> stance;
+    const std::vector<Eigen::Vector3d> feet = FeetAlongSwings(legs, initial, footsteps, t, stairs, settings.swing, &stance);
+    PostureKey key{t, 0.0, 0.0};
+    if (FitPosture(checker, legs, feet, stance, BodyPoseAt(body, t), ComAt(com_keys, t), settings, key)) keys.push_back(key);
+  }
+  if (keys.empty()) return;
   for (BodyState& b : body) {
-    const auto next = std::upper_bound(keys.begin(), keys.end(), std::make_pair(b.t, 1e300));
-    if (next == keys.begin()) {
-      b.z += keys.front().second;
-    } else if (next == keys.end()) {
-      b.z += keys.back().second;
-    } else {
-      const auto& a = *(next - 1);
-      const double u = next->first > a.first ? (b.t - a.first) / (next->first - a.first) : 0.0;
-      b.z += a.second + u * (next->second - a.second);
-    }
+    const PostureKey c = CorrectionAt(keys, b.t);
+    b.x += c.dx;
+    b.z += c.dz;
   }
 }
 
@@ -150,6 +201,13 @@ void BodyPathSettings::Validate() const {
   RequireInRange("pitch_fraction", pitch_fraction, 0.0, 1.0);
   RequireInRange("touchdown_clearance", touchdown_clearance, -1.0, 0.1);
   RequireInRange("height_margin", height_margin, 0.0, 0.1);
+  RequireInRange("height_centering", height_centering, 0.0, 0.5);
+  RequireInRange("height_key_period", height_key_period, 0.01, 10.0);
+  RequireInRange("wide_height_range", wide_height_range, 0.0, 1.0);
+  RequireInRange("max_shift", max_shift, 0.0, 0.5);
+  RequireInRange("shift_step", shift_step, 0.005, 0.5);
+  RequireInRange("shift_margin", shift_margin, 0.0, 0.5);
+  swing.Validate();
   if (com_passes < 0 || com_passes > 10) throw FieldError("com_passes", "must be from 0 to 10");
 }
 
@@ -235,7 +293,7 @@ std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::
     body.push_back(b);
   }
   if (stairs != nullptr && settings.touchdown_clearance >= 0.0) {
-    FitHeightsToStances(robot, *stairs, legs, initial_feet, footsteps, settings, body);
+    FitPosturesToStances(robot, *stairs, legs, initial_feet, footsteps, keys, settings, body);
   }
   return body;
 }
