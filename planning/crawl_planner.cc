@@ -45,6 +45,23 @@ std::vector<double> FootholdLattice(const Staircase& stairs, const ConstrainedMa
   return {lattice.begin(), lattice.end()};
 }
 
+// Rise over run of the whole flight (positive uphill in travel direction).
+double FlightSlope(const Staircase& stairs) {
+  const auto& surfaces = stairs.surfaces();
+  const double length = surfaces.back().x_begin - surfaces.front().x_end;
+  return length > 0.0 ? (surfaces.back().z - surfaces.front().z) / length : 0.0;
+}
+
+// `want` moved into the step region of the stair under `centre` (its x extent shrunk by
+// `margin`); the centre itself when that region is too narrow.
+double ClampToStepRegion(const ConstrainedMap& map, double centre, double want, double margin) {
+  const int stair = map.StairAt({centre, 0.0});
+  if (stair < 0 || map.stair(stair).step_region.empty()) return centre;
+  const Extent r = map.stair(stair).step_region.XExtent();
+  if (r.hi - r.lo <= 2.0 * margin) return centre;
+  return std::clamp(want, r.lo + margin, r.hi - margin);
+}
+
 struct LegTrack {
   std::string name;
   Eigen::Vector2d foot_offset_W;  // foot relative to the body origin in the world, horizontal
@@ -63,6 +80,7 @@ void CrawlSettings::Validate() const {
   RequireInRange("swing_duration", swing_duration, 0.05, 5.0);
   RequireInRange("shift_duration", shift_duration, 0.0, 5.0);
   RequireInRange("start_gap", start_gap, -1.0, 5.0);
+  RequireInRange("trailing_margin", trailing_margin, 0.0, 0.2);
   body.Validate();
   swing.Validate();
 }
@@ -117,9 +135,25 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
       return Infeasible(plan, "landing_after is too short for the robot's " + track.name + " foot");
     }
   }
-  // Foot contact point of leg `l` at lattice index k.
+  const double lead_x = front_x;
+  const int lead_start = [&] {
+    int start = 0;
+    for (const LegTrack& l : tracks) {
+      if (l.foot_offset_W.x() >= lead_x - 1e-9) start = std::max(start, l.start_index);
+    }
+    return start;
+  }();
+  const double pitch = settings.body.pitch_fraction * std::atan(std::abs(FlightSlope(stairs)));
+  // Foot contact point of leg `l` at lattice index k. The leading legs stand at step-region centres;
+  // the trailing legs as near to one stance length behind them as their own tread's step region
+  // allows, so the legs keep the posture the body path assumes whatever the run.
   const auto foothold = [&](const LegTrack& l, int k) {
-    const double x = lattice[static_cast<std::size_t>(k)];
+    double x = lattice[static_cast<std::size_t>(k)];
+    if (settings.keep_stance_length && l.foot_offset_W.x() < lead_x - 1e-9) {
+      const int lead_k = std::min(k + lead_start - l.start_index, static_cast<int>(lattice.size()) - 1);
+      const double stance = (lead_x - l.foot_offset_W.x()) * std::cos(pitch);
+      x = ClampToStepRegion(map, x, lattice[static_cast<std::size_t>(lead_k)] - stance, settings.trailing_margin);
+    }
     const double y = l.foot_offset_W.y();
     return Eigen::Vector3d(x, y, stairs.HeightAt(x, y));
   };
@@ -142,7 +176,9 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
       plan.footsteps.push_back(step);
     }
   }
-  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, settings.body, &stairs);
+  BodyPathSettings body = settings.body;
+  body.swing = settings.swing;
+  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, body, &stairs);
   return plan;
 }
 

@@ -15,8 +15,15 @@ namespace stairplan {
 
 struct CrawlSettings {
   double swing_duration = 0.40;       ///< one leg's swing [s]
-  double shift_duration = 0.25;       ///< four feet down between swings, moving the COM [s]
+  double shift_duration = 0.60;       ///< four feet down between swings, moving the COM [s]
   double start_gap = 0.10;            ///< front feet this far before the first step region [m]
+  /// Move the trailing feet inside their step regions to one stance length (hip spacing along the
+  /// pitched body) behind the leading feet, instead of the step-region centres. Off by default:
+  /// the body QP's reach bounds do not yet hold on those footholds (its NLP test plan turns
+  /// infeasible), although the quasi-static path validates on them.
+  bool keep_stance_length = false;
+  /// Trailing feet stay this far inside their step region when they move to keep the stance length [m].
+  double trailing_margin = 0.01;
   BodyPathSettings body;              ///< how the body follows the feet
   SwingSettings swing;                ///< how high the feet swing over the stairs
 

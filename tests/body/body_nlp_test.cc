@@ -25,7 +25,11 @@ Setup Stairs(TravelDirection direction, int steps = 7) {
   spec.steps = steps;
   Staircase stairs(spec);
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
-  Plan footsteps = PlanCrawl(BuiltinRobot(), stairs, map);
+  // The crawl's former 0.25 s COM shifts: on today's 0.6 s shifts SLSQP ends 5e-5 m outside a
+  // bound (issue 6's note); the NLP's properties are what this file tests.
+  CrawlSettings crawl;
+  crawl.shift_duration = 0.25;
+  Plan footsteps = PlanCrawl(BuiltinRobot(), stairs, map, crawl);
   REQUIRE(footsteps.status == PlanStatus::kOk);
   return {stairs, map, footsteps};
 }
