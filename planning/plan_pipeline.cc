@@ -43,7 +43,9 @@ Plan StepPlannerPlan(const RobotModel& robot, const Staircase& stairs, const Con
     f.swing_apex_z = SwingTrajectory(f.from_W, f.position_W, stairs, options.crawl.swing).apex_z();
   }
   const double yaw = options.facing == Facing::kForward ? 0.0 : M_PI;
-  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, options.crawl.body, &stairs);
+  BodyPathSettings body = options.crawl.body;
+  body.swing = options.crawl.swing;
+  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, body, &stairs);
   return plan;
 }
 
@@ -120,12 +122,25 @@ PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs
 }
 
 PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
-  const auto t_map = std::chrono::steady_clock::now();
-  ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
-  const double map_us = MicrosSince(t_map);
-  PipelineResult result = RunPipelineOnMap(robot, stairs, std::move(map), options);
-  result.plan.timing_us.insert(result.plan.timing_us.begin(), {"map", map_us});
-  return result;
+  PipelineResult first;
+  for (std::size_t attempt = 0; attempt <= options.posture_retries.size(); ++attempt) {
+    PipelineOptions tried = options;
+    if (attempt > 0) {
+      tried.crawl.body.hip_height_fraction = options.posture_retries[attempt - 1].hip_height_fraction;
+      tried.crawl.body.pitch_fraction = options.posture_retries[attempt - 1].pitch_fraction;
+    }
+    const auto t_map = std::chrono::steady_clock::now();
+    ConstrainedMap map = BuildPipelineMap(robot, stairs, tried);
+    const double map_us = MicrosSince(t_map);
+    PipelineResult result = RunPipelineOnMap(robot, stairs, std::move(map), tried);
+    result.plan.timing_us.insert(result.plan.timing_us.begin(), {"map", map_us});
+    // Only a plan the validator rejected is worth another posture; the first attempt's answer
+    // stands when none passes (its violations are the ones the default posture explains).
+    const bool rejected = result.validated && !result.validation.ok && result.plan.status == PlanStatus::kOk;
+    if (!rejected) return result;
+    if (attempt == 0) first = std::move(result);
+  }
+  return first;
 }
 
 }  // namespace stairplan

@@ -39,6 +39,12 @@ FootstepSource ParseFootstepSource(const std::string& text);
 /// Step planner settings with the crawl gaits only.
 StepPlannerSettings CrawlControllers();
 
+/// A stance posture for the quasi-static body path (see BodyPathSettings).
+struct BodyPosture {
+  double hip_height_fraction = 0.6;
+  double pitch_fraction = 0.75;
+};
+
 struct PipelineOptions {
   Facing facing = Facing::kForward;
   FootstepSource footsteps = FootstepSource::kSelectedCrawl;
@@ -54,6 +60,11 @@ struct PipelineOptions {
   RobotRegionSettings regions;
   CrawlSettings crawl;
   bool validate = true;  ///< replay the plan through the validator
+  /// Postures RunPipeline tries, in order, after crawl.body's when the validator rejects a plan:
+  /// descending, the legs need to stand taller and the body to pitch with the whole flight to
+  /// keep the shanks off the nosings behind the feet (the built-in robot's default descents pass
+  /// with the second and third). Empty: one attempt.
+  std::vector<BodyPosture> posture_retries = {{0.8, 1.0}, {0.8, 0.75}};
   ValidationSettings validation;
 };
 

@@ -92,7 +92,7 @@ TEST_CASE("a hind knee driven into a riser is caught", "[validator]") {
   Scenario s(TravelDirection::kUp, Facing::kForward);
   Plan plan = s.result.plan;
   for (BodyState& b : plan.body) {
-    if (b.t > 8.0 && b.t < 10.0) b.pitch -= 0.2;
+    if (b.t > 8.0 && b.t < 10.0) b.pitch -= 0.35;
   }
   const ValidationReport r = s.Validate(plan);
   INFO(Describe(r));
