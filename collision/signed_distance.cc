@@ -51,11 +51,32 @@ double Support(const fcl::CollisionGeometryd& g, const Eigen::Matrix3d& rotation
   }
 }
 
-// Penetration depth of a into an axis-aligned box by separating axes: the box's three axes and
-// a's own (box faces, cylinder axis). Moving a along the best axis by that much separates them,
-// so this bounds the true depth from above and equals it for face contacts, which is how legs
-// meet stairs. FCL's EPA on a cylinder can pick a far worse direction (a shank in a nosing lip
-// reported 8.5 cm deep instead of 1 cm).
+// The point of a furthest along unit direction n (for the deepest point of a penetration).
+Eigen::Vector3d SupportPoint(const fcl::CollisionGeometryd& g, const Eigen::Isometry3d& pose, const Eigen::Vector3d& n) {
+  const Eigen::Matrix3d& rotation = pose.linear();
+  Eigen::Vector3d local = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d n_local = rotation.transpose() * n;
+  if (g.getNodeType() == fcl::GEOM_BOX) {
+    const Eigen::Vector3d half = 0.5 * static_cast<const fcl::Boxd&>(g).side;
+    for (int i = 0; i < 3; ++i) local[i] = n_local[i] >= 0.0 ? half[i] : -half[i];
+  } else if (g.getNodeType() == fcl::GEOM_CYLINDER) {
+    const auto& c = static_cast<const fcl::Cylinderd&>(g);
+    const Eigen::Vector2d radial = n_local.head<2>();
+    if (radial.norm() > 1e-12) local.head<2>() = c.radius * radial.normalized();
+    local.z() = n_local.z() >= 0.0 ? 0.5 * c.lz : -0.5 * c.lz;
+  } else if (g.getNodeType() == fcl::GEOM_SPHERE) {
+    local = static_cast<const fcl::Sphered&>(g).radius * n_local;
+  }
+  return pose * local;
+}
+
+// Penetration depth of a into an axis-aligned box by separating axes: the box's three axes, a's
+// own (box faces, cylinder axis), for a box the nine edge-edge cross products, for a sphere the
+// direction from the box's nearest point. Moving a along the best axis by that much separates
+// them, so this bounds the true depth from above, and for boxes and spheres it is exact (their
+// minimum translation lies along one of those axes). FCL's EPA on a cylinder can pick a far worse
+// direction (a shank in a nosing lip reported 8.5 cm deep instead of 1 cm), and FCL's contact
+// computation fills a std::vector, which the control loop cannot afford.
 double SeparatingAxisDepth(const fcl::CollisionGeometryd& a, const Eigen::Isometry3d& pose_a, const Box3& box,
                            Eigen::Vector3d* axis) {
   double best = std::numeric_limits<double>::infinity();
@@ -76,7 +97,20 @@ double SeparatingAxisDepth(const fcl::CollisionGeometryd& a, const Eigen::Isomet
     }
   };
   for (int i = 0; i < 3; ++i) consider(Eigen::Vector3d::Unit(i));
+  if (a.getNodeType() == fcl::GEOM_SPHERE) {
+    // Its centre outside the box (near an edge or corner): the axis from the box's nearest point.
+    const Eigen::Vector3d c = pose_a.translation(), out = c - c.cwiseMax(box.min).cwiseMin(box.max);
+    if (out.norm() > 1e-12) consider(out.normalized());
+    return best;
+  }
   for (int i = 0; i < 3; ++i) consider(pose_a.linear().col(i));
+  if (a.getNodeType() != fcl::GEOM_BOX) return best;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d n = Eigen::Vector3d::Unit(i).cross(pose_a.linear().col(j));
+      if (n.norm() > 1e-6) consider(n.normalized());  // parallel edges add no axis
+    }
+  }
   return best;
 }
 
@@ -99,15 +133,16 @@ SignedDistanceResult SignedDistance(const fcl::CollisionGeometryd& a, const Eige
       r.point_b = result.nearest_points[1];
       return r;
     }
-    // Touching or penetrating. Cylinders against stair boxes: FCL's EPA is unreliable there, the
-    // separating axes are exact for face contacts (and never call into EPA, which may throw).
-    if (hints.box_b && a.getNodeType() == fcl::GEOM_CYLINDER) {
+    // Touching or penetrating a stair box: the separating axes (exact for face contacts and for
+    // box-box, no allocation, never into EPA, which may throw).
+    const fcl::NODE_TYPE type = a.getNodeType();
+    if (hints.box_b && (type == fcl::GEOM_CYLINDER || type == fcl::GEOM_BOX || type == fcl::GEOM_SPHERE)) {
       Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
       const double depth = std::max(0.0, SeparatingAxisDepth(a, pose_a, *hints.box_b, &axis));
       if (std::isfinite(depth)) {
         // The deepest point of a along -axis, and where it must get to on the box's face.
         r.distance = -depth;
-        r.point_a = pose_a.translation() - Support(a, pose_a.linear(), axis) * axis;
+        r.point_a = SupportPoint(a, pose_a, -axis);
         r.point_b = r.point_a + depth * axis;
         return r;
       }

@@ -1,8 +1,9 @@
 // Signed distance between two convex FCL primitives, with the narrow-phase solver chosen for
 // correctness: FCL 0.7's default libccd GJK gets some box-box distances wrong (fcl#508), so
-// separated pairs use FCL's own GJK (GST_INDEP); penetrating pairs take their depth from FCL's
-// contact computation (exact box-box and sphere-box, EPA otherwise). When FCL throws or returns
-// nonsense, which happens on deep penetration, a conservative bound is returned and flagged.
+// separated pairs use FCL's own GJK (GST_INDEP). A box, cylinder or sphere penetrating a stair box
+// gets its depth from separating axes (exact for box-box and sphere-box, and allocation-free);
+// other penetrating pairs from FCL's contact computation. When FCL throws or returns nonsense,
+// which happens on deep penetration, a conservative bound is returned and flagged.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -1,7 +1,13 @@
-// Clearances and stance checks allocate nothing once the workspace exists (no penetration).
+// Clearances and stance checks allocate nothing once the workspace exists, whether legs are clear
+// of the stairs or penetrate them.
 #include <catch2/catch.hpp>
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+
 #include "alloc_counter.h"
+#include "collision/signed_distance.h"
 #include "collision/stance_check.h"
 #include "kinematics/builtin_robot.h"
 
@@ -24,4 +30,31 @@ TEST_CASE("clearance and stance queries allocate nothing after warm-up", "[alloc
                                         r.legs[0].ik.q, body, checker.workspace());
   CHECK(scope.count() == 0);
   CHECK(c.distance > 0.0);
+}
+
+TEST_CASE("penetrating boxes, cylinders and spheres allocate nothing either", "[alloc][clearance]") {
+  using namespace stairplan;
+  const Staircase stairs{StairSpec{}};
+  const Box3 step = stairs.Solids().front();
+  const fcl::Boxd step_geometry(step.Size()), thigh(0.05, 0.04, 0.26);
+  const fcl::Cylinderd shank(0.02, 0.2);
+  const fcl::Sphered foot(0.03);
+  SignedDistanceHints hints;
+  hints.box_b = &step;
+  Eigen::Isometry3d step_pose = Eigen::Isometry3d::Identity();
+  step_pose.translation() = step.Center();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  pose.translation() = step.Center() + Eigen::Vector3d(0.0, 0.0, 0.5 * step.Size().z());  // half in, half out
+  double depth = 0.0;
+  const auto query = [&] {
+    depth = std::min(depth, SignedDistance(thigh, pose, step_geometry, step_pose, hints).distance);
+    depth = std::min(depth, SignedDistance(shank, pose, step_geometry, step_pose, hints).distance);
+    depth = std::min(depth, SignedDistance(foot, pose, step_geometry, step_pose, hints).distance);
+  };
+  query();  // FCL's solvers set themselves up on first use
+  testing::AllocationScope scope;
+  query();
+  CHECK(scope.count() == 0);
+  CHECK(depth < -0.01);
 }

@@ -3,10 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
 
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
 #include "collision/signed_distance.h"
@@ -116,4 +118,38 @@ TEST_CASE("deep penetration gives a finite, clearly negative answer", "[signed_d
   const fcl::Sphered foot(0.03);
   const auto sphere_inside = SignedDistance(foot, At({0.13, 0.0, 0.0}), *step_geometry, At(step.Center()), hints);
   CHECK(sphere_inside.distance == Approx(-0.16).margin(1e-6));
+}
+
+TEST_CASE("box and sphere penetration depths agree with FCL's contact computation on random poses",
+          "[signed_distance]") {
+  const stairplan::Box3 step = Step();
+  const fcl::Boxd step_geometry(step.Size()), thigh(0.05, 0.04, 0.26);
+  const fcl::Sphered foot(0.03);
+  SignedDistanceHints hints;
+  hints.box_b = &step;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), x(-0.1, 0.37), z(0.05, 0.3);
+  int compared = 0;
+  for (int i = 0; i < 500; ++i) {
+    // Sequenced draws: the order in which arguments are evaluated differs between compilers.
+    const double pitch = angle(rng), roll = angle(rng), px = x(rng), pz = z(rng);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                        .toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(px, 0.0, pz);
+    for (const fcl::CollisionGeometryd* shape : {static_cast<const fcl::CollisionGeometryd*>(&thigh),
+                                                 static_cast<const fcl::CollisionGeometryd*>(&foot)}) {
+      fcl::CollisionRequestd request(1, true);
+      request.gjk_solver_type = fcl::GST_INDEP;
+      fcl::CollisionResultd reference;
+      fcl::collide(shape, pose, &step_geometry, At(step.Center()), request, reference);
+      if (!reference.isCollision()) continue;
+      const auto r = SignedDistance(*shape, pose, step_geometry, At(step.Center()), hints);
+      INFO("pose " << pose.translation().transpose() << " type " << shape->getNodeType());
+      CHECK(r.distance == Approx(-reference.getContact(0).penetration_depth).margin(1e-6));
+      CHECK((r.point_b - r.point_a).norm() == Approx(-r.distance).margin(1e-6));
+      ++compared;
+    }
+  }
+  CHECK(compared > 100);
 }
