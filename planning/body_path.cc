@@ -7,16 +7,11 @@
 #include <urdf_model/model.h>
 
 #include "geometry/field_error.h"
-#include "collision/stance_check.h"
 #include "planning/com_model.h"
+#include "planning/posture_fit.h"
 
 namespace stairplan {
 namespace {
-
-double Smooth(double u) {
-  u = std::clamp(u, 0.0, 1.0);
-  return u * u * (3.0 - 2.0 * u);
-}
 
 struct Keyframe {
   double t;
@@ -59,7 +54,7 @@ Eigen::Vector2d ComAt(const std::vector<Keyframe>& keys, double t) {
   if (next == keys.end()) return keys.back().com_xy;
   const Keyframe& a = *(next - 1);
   const double u = next->t > a.t ? (t - a.t) / (next->t - a.t) : 1.0;
-  return a.com_xy + Smooth(u) * (next->com_xy - a.com_xy);
+  return a.com_xy + SmoothStep(u) * (next->com_xy - a.com_xy);
 }
 
 // Moves the body horizontally until the COM of the posture (legs through IK) is at `target`.
@@ -80,102 +75,6 @@ void CorrectCom(const RobotKinematics& kinematics, const ComModel& com_model, Ro
     const Eigen::Vector3d com = com_model.Com(pose, q, ws);
     b.x -= com.x() - target.x();
     b.y -= com.y() - target.y();
-  }
-}
-
-// A posture correction at one instant: a shift along the flight and a height change.
-struct PostureKey {
-  double t = 0.0;
-  double dx = 0.0;
-  double dz = 0.0;
-};
-
-// The feasible body heights at one instant with the body shifted by dx along the flight.
-Interval1 HeightWindow(StanceChecker& checker, const std::array<Eigen::Vector3d, 4>& contacts, BodyPose pose, double dx) {
-  pose.position_W.x() += dx;
-  const double z = pose.position_W.z();
-  return checker.FeasibleBodyHeights(pose, contacts, z - 0.2, z + 0.1, 0.02, 0.004);
-}
-
-// The correction that puts the posture at one instant (swing feet where their swings are) inside
-// its feasible height range, kept height_centering of the range's width from either end. When the
-// range at the planned position is narrow, shifts along the flight that keep the COM target
-// `shift_margin` inside the support polygon are tried and the widest range wins. False when no
-// posture is feasible (a swing foot grazing its tread, or a posture nothing here repairs).
-bool FitPosture(StanceChecker& checker, const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& feet,
-                const std::vector<bool>& stance, const BodyPose& pose, const Eigen::Vector2d& com,
-                const BodyPathSettings& settings, PostureKey& key) {
-  std::array<Eigen::Vector3d, 4> contacts;
-  std::vector<Eigen::Vector2d> support;
-  for (std::size_t i = 0; i < legs.size() && i < 4; ++i) {
-    contacts[static_cast<std::size_t>(checker.kinematics().LegIndex(legs[i]))] = feet[i];
-    if (stance[i]) support.push_back(feet[i].head<2>());
-  }
-  const Polygon2 polygon = ConvexHull(support);
-  Interval1 best;
-  const int shifts = static_cast<int>(std::floor(settings.max_shift / settings.shift_step + 1e-9));
-  for (int k = 0; k <= 2 * shifts; ++k) {
-    const double dx = (k % 2 == 0 ? -1.0 : 1.0) * ((k + 1) / 2) * settings.shift_step;  // 0, +s, -s, +2s, ...
-    if (k > 0 && -polygon.SignedDistance(com + Eigen::Vector2d(dx, 0.0)) < settings.shift_margin) continue;
-    const Interval1 window = HeightWindow(checker, contacts, pose, dx);
-    if (window.empty() || (!best.empty() && window.hi - window.lo <= best.hi - best.lo)) continue;
-    best = window;
-    key.dx = dx;
-    if (best.hi - best.lo >= settings.wide_height_range) break;
-  }
-  if (best.empty()) return false;
-  const double z = pose.position_W.z(), width = best.hi - best.lo;
-  const double keep = std::min(0.5 * width, std::max(settings.height_margin, settings.height_centering * width));
-  key.dz = std::clamp(z, best.lo + keep, best.hi - keep) - z;
-  return true;
-}
-
-// The instants at which the height is fitted: the start, every liftoff and touchdown, and every
-// height_key_period in between.
-std::vector<double> HeightKeyTimes(const std::vector<Footstep>& footsteps, double duration, double period) {
-  std::vector<double> times = {0.0};
-  for (const Footstep& f : footsteps) {
-    times.push_back(f.t_liftoff);
-    times.push_back(f.t_touchdown);
-  }
-  const int count = static_cast<int>(std::floor(duration / period));
-  for (int k = 1; k <= count; ++k) times.push_back(k * period);
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end(), [](double a, double b) { return b - a < 1e-6; }), times.end());
-  return times;
-}
-
-// The key corrections interpolated linearly in time (held before the first and after the last).
-PostureKey CorrectionAt(const std::vector<PostureKey>& keys, double t) {
-  const auto next = std::upper_bound(keys.begin(), keys.end(), t, [](double v, const PostureKey& k) { return v < k.t; });
-  if (next == keys.begin()) return keys.front();
-  if (next == keys.end()) return keys.back();
-  const PostureKey& a = *(next - 1);
-  const double u = next->t > a.t ? (t - a.t) / (next->t - a.t) : 0.0;
-  return {t, a.dx + u * (next->dx - a.dx), a.dz + u * (next->dz - a.dz)};
-}
-
-// Postures fitted at the key instants (FitPosture), the corrections interpolated between them.
-void FitPosturesToStances(const RobotModel& robot, const Staircase& stairs, const std::vector<std::string>& legs,
-                          const std::vector<Eigen::Vector3d>& initial, const std::vector<Footstep>& footsteps,
-                          const std::vector<Keyframe>& com_keys, const BodyPathSettings& settings,
-                          std::vector<BodyState>& body) {
-  StanceSettings stance_settings;
-  stance_settings.min_clearance = settings.touchdown_clearance;
-  StanceChecker checker(robot, stairs, stance_settings);
-  std::vector<PostureKey> keys;
-  const double duration = body.empty() ? 0.0 : body.back().t;
-  for (double t : HeightKeyTimes(footsteps, duration, settings.height_key_period)) {
-    std::vector<bool> stance;
-    const std::vector<Eigen::Vector3d> feet = FeetAlongSwings(legs, initial, footsteps, t, stairs, settings.swing, &stance);
-    PostureKey key{t, 0.0, 0.0};
-    if (FitPosture(checker, legs, feet, stance, BodyPoseAt(body, t), ComAt(com_keys, t), settings, key)) keys.push_back(key);
-  }
-  if (keys.empty()) return;
-  for (BodyState& b : body) {
-    const PostureKey c = CorrectionAt(keys, b.t);
-    b.x += c.dx;
-    b.z += c.dz;
   }
 }
 
@@ -293,7 +192,8 @@ std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::
     body.push_back(b);
   }
   if (stairs != nullptr && settings.touchdown_clearance >= 0.0) {
-    FitPosturesToStances(robot, *stairs, legs, initial_feet, footsteps, keys, settings, body);
+    const auto com_target = [&keys](double t) { return ComAt(keys, t); };
+    FitPosturesToStances(robot, *stairs, legs, initial_feet, footsteps, com_target, settings, body);
   }
   return body;
 }

@@ -29,21 +29,21 @@ struct BodyPathSettings {
   /// Correct the body so the COM computed through each leg's IK (not the lumped estimate) sits
   /// where the support polygon wants it; this many fixed-point passes per sample (0: off).
   int com_passes = 2;
-  /// With the stairs known, the body posture at key instants (start, liftoffs, touchdowns and every
-  /// height_key_period) is moved into the range of heights at which the stance (swing feet on their
-  /// swings) passes the stance check: IK within limits, leg clearance above this, at least
-  /// `height_margin` inside it; corrections in between are interpolated. Negative: off.
+  /// With the stairs known, the body is moved into the range of heights at which the stance (swing
+  /// feet on their swings) passes the stance check: IK within limits, leg clearance above this, at
+  /// least `height_margin` inside it. One correction holds through each swing (checked at its
+  /// liftoff, touchdown and every height_key_period); it changes, eased, while four feet are down
+  /// (planning/posture_fit.h). Negative: off.
   double touchdown_clearance = 0.005;
   double height_margin = 0.01;
   /// The height is kept at least this share of the feasible range away from either end of it, so
   /// the clearance between the instants checked is not left to chance (0: only height_margin).
   double height_centering = 0.3;
-  /// Besides the start, every liftoff and every touchdown, the height is fitted this often [s],
-  /// with the swinging feet on their swing trajectories.
+  /// Through a swing, the posture is checked this often besides its liftoff and touchdown [s].
   double height_key_period = 0.1;
-  /// A feasible height range narrower than this at the planned position makes the fit try
-  /// shifting the body along the flight, in shift_step up to max_shift either way, as long as the
-  /// COM target stays shift_margin inside the support polygon [m].
+  /// A feasible height range narrower than this with the body where the previous swing had it
+  /// makes the fit try other shifts along the flight, in shift_step up to max_shift either way, as
+  /// long as the COM target stays shift_margin inside the support polygon [m].
   double wide_height_range = 0.06;
   double max_shift = 0.09;
   double shift_step = 0.03;

@@ -7,15 +7,11 @@
 #include "geometry/field_error.h"
 
 namespace stairplan {
-namespace {
 
-// 0 -> 1 with zero slope at both ends, so the foot starts and stops each motion smoothly.
-double Smooth(double u) {
+double SmoothStep(double u) {
   u = std::clamp(u, 0.0, 1.0);
   return u * u * (3.0 - 2.0 * u);
 }
-
-}  // namespace
 
 void SwingSettings::Validate() const {
   RequireInRange("clearance", clearance, 0.0, 1.0);
@@ -55,12 +51,12 @@ Eigen::Vector3d SwingTrajectory::At(double s) const {
   s = std::clamp(s, 0.0, 1.0);
   const double rise_end = settings_.lift_fraction, lower_start = 1.0 - settings_.lower_fraction;
   // Horizontal travel only between the rise and the descent, so the foot never sweeps a nosing.
-  const double travel = Smooth((s - rise_end) / (lower_start - rise_end));
+  const double travel = SmoothStep((s - rise_end) / (lower_start - rise_end));
   Eigen::Vector3d p = from_ + travel * (to_ - from_);
   if (s <= rise_end) {
-    p.z() = from_.z() + Smooth(s / rise_end) * (apex_z_ - from_.z());
+    p.z() = from_.z() + SmoothStep(s / rise_end) * (apex_z_ - from_.z());
   } else if (s >= lower_start) {
-    p.z() = apex_z_ + Smooth((s - lower_start) / settings_.lower_fraction) * (to_.z() - apex_z_);
+    p.z() = apex_z_ + SmoothStep((s - lower_start) / settings_.lower_fraction) * (to_.z() - apex_z_);
   } else {
     p.z() = apex_z_;
   }

@@ -13,6 +13,9 @@
 
 namespace stairplan {
 
+/// 0 -> 1 as u goes 0 -> 1 (clamped), with zero slope at both ends: motions that start and stop smoothly.
+double SmoothStep(double u);
+
 struct SwingSettings {
   double clearance = 0.06;      ///< foot contact point above the highest obstacle on the way [m]
   double min_lift = 0.05;       ///< at least this far above the higher foothold [m]

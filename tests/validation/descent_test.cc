@@ -1,7 +1,10 @@
 // Going down: the crawl with the pipeline's posture retries gives the built-in robot plans for the
 // default stairs that the validator accepts, facing forward and backward (the shanks stay off the
-// nosings behind the feet, every touchdown inside its step region).
+// nosings behind the feet, every touchdown inside its step region), and a body a robot can follow.
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
 
 #include "kinematics/builtin_robot.h"
 #include "planning/plan_pipeline.h"
@@ -18,6 +21,21 @@ PipelineResult PlanDescent(Facing facing, bool posture_retries) {
   options.facing = facing;
   if (!posture_retries) options.posture_retries.clear();
   return RunPipeline(BuiltinRobot(), stairs, options);
+}
+
+// The largest acceleration of the body's position between its samples [m/s^2]: what a robot
+// executing the plan must produce (the posture fit once made 24 m/s^2 here, and MuJoCo fell).
+double PeakAcceleration(const std::vector<BodyState>& body) {
+  double peak = 0.0;
+  for (std::size_t i = 1; i + 1 < body.size(); ++i) {
+    const double dt0 = body[i].t - body[i - 1].t, dt1 = body[i + 1].t - body[i].t;
+    if (dt0 < 1e-9 || dt1 < 1e-9) continue;
+    const Eigen::Vector3d p0(body[i - 1].x, body[i - 1].y, body[i - 1].z), p1(body[i].x, body[i].y, body[i].z),
+        p2(body[i + 1].x, body[i + 1].y, body[i + 1].z);
+    const Eigen::Vector3d a = ((p2 - p1) / dt1 - (p1 - p0) / dt0) / (0.5 * (dt0 + dt1));
+    peak = std::max(peak, a.cwiseAbs().maxCoeff());
+  }
+  return peak;
 }
 
 std::string FirstViolation(const ValidationReport& r) {
@@ -41,6 +59,10 @@ TEST_CASE("the built-in robot's default descents validate, facing forward and ba
     REQUIRE(r.plan.body.size() > 2);
     CHECK(r.plan.body.front().z - r.plan.body.back().z > 1.0);
     for (const Footstep& f : r.plan.footsteps) CHECK(f.in_step_region);
+    // The posture fit's corrections are eased, not jumps between nearby instants.
+    CHECK(PeakAcceleration(r.plan.body) < 10.0);
+    // The map it was planned on is recorded, for validate and simulate to rebuild.
+    CHECK(std::isfinite(r.plan.hip_height_fraction));
   }
 }
 

@@ -1,0 +1,269 @@
+#include "planning/posture_fit.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "collision/stance_check.h"
+#include "geometry/shapes.h"
+#include "planning/body_path.h"
+#include "planning/swing_trajectory.h"
+
+namespace stairplan {
+namespace {
+
+// A posture correction from `t` on: a shift along the flight and a height change.
+struct PostureKey {
+  double t = 0.0;
+  double dx = 0.0;
+  double dz = 0.0;
+};
+
+// What the fit needs to know about one instant: the feet (swing feet on their swings), the
+// support polygon of the stance feet, the uncorrected body pose and the COM target.
+struct Instant {
+  std::array<Eigen::Vector3d, 4> contacts;
+  Polygon2 support;
+  BodyPose pose;
+  Eigen::Vector2d com = Eigen::Vector2d::Zero();
+};
+
+// A stretch of time fitted with one correction: a swing (swings that overlap, merged) or one instant.
+struct Segment {
+  double t0 = 0.0;
+  double t1 = 0.0;
+};
+
+class PostureFitter {
+ public:
+  PostureFitter(const RobotModel& robot, const Staircase& stairs, const std::vector<std::string>& legs,
+                const std::vector<Eigen::Vector3d>& initial, const std::vector<Footstep>& footsteps,
+                const std::function<Eigen::Vector2d(double)>& com_target, const BodyPathSettings& settings,
+                const std::vector<BodyState>& body)
+      : checker_(robot, stairs, CheckSettings(settings)), stairs_(stairs), legs_(legs), initial_(initial),
+        footsteps_(footsteps), com_target_(com_target), settings_(settings), body_(body) {}
+
+  // The correction for the instants of `segment`, trying `prefer_dx` first so the body keeps its
+  // shift when it can. The height may change through the segment, eased (SmoothStep) from `key`
+  // to `end`, when no one height suits every instant. False when no correction suits them all.
+  bool Fit(const Segment& segment, double prefer_dx, PostureKey& key, PostureKey& end) {
+    std::vector<Instant> instants;
+    std::vector<double> phase;  // eased progress through the segment at each instant
+    for (double t : KeyTimes(segment)) {
+      instants.push_back(InstantAt(t));
+      phase.push_back(segment.t1 > segment.t0 ? SmoothStep((t - segment.t0) / (segment.t1 - segment.t0)) : 0.0);
+    }
+    double best = -1.0;
+    for (const double dx : Candidates(prefer_dx)) {
+      std::vector<Interval1> windows;
+      if (!Windows(instants, dx, windows)) continue;
+      double dz0 = 0.0, dz1 = 0.0;
+      const double slack = FitHeights(windows, phase, dz0, dz1);
+      if (slack <= best) continue;
+      best = slack;
+      key = {segment.t0, dx, dz0};
+      end = {segment.t1, dx, dz1};
+      if (2.0 * best >= settings_.wide_height_range) break;
+    }
+    return best >= 0.0;
+  }
+
+  // The correction at instant t when `eased` (what the keys give there) leaves the heights that
+  // pass there by less than height_margin: the nearest height kept clear of the window's ends.
+  // False when `eased` is fine, or nothing at its shift passes.
+  bool Repair(double t, const PostureKey& eased, PostureKey& repaired) {
+    std::vector<Interval1> windows;
+    if (!Windows({InstantAt(t)}, eased.dx, windows)) return false;
+    const Interval1& w = windows.front();
+    if (eased.dz >= w.lo + settings_.height_margin && eased.dz <= w.hi - settings_.height_margin) return false;
+    const double keep = Keep(w.hi - w.lo);
+    repaired = {t, eased.dx, std::clamp(eased.dz, w.lo + keep, w.hi - keep)};
+    return true;
+  }
+
+  // The instants checked in a segment: its ends and every height_key_period between them.
+  std::vector<double> KeyTimes(const Segment& segment) const {
+    std::vector<double> times = {segment.t0};
+    const double period = settings_.height_key_period;
+    for (double t = segment.t0 + period; t < segment.t1 - 0.25 * period; t += period) times.push_back(t);
+    if (segment.t1 > segment.t0) times.push_back(segment.t1);
+    return times;
+  }
+
+ private:
+  static StanceSettings CheckSettings(const BodyPathSettings& settings) {
+    StanceSettings s;
+    s.min_clearance = settings.touchdown_clearance;
+    return s;
+  }
+
+  Instant InstantAt(double t) const {
+    Instant instant;
+    std::vector<bool> stance;
+    const std::vector<Eigen::Vector3d> feet = FeetAlongSwings(legs_, initial_, footsteps_, t, stairs_, settings_.swing, &stance);
+    std::vector<Eigen::Vector2d> support;
+    for (std::size_t i = 0; i < legs_.size() && i < 4; ++i) {
+      instant.contacts[static_cast<std::size_t>(checker_.kinematics().LegIndex(legs_[i]))] = feet[i];
+      if (stance[i]) support.push_back(feet[i].head<2>());
+    }
+    instant.support = ConvexHull(support);
+    instant.pose = BodyPoseAt(body_, t);
+    instant.com = com_target_(t);
+    return instant;
+  }
+
+  // The shifts to try: the preferred one, then 0, +step, -step, +2 step, ... up to max_shift.
+  std::vector<double> Candidates(double prefer_dx) const {
+    std::vector<double> dxs = {prefer_dx};
+    const int shifts = static_cast<int>(std::floor(settings_.max_shift / settings_.shift_step + 1e-9));
+    for (int k = 0; k <= 2 * shifts; ++k) {
+      const double dx = (k % 2 == 0 ? -1.0 : 1.0) * ((k + 1) / 2) * settings_.shift_step;
+      if (std::abs(dx - prefer_dx) > 1e-9) dxs.push_back(dx);
+    }
+    return dxs;
+  }
+
+  // The height corrections that pass at each instant with the body shifted by dx. False as soon
+  // as one instant has none, or a shift takes the COM target within shift_margin of the support's edge.
+  bool Windows(const std::vector<Instant>& instants, double dx, std::vector<Interval1>& windows) {
+    for (const Instant& instant : instants) {
+      if (dx != 0.0 && -instant.support.SignedDistance(instant.com + Eigen::Vector2d(dx, 0.0)) < settings_.shift_margin) {
+        return false;
+      }
+      BodyPose pose = instant.pose;
+      pose.position_W.x() += dx;
+      const double z = pose.position_W.z();
+      const Interval1 window = checker_.FeasibleBodyHeights(pose, instant.contacts, z - 0.2, z + 0.1, 0.02, 0.004);
+      if (window.empty()) return false;
+      windows.push_back({window.lo - z, window.hi - z});
+    }
+    return true;
+  }
+
+  // Heights dz0 -> dz1 (eased by `phase`) inside every window; the largest slack any pair on a grid
+  // over the first and last windows reaches, s*, is returned. Of the pairs with slack at least
+  // min(s*, max(height_margin, 2 height_centering s*)) (for one window: height_centering of its
+  // width from either end), the one that moves the body least is taken.
+  double FitHeights(const std::vector<Interval1>& windows, const std::vector<double>& phase, double& dz0,
+                    double& dz1) const {
+    const std::vector<double> starts = Grid(windows.front()), ends = Grid(windows.back());
+    const auto slack = [&](double a, double b) {
+      double least = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < windows.size(); ++k) {
+        const double z = a + phase[k] * (b - a);
+        least = std::min({least, z - windows[k].lo, windows[k].hi - z});
+      }
+      return least;
+    };
+    double most = -std::numeric_limits<double>::infinity();
+    for (double a : starts) {
+      for (double b : ends) most = std::max(most, slack(a, b));
+    }
+    const double wanted = Keep(2.0 * most);
+    double least_motion = std::numeric_limits<double>::infinity();
+    for (double a : starts) {
+      for (double b : ends) {
+        const double motion = std::abs(a) + std::abs(b) + std::abs(b - a);
+        if (slack(a, b) < wanted - 1e-12 || motion >= least_motion) continue;
+        least_motion = motion;
+        dz0 = a;
+        dz1 = b;
+      }
+    }
+    return most;
+  }
+
+  // How far from the ends of a feasible range of this width the height is kept.
+  double Keep(double width) const {
+    return std::min(0.5 * width, std::max(settings_.height_margin, settings_.height_centering * width));
+  }
+
+  // Heights to try inside a window: evenly spaced, with no correction (clamped into it) among them.
+  static std::vector<double> Grid(const Interval1& window) {
+    constexpr int kPoints = 12;
+    std::vector<double> values = {std::clamp(0.0, window.lo, window.hi)};
+    for (int i = 0; i <= kPoints; ++i) values.push_back(window.lo + (window.hi - window.lo) * i / kPoints);
+    return values;
+  }
+
+  StanceChecker checker_;
+  const Staircase& stairs_;
+  const std::vector<std::string>& legs_;
+  const std::vector<Eigen::Vector3d>& initial_;
+  const std::vector<Footstep>& footsteps_;
+  const std::function<Eigen::Vector2d(double)>& com_target_;
+  const BodyPathSettings& settings_;
+  const std::vector<BodyState>& body_;
+};
+
+// The swings, overlapping ones merged, in time order.
+std::vector<Segment> SwingSegments(const std::vector<Footstep>& footsteps) {
+  std::vector<Segment> swings;
+  for (const Footstep& f : footsteps) swings.push_back({f.t_liftoff, f.t_touchdown});
+  std::sort(swings.begin(), swings.end(), [](const Segment& a, const Segment& b) { return a.t0 < b.t0; });
+  std::vector<Segment> merged;
+  for (const Segment& s : swings) {
+    if (!merged.empty() && s.t0 <= merged.back().t1) {
+      merged.back().t1 = std::max(merged.back().t1, s.t1);
+    } else {
+      merged.push_back(s);
+    }
+  }
+  return merged;
+}
+
+// The corrections eased between keys (zero velocity at each), held before the first and after the last.
+PostureKey CorrectionAt(const std::vector<PostureKey>& keys, double t) {
+  const auto next = std::upper_bound(keys.begin(), keys.end(), t, [](double v, const PostureKey& k) { return v < k.t; });
+  if (next == keys.begin()) return keys.front();
+  if (next == keys.end()) return keys.back();
+  const PostureKey& a = *(next - 1);
+  const double u = next->t > a.t ? SmoothStep((t - a.t) / (next->t - a.t)) : 0.0;
+  return {t, a.dx + u * (next->dx - a.dx), a.dz + u * (next->dz - a.dz)};
+}
+
+}  // namespace
+
+void FitPosturesToStances(const RobotModel& robot, const Staircase& stairs, const std::vector<std::string>& legs,
+                          const std::vector<Eigen::Vector3d>& initial, const std::vector<Footstep>& footsteps,
+                          const std::function<Eigen::Vector2d(double)>& com_target, const BodyPathSettings& settings,
+                          std::vector<BodyState>& body) {
+  if (body.empty()) return;
+  PostureFitter fitter(robot, stairs, legs, initial, footsteps, com_target, settings, body);
+  std::vector<PostureKey> keys;
+  const auto add = [&](const Segment& segment) {
+    PostureKey key, end;
+    if (!fitter.Fit(segment, keys.empty() ? 0.0 : keys.back().dx, key, end)) return false;
+    keys.push_back(key);
+    if (segment.t1 > segment.t0) keys.push_back(end);
+    return true;
+  };
+  add({0.0, 0.0});
+  std::vector<Segment> eases;  // from one swing's correction to the next one's, four feet down
+  for (const Segment& swing : SwingSegments(footsteps)) {
+    if (!keys.empty()) eases.push_back({keys.back().t, swing.t0});
+    if (add(swing)) continue;
+    // No correction suits the whole swing: each instant of it gets its own.
+    for (double t : fitter.KeyTimes(swing)) add({t, t});
+  }
+  // The instants of each ease are checked as well; where one leaves its feasible heights, a key
+  // there puts it back (and the ease goes through it).
+  for (const Segment& ease : eases) {
+    for (double t : fitter.KeyTimes(ease)) {
+      PostureKey repaired;
+      const bool end = t <= ease.t0 + 1e-9 || t >= ease.t1 - 1e-9;  // the swings' own keys
+      if (end || !fitter.Repair(t, CorrectionAt(keys, t), repaired)) continue;
+      const auto at = std::upper_bound(keys.begin(), keys.end(), t, [](double v, const PostureKey& k) { return v < k.t; });
+      keys.insert(at, repaired);
+    }
+  }
+  if (keys.empty()) return;
+  for (BodyState& b : body) {
+    const PostureKey c = CorrectionAt(keys, b.t);
+    b.x += c.dx;
+    b.z += c.dz;
+  }
+}
+
+}  // namespace stairplan
