@@ -62,6 +62,9 @@ struct Plan {
   Facing facing = Facing::kForward;
   double cadence_s = 0.0;                     ///< swing duration of the chosen controller [s]
   std::string gait;                           ///< e.g. "crawl"
+  /// The hip height (share of the leg's reach) the pipeline's robot-aware map and body path were
+  /// built for; validate and simulate rebuild that map from it. NaN: the pipeline's default.
+  double hip_height_fraction = std::numeric_limits<double>::quiet_NaN();
   std::vector<Eigen::Vector3d> initial_feet_W;  ///< contact points at t = 0, in `legs` order
   std::vector<Footstep> footsteps;            ///< sorted by touchdown time
   std::vector<BodyState> body;                ///< sampled body trajectory

@@ -85,6 +85,8 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
           {"map", MapToJson(map)},
           {"gait", plan.gait},
           {"cadence_s", plan.cadence_s},
+          {"hip_height_fraction", std::isfinite(plan.hip_height_fraction) ? nlohmann::json(plan.hip_height_fraction)
+                                                                          : nlohmann::json(nullptr)},
           {"initial_feet", initial},
           {"footsteps", footsteps},
           {"body", body},

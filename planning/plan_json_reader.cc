@@ -161,6 +161,10 @@ PlanFile ReadPlanJson(const std::string& text, const std::string& source) {
   plan.facing = file.facing;
   plan.gait = root.contains("gait") ? r.Text(root, "gait", "") : "crawl";
   plan.cadence_s = r.Number(root, "cadence_s", "");
+  if (root.contains("hip_height_fraction") && !root["hip_height_fraction"].is_null()) {
+    plan.hip_height_fraction = r.Number(root, "hip_height_fraction", "");
+    if (plan.hip_height_fraction <= 0.0 || plan.hip_height_fraction > 1.0) r.Fail("hip_height_fraction", "must be in (0, 1]");
+  }
   const std::string status = r.Text(root, "status", "");
   plan.status = status == "ok" ? PlanStatus::kOk : PlanStatus::kInfeasible;
   const json& initial = r.Array(root, "initial_feet", "");

@@ -93,6 +93,13 @@ ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs
   return map;
 }
 
+PipelineOptions OptionsForPlan(const Plan& plan) {
+  PipelineOptions options;
+  options.facing = plan.facing;
+  if (std::isfinite(plan.hip_height_fraction)) options.crawl.body.hip_height_fraction = plan.hip_height_fraction;
+  return options;
+}
+
 PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
                                 const PipelineOptions& options) {
   PipelineResult result;
@@ -133,6 +140,7 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
     ConstrainedMap map = BuildPipelineMap(robot, stairs, tried);
     const double map_us = MicrosSince(t_map);
     PipelineResult result = RunPipelineOnMap(robot, stairs, std::move(map), tried);
+    result.plan.hip_height_fraction = tried.crawl.body.hip_height_fraction;
     result.plan.timing_us.insert(result.plan.timing_us.begin(), {"map", map_us});
     // Only a plan the validator rejected is worth another posture; the first attempt's answer
     // stands when none passes (its violations are the ones the default posture explains).

@@ -79,6 +79,10 @@ struct PipelineResult {
 /// collision regions.
 ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options);
 
+/// The pipeline's options for judging a finished plan: its facing and the posture it was planned
+/// for (Plan::hip_height_fraction), so the map rebuilt from them is the one it was planned on.
+PipelineOptions OptionsForPlan(const Plan& plan);
+
 /// Adds the robot's own collision regions to `map` when the options ask for them.
 void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
                              ConstrainedMap& map);

@@ -21,8 +21,7 @@ int RunValidate(const std::vector<std::string>& args) {
     const PlanFile file = ReadPlanJsonFile(path);
     const RobotModel robot = LoadPlanRobot(file, robot_path);
     const Staircase stairs(file.stairs);
-    PipelineOptions options;
-    options.facing = file.facing;
+    const PipelineOptions options = OptionsForPlan(file.plan);
     const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
     TraversalValidator validator(robot, stairs, map, options.validation);
     const ValidationReport report = validator.Validate(file.plan);

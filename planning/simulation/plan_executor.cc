@@ -519,9 +519,7 @@ SimulationOutcome PlanExecutor::Run() {
 }
 
 SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan, const SimSettings& settings) {
-  PipelineOptions options;
-  options.facing = plan.facing;
-  const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
+  const ConstrainedMap map = BuildPipelineMap(robot, stairs, OptionsForPlan(plan));
   PlanExecutor executor(robot, stairs, map, plan, settings);
   return executor.Run();
 }

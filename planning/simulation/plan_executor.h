@@ -74,8 +74,8 @@ class PlanExecutor {
   bool running_ = false;  // false while placing the robot: targets only, no torques
 };
 
-/// One call: builds the robot-aware map for the plan's facing, executes the plan, returns what
-/// happened. The sweep's `--simulate` and `stairplan simulate` use this.
+/// One call: rebuilds the robot-aware map the plan was planned on (OptionsForPlan), executes the
+/// plan, returns what happened. The sweep's `--simulate` and `stairplan simulate` use this.
 SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan,
                            const SimSettings& settings = {});
 
