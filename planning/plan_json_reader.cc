@@ -141,6 +141,9 @@ PlanFile ReadPlanJson(const std::string& text, const std::string& source) {
     root = json::parse(text);
   } catch (const json::parse_error& e) {
     throw std::invalid_argument(source + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
+  } catch (const json::out_of_range&) {
+    // The parser's own number overflow (e.g. 1e400), found by the fuzzer.
+    throw std::invalid_argument(source + ": not valid JSON (a number too large for a double)");
   }
   if (!root.is_object()) throw std::invalid_argument(source + ": plan.json must be one JSON object");
   PlanFile file;

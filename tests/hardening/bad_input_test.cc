@@ -111,6 +111,7 @@ std::vector<BadCase> Table() {
   t.push_back({"nan", "validate", "p.json", EditPlan(plan, "\"cadence_s\":", "\"cadence_s\": NaN, \"x\":"), "validate {file} --json", {"{file}"}, {}});
   t.push_back({"huge", "validate", "p.json", EditPlan(plan, "\"steps\":", "\"steps\": 1e300, \"x\":"), "validate {file} --json", {"{file}", "steps"}, {}});
   t.push_back({"huge", "validate", "p.json", EditPlan(plan, "\"cadence_s\":", "\"hip_height_fraction\": 40, \"cadence_s\":"), "validate {file} --json", {"{file}", "hip_height_fraction"}, {}});
+  t.push_back({"huge", "validate", "p.json", EditPlan(plan, "\"cadence_s\":", "\"cadence_s\": 1e400, \"x\":"), "validate {file} --json", {"{file}", "too large"}, {}});
   t.push_back({"empty", "validate", "p.json", "", "validate {file} --json", {"{file}"}, {}});
   t.push_back({"wrong-type", "validate", "p.json", EditPlan(plan, "\"cadence_s\":", "\"cadence_s\": \"fast\", \"x\":"), "validate {file} --json", {"{file}", "cadence_s"}, {}});
   t.push_back({"wrong-type", "validate", "p.json", kQpsGood, "validate {file} --json", {"{file}"}, {}});
