@@ -83,6 +83,21 @@ std::string ElementOf(const std::string& message, const std::string& robot_name)
   return "<robot name=\"" + robot_name + "\">";
 }
 
+// urdfdom accepts joints that close a loop away from the root (a link that is its own parent, a
+// ring of links), and every walk up a leg would then never end (found by the URDF fuzzer). A link
+// more parents away than there are links is on such a loop.
+void RejectLoops(const urdf::ModelInterface& model, const std::string& source) {
+  for (const auto& [name, link] : model.links_) {
+    std::size_t depth = 0;
+    for (urdf::LinkConstSharedPtr at = link; at && at->parent_joint; at = at->getParent()) {
+      if (++depth > model.links_.size()) {
+        throw std::invalid_argument(source + ": <joint name=\"" + at->parent_joint->name + "\">: the joints form a loop through link '" +
+                                    name + "'; a URDF must be a tree");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const std::string& source_name) {
@@ -115,6 +130,7 @@ std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const st
     const std::string why = handler.errors().empty() ? "not a valid URDF" : handler.errors();
     throw std::invalid_argument(source_name + ": " + ElementOf(why, Attribute(*robot, "name")) + ": " + why);
   }
+  RejectLoops(*parsed, source_name);
   return parsed;
 }
 

@@ -66,6 +66,8 @@ TEST_CASE("bad URDFs exit 2 naming the file and the element", "[robot_cli]") {
       {"missing_link.urdf", "<child link=\"LH_thigh\"/>", "<child link=\"LH_thighs\"/>", "<joint name=\"LH_HFE\">"},
       {"capsule.urdf", "<cylinder radius=\"0.018\" length=\"0.22\"/>", "<capsule radius=\"0.018\" length=\"0.22\"/>",
        "<link name=\"LF_shank\">"},
+      // A joint whose parent is its own child: urdfdom accepts it, and walking up the leg never ended.
+      {"loop.urdf", "<parent link=\"LF_thigh\"/>", "<parent link=\"LF_shank\"/>", "<joint name=\"LF_KFE\">"},
   };
   for (const Case& c : cases) {
     INFO(c.name);
