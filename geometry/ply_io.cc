@@ -133,6 +133,16 @@ PointCloud ParsePly(const std::string& bytes, const std::string& source) {
       }
       const bool has_list = std::any_of(e.properties.begin(), e.properties.end(), [](const Property& p) { return p.is_list; });
       if (has_list) break;
+      if (!vertex) {
+        // Skipped whole: an element of no bytes once looped e.count (up to 2^63) times (fuzzer).
+        const std::size_t left = bytes.size() - std::min(pos, bytes.size());
+        if (stride > 0 && static_cast<unsigned long long>(e.count) > left / static_cast<std::size_t>(stride)) {
+          throw FieldError(source + ": " + e.name + " (byte " + std::to_string(pos) + ")",
+                           "truncated binary data: the header declares " + std::to_string(e.count) + " " + e.name + " entries");
+        }
+        pos += static_cast<std::size_t>(stride) * static_cast<std::size_t>(e.count);
+        continue;
+      }
       for (long long v = 0; v < e.count; ++v) {
         if (pos + static_cast<std::size_t>(stride) > bytes.size()) {
           throw FieldError(source + ": " + e.name + " " + std::to_string(v) + " (byte " + std::to_string(pos) + ")",
