@@ -2,11 +2,12 @@
 // height change and a shift along the flight, into postures whose stance passes the stance check
 // (IK within limits, legs clear of the stairs) with the swing feet on their swings.
 //
-// One correction is held through each swing (all instants of it must accept it), so the body
-// stands still while the support is a triangle; corrections change only while all four feet are
-// down, eased over that whole phase. A correction that jumps between nearby instants is what makes
-// a plan that is statically fine fall over when executed (the executor must accelerate the body
-// many m/s^2 to follow it).
+// Each swing gets one shift, and one height or a height eased from liftoff to touchdown, that every
+// instant of it accepts, so the body barely moves while the support is a triangle; corrections
+// change while all four feet are down, eased over that whole phase, whose instants are checked too
+// (and repaired with a key where one fails). A correction that jumps between nearby instants is
+// what makes a plan that is statically fine fall over when executed (the executor must accelerate
+// the body many m/s^2 to follow it).
 #pragma once
 
 #include <functional>
