@@ -1,5 +1,6 @@
 #include "kinematics/urdf_parse.h"
 
+#include <map>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -54,6 +55,32 @@ void RejectCapsules(const TiXmlElement& robot, const std::string& source) {
   }
 }
 
+// urdfdom accepts joints that close a loop away from the root (a link its own parent, a ring of
+// links): every walk up a leg would then never end, and the loop's links, owning each other
+// through shared pointers, leak even when urdfdom rejects the file for another reason (both found
+// by the URDF fuzzer). So loops are refused before urdfdom sees the file: a link more parents away
+// than there are joints is on one.
+void RejectLoops(const TiXmlElement& robot, const std::string& source) {
+  std::map<std::string, std::pair<std::string, std::string>> parent_of;  // child -> (parent, joint)
+  for (const TiXmlElement* joint = robot.FirstChildElement("joint"); joint; joint = joint->NextSiblingElement("joint")) {
+    const TiXmlElement* parent = joint->FirstChildElement("parent");
+    const TiXmlElement* child = joint->FirstChildElement("child");
+    if (!parent || !child) continue;  // urdfdom names what is missing
+    parent_of.emplace(Attribute(*child, "link"), std::make_pair(Attribute(*parent, "link"), Attribute(*joint, "name")));
+  }
+  for (const auto& [start, unused] : parent_of) {
+    std::string link = start;
+    for (std::size_t depth = 0; parent_of.count(link) > 0; ++depth) {
+      const auto& [parent, joint] = parent_of.at(link);
+      if (depth > parent_of.size()) {
+        throw std::invalid_argument(source + ": <joint name=\"" + joint + "\">: the joints form a loop through link '" +
+                                    link + "'; a URDF must be a tree");
+      }
+      link = parent;
+    }
+  }
+}
+
 // The text of line `row` (1-based), trimmed and shortened, to show where the XML breaks.
 std::string LineText(const std::string& text, int row) {
   std::size_t begin = 0;
@@ -83,21 +110,6 @@ std::string ElementOf(const std::string& message, const std::string& robot_name)
   return "<robot name=\"" + robot_name + "\">";
 }
 
-// urdfdom accepts joints that close a loop away from the root (a link that is its own parent, a
-// ring of links), and every walk up a leg would then never end (found by the URDF fuzzer). A link
-// more parents away than there are links is on such a loop.
-void RejectLoops(const urdf::ModelInterface& model, const std::string& source) {
-  for (const auto& [name, link] : model.links_) {
-    std::size_t depth = 0;
-    for (urdf::LinkConstSharedPtr at = link; at && at->parent_joint; at = at->getParent()) {
-      if (++depth > model.links_.size()) {
-        throw std::invalid_argument(source + ": <joint name=\"" + at->parent_joint->name + "\">: the joints form a loop through link '" +
-                                    name + "'; a URDF must be a tree");
-      }
-    }
-  }
-}
-
 }  // namespace
 
 std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const std::string& source_name) {
@@ -113,6 +125,7 @@ std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const st
   const TiXmlElement* robot = document.FirstChildElement("robot");
   if (!robot) throw std::invalid_argument(source_name + ": <robot>: no <robot> root element");
   RejectCapsules(*robot, source_name);
+  RejectLoops(*robot, source_name);
 
   std::lock_guard<std::mutex> lock(ParseMutex());
   CapturingHandler handler;
@@ -130,7 +143,6 @@ std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const st
     const std::string why = handler.errors().empty() ? "not a valid URDF" : handler.errors();
     throw std::invalid_argument(source_name + ": " + ElementOf(why, Attribute(*robot, "name")) + ": " + why);
   }
-  RejectLoops(*parsed, source_name);
   return parsed;
 }
 

@@ -41,6 +41,7 @@ cmake --build "$build" -j "$jobs"
 echo "sanitize: build took $(( $(date +%s) - start )) s"
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # Every test runs (those that take minutes under the sanitizers on fewer samples, tests/sanitized.h)
 # but one: install.find_package_example installs the instrumented libraries and builds an
