@@ -129,21 +129,10 @@ Eigen::Vector3d ApproximateComOffset(const RobotModel& robot) {
 
 std::vector<Eigen::Vector3d> FeetAt(const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& initial,
                                     const std::vector<Footstep>& footsteps, double t, std::vector<bool>* in_stance) {
-  std::vector<Eigen::Vector3d> feet = initial;
-  if (in_stance != nullptr) in_stance->assign(legs.size(), true);
-  for (const Footstep& s : footsteps) {
-    if (s.t_liftoff >= t) continue;
-    const auto leg = static_cast<std::size_t>(std::find(legs.begin(), legs.end(), s.leg) - legs.begin());
-    if (leg >= legs.size()) continue;
-    if (t >= s.t_touchdown) {
-      feet[leg] = s.position_W;
-    } else {
-      const double u = (t - s.t_liftoff) / (s.t_touchdown - s.t_liftoff);
-      feet[leg] = s.from_W + u * (s.position_W - s.from_W);
-      if (in_stance != nullptr) (*in_stance)[leg] = false;
-    }
-  }
-  return feet;
+  const auto straight = [](const Footstep& f, double phase) -> Eigen::Vector3d {
+    return f.from_W + phase * (f.position_W - f.from_W);
+  };
+  return FeetWhileSwinging(legs, initial, footsteps, t, straight, in_stance);
 }
 
 std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::vector<std::string>& legs,

@@ -67,10 +67,11 @@ Eigen::Vector3d SwingTrajectory::At(double s) const {
 
 namespace stairplan {
 
-std::vector<Eigen::Vector3d> FeetAlongSwings(const std::vector<std::string>& legs,
-                                             const std::vector<Eigen::Vector3d>& initial,
-                                             const std::vector<Footstep>& footsteps, double t, const Staircase& stairs,
-                                             const SwingSettings& settings, std::vector<bool>* in_stance) {
+std::vector<Eigen::Vector3d> FeetWhileSwinging(const std::vector<std::string>& legs,
+                                               const std::vector<Eigen::Vector3d>& initial,
+                                               const std::vector<Footstep>& footsteps, double t,
+                                               const std::function<Eigen::Vector3d(const Footstep&, double)>& swing_at,
+                                               std::vector<bool>* in_stance) {
   std::vector<Eigen::Vector3d> feet = initial;
   if (in_stance != nullptr) in_stance->assign(legs.size(), true);
   for (const Footstep& f : footsteps) {
@@ -81,14 +82,23 @@ std::vector<Eigen::Vector3d> FeetAlongSwings(const std::vector<std::string>& leg
       feet[leg] = f.position_W;
       continue;
     }
-    const double phase = (t - f.t_liftoff) / (f.t_touchdown - f.t_liftoff);
-    const SwingTrajectory swing = std::isfinite(f.swing_apex_z)
-                                      ? SwingTrajectory(f.from_W, f.position_W, f.swing_apex_z, settings)
-                                      : SwingTrajectory(f.from_W, f.position_W, stairs, settings);
-    feet[leg] = swing.At(phase);
+    feet[leg] = swing_at(f, (t - f.t_liftoff) / (f.t_touchdown - f.t_liftoff));
     if (in_stance != nullptr) (*in_stance)[leg] = false;
   }
   return feet;
+}
+
+std::vector<Eigen::Vector3d> FeetAlongSwings(const std::vector<std::string>& legs,
+                                             const std::vector<Eigen::Vector3d>& initial,
+                                             const std::vector<Footstep>& footsteps, double t, const Staircase& stairs,
+                                             const SwingSettings& settings, std::vector<bool>* in_stance) {
+  const auto along_swing = [&](const Footstep& f, double phase) {
+    const SwingTrajectory swing = std::isfinite(f.swing_apex_z)
+                                      ? SwingTrajectory(f.from_W, f.position_W, f.swing_apex_z, settings)
+                                      : SwingTrajectory(f.from_W, f.position_W, stairs, settings);
+    return swing.At(phase);
+  };
+  return FeetWhileSwinging(legs, initial, footsteps, t, along_swing, in_stance);
 }
 
 }  // namespace stairplan

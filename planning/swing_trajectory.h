@@ -3,6 +3,7 @@
 // validator, the simulator and the drawings all move the foot the same way.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,15 @@ class SwingTrajectory {
   double apex_z_ = 0.0;
   SwingSettings settings_;
 };
+
+/// Where each foot (legs in `legs` order) is at time t: stance feet on their contact points, a
+/// swinging foot at swing_at(its footstep, swing phase in [0, 1)). `in_stance`, when given, says
+/// which feet are down. The walk FeetAlongSwings and the body path's FeetAt share.
+std::vector<Eigen::Vector3d> FeetWhileSwinging(const std::vector<std::string>& legs,
+                                               const std::vector<Eigen::Vector3d>& initial,
+                                               const std::vector<Footstep>& footsteps, double t,
+                                               const std::function<Eigen::Vector3d(const Footstep&, double)>& swing_at,
+                                               std::vector<bool>* in_stance = nullptr);
 
 /// Where each foot (legs in `legs` order) is at time t as a plan is executed: stance feet on their
 /// contact points, swinging feet along their swing trajectories (the footstep's apex when it states
