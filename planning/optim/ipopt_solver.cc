@@ -1,9 +1,13 @@
-// The Ipopt back-end: a TNLP view of a Program (sparse linear rows, dense nonlinear blocks).
+// The Ipopt back-end: a TNLP view of a Program (sparse linear rows, dense nonlinear blocks, and the
+// Lagrangian's Hessian from the quadratic part plus the nonlinear parts' block pairs when they have one).
 #include "planning/optim/ipopt_solver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <coin/IpIpoptApplication.hpp>
@@ -49,6 +53,8 @@ class ProgramNlp : public Ipopt::TNLP {
         if (H(i, j) != 0.0) hess_entries_.push_back({i, j});
       }
     }
+    quadratic_entries_ = hess_entries_.size();
+    if (exact_hessian_ && !p.IsQuadratic()) AddNonlinearHessianParts();
     x_.resize(n_);
   }
 
@@ -149,15 +155,35 @@ class ProgramNlp : public Ipopt::TNLP {
     return true;
   }
 
-  bool eval_h(Index, const Number*, bool, Number obj_factor, Index, const Number*, bool, Index, Index* i_row,
-              Index* j_col, Number* values) override {
+  bool eval_h(Index, const Number* x, bool, Number obj_factor, Index m, const Number* lambda, bool, Index,
+              Index* i_row, Index* j_col, Number* values) override {
     if (!exact_hessian_) return false;
-    for (std::size_t k = 0; k < hess_entries_.size(); ++k) {
-      if (values == nullptr) {
+    if (values == nullptr) {
+      for (std::size_t k = 0; k < hess_entries_.size(); ++k) {
         i_row[k] = hess_entries_[k].first;
         j_col[k] = hess_entries_[k].second;
+      }
+      return true;
+    }
+    for (std::size_t k = 0; k < hess_entries_.size(); ++k) values[k] = 0.0;
+    for (std::size_t k = 0; k < quadratic_entries_; ++k) {
+      values[k] = obj_factor * p_.hessian()(hess_entries_[k].first, hess_entries_[k].second);
+    }
+    if (hessian_parts_.empty()) return true;
+    Load(x);
+    const Eigen::Map<const Eigen::VectorXd> multipliers(lambda, m);
+    for (HessianPart& part : hessian_parts_) {
+      double factor = 1.0;
+      if (part.constraint < 0) {
+        p_.nonlinear_costs()[static_cast<std::size_t>(part.cost)].hessian(x_, part.a, part.b, part.out);
+        factor = obj_factor;
       } else {
-        values[k] = obj_factor * p_.hessian()(hess_entries_[k].first, hess_entries_[k].second);
+        const NonlinearConstraint& c = p_.nonlinear_constraints()[static_cast<std::size_t>(part.constraint)];
+        c.hessian(x_, multipliers.segment(part.first_row, c.lower.size()), part.a, part.b, part.out);
+      }
+      for (Eigen::Index k = 0; k < part.out.size(); ++k) {
+        const int slot = part.slots[static_cast<std::size_t>(k)];
+        if (slot >= 0) values[slot] += factor * part.out.data()[k];
       }
     }
     return true;
@@ -190,6 +216,66 @@ class ProgramNlp : public Ipopt::TNLP {
   double objective_ = 0.0;
 
  private:
+  // One block pair of a nonlinear part's Hessian: its callback's output and where each of its
+  // entries (column-major) lands in Ipopt's values, -1 for the upper triangle of a diagonal block.
+  struct HessianPart {
+    int cost = -1, constraint = -1;  // exactly one is an index
+    int first_row = 0;               // a constraint's first row among Ipopt's constraints
+    int a = 0, b = 0;
+    Eigen::MatrixXd out;
+    std::vector<int> slots;
+  };
+
+  // The Hessian of the Lagrangian: the quadratic part's entries first, then every (row, col) of
+  // the lower triangle a nonlinear part's block pairs touch, each entry listed once.
+  void AddNonlinearHessianParts() {
+    std::map<std::pair<int, int>, int> slot_of;
+    for (std::size_t k = 0; k < hess_entries_.size(); ++k) slot_of[hess_entries_[k]] = static_cast<int>(k);
+    const auto add = [&](HessianPart part, const std::vector<VariableBlock>& blocks) {
+      const VariableBlock& ba = blocks[static_cast<std::size_t>(part.a)];
+      const VariableBlock& bb = blocks[static_cast<std::size_t>(part.b)];
+      part.out.setZero(ba.size, bb.size);
+      for (int c = 0; c < bb.size; ++c) {
+        for (int r = 0; r < ba.size; ++r) {
+          const int i = ba.start + r, j = bb.start + c;
+          if (part.a == part.b && i < j) {
+            part.slots.push_back(-1);
+            continue;
+          }
+          const std::pair<int, int> entry(std::max(i, j), std::min(i, j));
+          const auto [it, added] = slot_of.emplace(entry, static_cast<int>(hess_entries_.size()));
+          if (added) hess_entries_.push_back(entry);
+          part.slots.push_back(it->second);
+        }
+      }
+      hessian_parts_.push_back(std::move(part));
+    };
+    const auto& costs = p_.nonlinear_costs();
+    for (std::size_t i = 0; i < costs.size(); ++i) {
+      for (const auto& [a, b] : HessianPairs(costs[i].hessian_pairs, static_cast<int>(costs[i].blocks.size()))) {
+        HessianPart part;
+        part.cost = static_cast<int>(i);
+        part.a = a;
+        part.b = b;
+        add(std::move(part), costs[i].blocks);
+      }
+    }
+    const auto& constraints = p_.nonlinear_constraints();
+    int row = m_lin_;
+    for (std::size_t i = 0; i < constraints.size(); ++i) {
+      const NonlinearConstraint& c = constraints[i];
+      for (const auto& [a, b] : HessianPairs(c.hessian_pairs, static_cast<int>(c.blocks.size()))) {
+        HessianPart part;
+        part.constraint = static_cast<int>(i);
+        part.first_row = row;
+        part.a = a;
+        part.b = b;
+        add(std::move(part), c.blocks);
+      }
+      row += static_cast<int>(c.lower.size());
+    }
+  }
+
   void Load(const Number* x) { x_ = Eigen::Map<const Eigen::VectorXd>(x, n_); }
 
   const Program& p_;
@@ -198,6 +284,8 @@ class ProgramNlp : public Ipopt::TNLP {
   bool has_deadline_;
   int n_ = 0, m_ = 0, m_lin_ = 0;
   std::vector<std::pair<int, int>> jac_entries_, hess_entries_;
+  std::size_t quadratic_entries_ = 0;  // the first hess_entries_, from the program's H
+  std::vector<HessianPart> hessian_parts_;
   Eigen::VectorXd x_;
 };
 
@@ -229,7 +317,8 @@ void IpoptSolver::DoSolve(const Program& program, SolveResult* result) {
   const bool has_deadline = std::isfinite(settings_.time_limit_s);
   const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                     std::chrono::duration<double>(has_deadline ? settings_.time_limit_s : 0.0));
-  const bool exact = program.IsQuadratic() && settings_.exact_hessian_for_qp;
+  const bool exact = program.IsQuadratic() ? settings_.exact_hessian_for_qp
+                                           : settings_.exact_hessian_for_nlp && program.HasHessians();
   Ipopt::SmartPtr<ProgramNlp> nlp = new ProgramNlp(program, exact, deadline, has_deadline);
   // No console journal: the library never prints (Ipopt would report bad options on stdout).
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication(/*create_console_out=*/false);
@@ -239,11 +328,11 @@ void IpoptSolver::DoSolve(const Program& program, SolveResult* result) {
   options.SetNumericValue("tol", settings_.tolerance);
   options.SetIntegerValue("max_iter", settings_.max_iterations);
   if (has_deadline) options.SetNumericValue("max_cpu_time", settings_.time_limit_s);
-  if (exact) {
+  if (exact && program.IsQuadratic()) {
     options.SetStringValue("hessian_constant", "yes");
     options.SetStringValue("jac_c_constant", "yes");
     options.SetStringValue("jac_d_constant", "yes");
-  } else {
+  } else if (!exact) {
     options.SetStringValue("hessian_approximation", "limited-memory");
   }
   bool options_ok = true;

@@ -1,7 +1,8 @@
 // IpoptSolver: any Program (nonlinear included) through Ipopt 3.11's TNLP interface.
 //
-// QPs get the exact (constant) Hessian; programs with nonlinear parts use Ipopt's limited-memory
-// quasi-Newton Hessian. Options pass through by name. The time limit is a wall-clock deadline
+// QPs get the exact (constant) Hessian; so do programs whose every nonlinear cost and constraint
+// has a Hessian callback (the Lagrangian's Hessian from them and the quadratic part); the others
+// use Ipopt's limited-memory quasi-Newton Hessian. Options pass through by name. The time limit is a wall-clock deadline
 // checked in Ipopt's per-iteration callback on every solve (and also passed as max_cpu_time), so
 // it holds for the second solve as for the first. A fresh IpoptApplication per solve keeps solves
 // independent; Ipopt allocates, so this is not the per-cycle solver.
@@ -22,8 +23,11 @@ struct IpoptSettings {
   int max_iterations = 3000;
   /// Wall-clock limit per solve [s]. Infinity means none.
   double time_limit_s = kInf;
-  /// Use the exact Hessian for quadratic programs (limited-memory is always used otherwise).
+  /// Use the exact Hessian for quadratic programs.
   bool exact_hessian_for_qp = true;
+  /// Use the exact Hessian of the Lagrangian for nonlinear programs when every nonlinear part has
+  /// a Hessian callback (Program::HasHessians()); limited-memory otherwise or when false.
+  bool exact_hessian_for_nlp = true;
   /// Options passed through to Ipopt as they are (set after the ones above, so they win).
   std::map<std::string, std::string> string_options;
   std::map<std::string, double> numeric_options;

@@ -33,7 +33,28 @@ void CheckBoundPair(const Eigen::Ref<const Eigen::VectorXd>& lower, const Eigen:
   }
 }
 
+// Hessian pairs name blocks of their own cost or constraint, in the lower triangle (b <= a).
+void CheckHessianPairs(const std::vector<std::pair<int, int>>& pairs, bool has_hessian, int blocks,
+                       const std::string& what) {
+  if (!pairs.empty() && !has_hessian) throw std::invalid_argument(what + ": hessian_pairs without a hessian");
+  for (const auto& [a, b] : pairs) {
+    if (!(0 <= b && b <= a && a < blocks)) {
+      throw std::invalid_argument(what + ": hessian_pairs entry (" + std::to_string(a) + ", " + std::to_string(b) +
+                                  ") must be block indices with b <= a < " + std::to_string(blocks));
+    }
+  }
+}
+
 }  // namespace
+
+std::vector<std::pair<int, int>> HessianPairs(const std::vector<std::pair<int, int>>& pairs, int blocks) {
+  if (!pairs.empty()) return pairs;
+  std::vector<std::pair<int, int>> all;
+  for (int a = 0; a < blocks; ++a) {
+    for (int b = 0; b <= a; ++b) all.emplace_back(a, b);
+  }
+  return all;
+}
 
 void Program::TouchHessian() { hessian_revision_ = NextRevision(); }
 void Program::TouchMatrix() {
@@ -162,6 +183,8 @@ ConstraintRows Program::AddLinearConstraint(const std::vector<LinearTerm>& terms
 void Program::AddNonlinearCost(NonlinearCost cost) {
   if (!cost.value || !cost.gradient) throw std::invalid_argument("AddNonlinearCost '" + cost.name + "': value and gradient are required");
   for (const auto& b : cost.blocks) CheckBlock(b, "AddNonlinearCost");
+  CheckHessianPairs(cost.hessian_pairs, static_cast<bool>(cost.hessian), static_cast<int>(cost.blocks.size()),
+                    "AddNonlinearCost '" + cost.name + "'");
   nonlinear_costs_.push_back(std::move(cost));
 }
 
@@ -170,6 +193,8 @@ void Program::AddNonlinearConstraint(NonlinearConstraint constraint) {
   if (!constraint.value || !constraint.jacobian) throw std::invalid_argument(what + ": value and jacobian are required");
   for (const auto& b : constraint.blocks) CheckBlock(b, "AddNonlinearConstraint");
   CheckBoundPair(constraint.lower, constraint.upper, static_cast<int>(constraint.lower.size()), what);
+  CheckHessianPairs(constraint.hessian_pairs, static_cast<bool>(constraint.hessian),
+                    static_cast<int>(constraint.blocks.size()), what);
   for (int i = 0; i < constraint.lower.size(); ++i) {
     constraint.lower[i] = NormalizeBound(constraint.lower[i]);
     constraint.upper[i] = NormalizeBound(constraint.upper[i]);
@@ -245,6 +270,16 @@ Eigen::MatrixXd& Program::MutableHessian() {
 Eigen::MatrixXd& Program::MutableConstraintMatrix() {
   TouchMatrix();
   return A_;
+}
+
+bool Program::HasHessians() const {
+  for (const auto& c : nonlinear_costs_) {
+    if (!c.hessian) return false;
+  }
+  for (const auto& c : nonlinear_constraints_) {
+    if (!c.hessian) return false;
+  }
+  return true;
 }
 
 int Program::num_nonlinear_rows() const {

@@ -72,6 +72,13 @@ struct NonlinearCost {
   std::function<double(const Eigen::VectorXd& x)> value;
   /// Writes df/d(blocks[block]) into `out` (size blocks[block].size).
   std::function<void(const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::VectorXd> out)> gradient;
+  /// Optional: writes d2f/(d blocks[a] d blocks[b]) into `out` (blocks[a].size x blocks[b].size)
+  /// for each pair (a, b) of hessian_pairs. Solvers that can use second derivatives (Ipopt) do so
+  /// when every nonlinear part of the program has them; otherwise they approximate.
+  /// (Default-initialised so that aggregate initialisations written before it stay warning-free.)
+  std::function<void(const Eigen::VectorXd& x, int a, int b, Eigen::Ref<Eigen::MatrixXd> out)> hessian = {};
+  /// The block pairs (a, b), b <= a, where d2f may be nonzero (the sparsity); empty: every pair.
+  std::vector<std::pair<int, int>> hessian_pairs = {};
 };
 
 /// Nonlinear constraints lower <= c(x) <= upper, with Jacobians per block.
@@ -83,7 +90,18 @@ struct NonlinearConstraint {
   std::function<void(const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> out)> value;
   /// Writes dc/d(blocks[block]) into `out` (rows x blocks[block].size).
   std::function<void(const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::MatrixXd> out)> jacobian;
+  /// Optional: writes sum_i weights[i] d2c_i/(d blocks[a] d blocks[b]) into `out` (blocks[a].size x
+  /// blocks[b].size) for each pair (a, b) of hessian_pairs; weights has one entry per row (the
+  /// solver's multipliers). See NonlinearCost::hessian.
+  std::function<void(const Eigen::VectorXd& x, const Eigen::Ref<const Eigen::VectorXd>& weights, int a, int b,
+                     Eigen::Ref<Eigen::MatrixXd> out)>
+      hessian = {};
+  /// The block pairs (a, b), b <= a, where some d2c_i may be nonzero; empty: every pair.
+  std::vector<std::pair<int, int>> hessian_pairs = {};
 };
+
+/// The block pairs a Hessian callback is asked for: `pairs`, or every (a, b) with b <= a when empty.
+std::vector<std::pair<int, int>> HessianPairs(const std::vector<std::pair<int, int>>& pairs, int blocks);
 
 /// min 0.5 x'Hx + g'x + constant + sum f_i(x)
 /// s.t. row_lower <= A x <= row_upper, lower <= c_j(x) <= upper, var_lower <= x <= var_upper.
@@ -151,6 +169,8 @@ class Program {
   const std::vector<NonlinearConstraint>& nonlinear_constraints() const { return nonlinear_constraints_; }
   /// True when there are no nonlinear costs or constraints.
   bool IsQuadratic() const { return nonlinear_costs_.empty() && nonlinear_constraints_.empty(); }
+  /// True when every nonlinear cost and constraint has a Hessian callback (quadratic programs too).
+  bool HasHessians() const;
 
   /// Objective value at x (quadratic part, constant and nonlinear costs).
   double Objective(const Eigen::VectorXd& x) const;

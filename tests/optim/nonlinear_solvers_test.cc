@@ -218,3 +218,84 @@ TEST_CASE("costs and constraints over several blocks map their Jacobians to the 
     CHECK(r.x[3] == Approx(s).margin(tol));
   }
 }
+
+namespace {
+
+// Rosenbrock on the unit disc, x and y in blocks of their own so that the cost's Hessian has an
+// off-diagonal block pair and the constraint lists its blocks out of variable order.
+// min (1 - x)^2 + 100 (y - x^2)^2 s.t. x^2 + y^2 <= 1: on the circle at angle 0.6668 rad.
+constexpr double kDiscX = 0.7864151540802091, kDiscY = 0.6176983126357081, kDiscF = 0.04567480871950024;
+
+Program RosenbrockOnDisc(bool with_hessians, int* hessian_calls) {
+  Program p;
+  const VariableBlock x = p.AddVariables("x", 1);
+  const VariableBlock y = p.AddVariables("y", 1);
+  p.SetInitialGuess(x, Eigen::VectorXd::Constant(1, -0.5));
+  p.SetInitialGuess(y, Eigen::VectorXd::Constant(1, 0.5));
+  NonlinearCost f;
+  f.name = "rosenbrock";
+  f.blocks = {x, y};
+  f.value = [](const Eigen::VectorXd& v) { return std::pow(1 - v[0], 2) + 100 * std::pow(v[1] - v[0] * v[0], 2); };
+  f.gradient = [](const Eigen::VectorXd& v, int block, Eigen::Ref<Eigen::VectorXd> g) {
+    g[0] = block == 0 ? -2 * (1 - v[0]) - 400 * v[0] * (v[1] - v[0] * v[0]) : 200 * (v[1] - v[0] * v[0]);
+  };
+  NonlinearConstraint disc;
+  disc.name = "disc";
+  disc.blocks = {y, x};
+  disc.lower = Eigen::VectorXd::Constant(1, -kInf);
+  disc.upper = Eigen::VectorXd::Constant(1, 1.0);
+  disc.value = [](const Eigen::VectorXd& v, Eigen::Ref<Eigen::VectorXd> out) { out[0] = v.squaredNorm(); };
+  disc.jacobian = [](const Eigen::VectorXd& v, int block, Eigen::Ref<Eigen::MatrixXd> J) {
+    J(0, 0) = 2 * v[block == 0 ? 1 : 0];
+  };
+  if (with_hessians) {
+    // Pairs left empty: every pair, (x, x), (y, x) and (y, y).
+    f.hessian = [hessian_calls](const Eigen::VectorXd& v, int a, int b, Eigen::Ref<Eigen::MatrixXd> h) {
+      ++*hessian_calls;
+      if (a == 0 && b == 0) h(0, 0) = 2 - 400 * (v[1] - 3 * v[0] * v[0]);
+      if (a == 1 && b == 0) h(0, 0) = -400 * v[0];
+      if (a == 1 && b == 1) h(0, 0) = 200;
+    };
+    disc.hessian = [hessian_calls](const Eigen::VectorXd&, const Eigen::Ref<const Eigen::VectorXd>& w, int, int,
+                                   Eigen::Ref<Eigen::MatrixXd> h) {
+      ++*hessian_calls;
+      h(0, 0) = 2 * w[0];
+    };
+    disc.hessian_pairs = {{0, 0}, {1, 1}};  // no cross term
+  }
+  p.AddNonlinearCost(f);
+  p.AddNonlinearConstraint(disc);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("Ipopt uses the nonlinear parts' exact Hessians when every part has one", "[nonlinear]") {
+  int calls = 0;
+  const Program exact = RosenbrockOnDisc(true, &calls);
+  REQUIRE(exact.HasHessians());
+  const SolveResult newton = IpoptSolver().Solve(exact);
+  REQUIRE(newton.status == SolveStatus::kSolved);
+  CHECK(calls > 0);
+  CHECK(newton.x[0] == Approx(kDiscX).margin(1e-7));
+  CHECK(newton.x[1] == Approx(kDiscY).margin(1e-7));
+  CHECK(newton.objective == Approx(kDiscF).epsilon(1e-7));
+  // The same program with the Hessians ignored, and without them: quasi-Newton, same optimum,
+  // more iterations (a wrong Hessian would cost Newton its fast convergence).
+  IpoptSettings quasi;
+  quasi.exact_hessian_for_nlp = false;
+  calls = 0;
+  const SolveResult lbfgs = IpoptSolver(quasi).Solve(exact);
+  CHECK(calls == 0);
+  int unused = 0;
+  const Program plain = RosenbrockOnDisc(false, &unused);
+  CHECK_FALSE(plain.HasHessians());
+  const SolveResult without = IpoptSolver().Solve(plain);
+  for (const SolveResult* r : {&lbfgs, &without}) {
+    REQUIRE(r->status == SolveStatus::kSolved);
+    CHECK(r->objective == Approx(kDiscF).epsilon(1e-6));
+  }
+  INFO("iterations: exact " << newton.info.iterations << ", limited-memory " << lbfgs.info.iterations);
+  CHECK(without.info.iterations == lbfgs.info.iterations);
+  CHECK(newton.info.iterations < lbfgs.info.iterations);
+}

@@ -98,3 +98,33 @@ TEST_CASE("misuse throws invalid_argument naming the block or rows", "[program]"
   CHECK_THAT(ThrownMessage([&] { p.SetInitialGuess(stranger, Eigen::Vector2d::Zero()); }), Catch::Contains("stranger"));
   CHECK_THAT(ThrownMessage([&] { p.AddVariables("empty", 0); }), Catch::Contains("empty"));
 }
+
+TEST_CASE("Hessian callbacks are optional and their block pairs are checked", "[program]") {
+  Program p;
+  const VariableBlock x = p.AddVariables("x", 2);
+  CHECK(p.HasHessians());  // nothing nonlinear
+  NonlinearCost cost{"bowl", {x}, [](const Eigen::VectorXd& v) { return v.squaredNorm(); },
+                     [](const Eigen::VectorXd& v, int, Eigen::Ref<Eigen::VectorXd> g) { g = 2 * v; }};
+  cost.hessian_pairs = {{0, 0}};
+  CHECK_THAT(ThrownMessage([&] { p.AddNonlinearCost(cost); }), Catch::Contains("bowl") && Catch::Contains("without"));
+  cost.hessian = [](const Eigen::VectorXd&, int, int, Eigen::Ref<Eigen::MatrixXd> h) { h = 2 * Eigen::Matrix2d::Identity(); };
+  cost.hessian_pairs = {{0, 1}};  // upper triangle and beyond the cost's one block
+  CHECK_THAT(ThrownMessage([&] { p.AddNonlinearCost(cost); }), Catch::Contains("bowl"));
+  cost.hessian_pairs = {};
+  p.AddNonlinearCost(cost);
+  CHECK(p.HasHessians());
+  NonlinearConstraint c;
+  c.name = "ring";
+  c.blocks = {x};
+  c.lower = Eigen::VectorXd::Ones(1);
+  c.upper = Eigen::VectorXd::Constant(1, kInf);
+  c.value = [](const Eigen::VectorXd& v, Eigen::Ref<Eigen::VectorXd> out) { out[0] = v.squaredNorm(); };
+  c.jacobian = [](const Eigen::VectorXd& v, int, Eigen::Ref<Eigen::MatrixXd> J) { J = 2 * v.transpose(); };
+  c.hessian_pairs = {{1, 0}};
+  CHECK_THAT(ThrownMessage([&] { p.AddNonlinearConstraint(c); }), Catch::Contains("ring"));
+  c.hessian_pairs = {};
+  p.AddNonlinearConstraint(c);
+  CHECK_FALSE(p.HasHessians());  // the constraint has none
+  CHECK(HessianPairs({}, 3).size() == 6);
+  CHECK(HessianPairs({{2, 1}}, 3) == std::vector<std::pair<int, int>>{{2, 1}});
+}
