@@ -113,12 +113,13 @@ void BM_QpActiveSetVsIpopt(benchmark::State& state) {
 BENCHMARK(BM_QpActiveSetVsIpopt)->Iterations(20)->Unit(benchmark::kMillisecond);
 
 // The exact NLP over the horizon: cold from the QP plan, warm from its previous solution one
-// cycle earlier (shifted by a knot).
+// cycle earlier (shifted by a knot). Issue 6 asks for warm_ms <= 10 (Ipopt); objective_gap and the
+// bound distances (>= -1e-3 mm: no bound broken) say the solutions stay what they were.
 void BM_NlpColdWarm(benchmark::State& state) {
   Fixture& f = Shared();
   BodyNlpSettings settings;
   settings.solver = state.range(0) == 0 ? "ipopt" : "nlopt";
-  double cold_ms = 0.0, warm_ms = 0.0;
+  double cold_ms = 0.0, warm_ms = 0.0, cold_cpu_ms = 0.0, warm_cpu_ms = 0.0, cold_iterations = 0.0, warm_iterations = 0.0;
   int n = 0;
   for (auto _ : state) {
     const double now = f.MoveTo(3.0);
@@ -133,13 +134,25 @@ void BM_NlpColdWarm(benchmark::State& state) {
     const BodyNlpWindow warm = SolveBodyNlpFrom(*f.planner, settings, next, guess, &second);
     cold_ms += cold.solve_ms;
     warm_ms += warm.solve_ms;
+    cold_cpu_ms += cold.solve_cpu_ms;
+    warm_cpu_ms += warm.solve_cpu_ms;
+    cold_iterations += cold.iterations;
+    warm_iterations += warm.iterations;
     ++n;
     state.counters["objective_gap"] = (cold.qp_objective - cold.nlp_objective) / cold.qp_objective;
     state.counters["qp_bound_distance_mm"] = 1e3 * cold.qp_bound_distance;
     state.counters["nlp_bound_distance_mm"] = 1e3 * cold.nlp_bound_distance;
+    state.counters["warm_objective_gap"] = (warm.qp_objective - warm.nlp_objective) / warm.qp_objective;
+    state.counters["warm_nlp_bound_distance_mm"] = 1e3 * warm.nlp_bound_distance;
+    state.counters["warm_solved"] = warm.status == optim::SolveStatus::kSolved ? 1.0 : 0.0;
   }
   state.counters["cold_ms"] = cold_ms / n;
   state.counters["warm_ms"] = warm_ms / n;
+  // CPU time of the same solves: on a loaded machine the wall clock also counts other processes.
+  state.counters["cold_cpu_ms"] = cold_cpu_ms / n;
+  state.counters["warm_cpu_ms"] = warm_cpu_ms / n;
+  state.counters["cold_iterations"] = cold_iterations / n;  // Ipopt iterations, NLopt evaluations
+  state.counters["warm_iterations"] = warm_iterations / n;
 }
 BENCHMARK(BM_NlpColdWarm)->Arg(0)->Arg(1)->Iterations(2)->Unit(benchmark::kMillisecond);
 

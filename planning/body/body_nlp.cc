@@ -1,8 +1,13 @@
+// The exact body NLP: its data per window, its costs and constraints as an optim::Program (with
+// Hessians for Ipopt), the constraint screening that keeps Ipopt's linear systems small, and the
+// offline refinement of a whole plan.
 #include "planning/body/body_nlp.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <stdexcept>
 
@@ -14,8 +19,18 @@
 namespace stairplan {
 namespace {
 
-// Finite-difference step of the tabulated bounds' derivatives [m or rad].
-constexpr double kFiniteStep = 1e-5;
+// Central-difference step of the tabulated bounds' derivatives [m or rad]. The bounds are
+// bilinear per grid cell (0.03 m x 0.1 rad) and their slopes jump at cell edges; a step of a few
+// percent of a cell blends the two slopes near an edge, so the derivatives the solvers see are
+// continuous and a solution sitting on an edge converges instead of cycling across it (with
+// 1e-5 Ipopt cycled there until its iteration limit). The values stay exact.
+constexpr double kFiniteStep = 2e-3;
+// Constraint screening: the solvers first see only the bound sides within this margin of the
+// initial point and the acceleration rows above this fraction of their limit; the rest are
+// checked at the solution and added when broken (see SolveWindow).
+constexpr double kScreenMargin = 0.03;       // [m]
+constexpr double kScreenAccelFraction = 0.3;
+constexpr int kMaxRounds = 4;                 // the last round sees every constraint
 
 struct StanceRow {
   int knot = 0, leg = 0, foothold = 0;
@@ -34,169 +49,300 @@ Eigen::MatrixXd SecondDifferences(int n) {
   return d;
 }
 
-// The NLP over knots t0 + k dt with `guess` as the initial point (knot 0 pinned to it).
-BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, double t0,
-                          const std::vector<BodyState>& guess, std::vector<BodyState>* out) {
+// Variables: one block per knot, [z, pitch, shift]; each knot's constraints then touch only
+// its own block, so the solvers see a sparse Jacobian instead of a dense one.
+int Z(int k) { return 3 * k; }
+int P(int k) { return 3 * k + 1; }
+int S(int k) { return 3 * k + 2; }
+
+// What one window's NLP is made of: per knot the neutral body, the references and the feet's
+// heights; the stance rows; and the exact margins of a stance row's hip from its bounds.
+struct WindowData {
+  BodyPlanner* planner = nullptr;
+  int n = 0;
+  double t0 = 0.0, heading = 1.0;
+  Eigen::VectorXd neutral_x, neutral_y, pitch_ref, shift_ref, foot_z;
+  std::vector<StanceRow> rows;
+
+  // (hip height - lowest valid, highest valid - hip height) at the exact hip offset and pitch.
+  Eigen::Vector2d Margins(const StanceRow& r, double z, double p, double s) const {
+    const double h = z + planner->HipDz(r.leg, p) - r.contact_z;
+    HipBox box;
+    box.leg = r.leg;
+    box.foothold = r.foothold;
+    box.dx_lo = box.dx_hi = heading * (neutral_x[r.knot] - r.contact_x) + s + planner->HipDx(r.leg, p);
+    box.pitch_lo = box.pitch_hi = p;
+    const HeightRange range = planner->bounds().HipHeight(box);
+    if (range.empty()) return Eigen::Vector2d(-1.0, -1.0);  // no valid height here
+    return Eigen::Vector2d(h - range.lo, range.hi - h);
+  }
+  Eigen::Vector2d Margins(const StanceRow& r, const Eigen::VectorXd& x) const {
+    return Margins(r, x[Z(r.knot)], x[P(r.knot)], x[S(r.knot)]);
+  }
+  // The smallest margin over every stance row [m].
+  double BoundDistance(const Eigen::VectorXd& x) const {
+    double worst = std::numeric_limits<double>::infinity();
+    for (const StanceRow& r : rows) worst = std::min(worst, Margins(r, x).minCoeff());
+    return worst;
+  }
+};
+
+WindowData Prepare(BodyPlanner& planner, double t0, int n) {
   const BodyPlannerSettings& set = planner.settings();
   const FootSchedule& schedule = planner.schedule();
-  BodyBounds& bounds = planner.bounds();
-  const int n = static_cast<int>(guess.size());
-  const double dt = set.knot_dt, heading = schedule.heading();
-  const double hip_height = planner.desired_hip_height();
-
-  // Per knot: the neutral body, the references, the feet's heights and the stance rows.
-  Eigen::VectorXd neutral_x(n), neutral_y(n), pitch_ref(n), shift_ref(n), foot_z(n * kBodyLegs);
-  std::vector<StanceRow> rows;
+  WindowData d;
+  d.planner = &planner;
+  d.n = n;
+  d.t0 = t0;
+  d.heading = schedule.heading();
+  d.neutral_x.resize(n);
+  d.neutral_y.resize(n);
+  d.pitch_ref.resize(n);
+  d.shift_ref.resize(n);
+  d.foot_z.resize(n * kBodyLegs);
   for (int k = 0; k < n; ++k) {
-    const double t = t0 + k * dt;
+    const double t = t0 + k * set.knot_dt;
     const Eigen::Vector2d xy = schedule.NeutralBodyXY(t);
-    neutral_x[k] = xy.x();
-    neutral_y[k] = xy.y();
+    d.neutral_x[k] = xy.x();
+    d.neutral_y[k] = xy.y();
     const double feet_pitch = schedule.FeetPitch(t);
-    pitch_ref[k] = std::clamp(feet_pitch, -set.max_pitch, set.max_pitch);
+    d.pitch_ref[k] = std::clamp(feet_pitch, -set.max_pitch, set.max_pitch);
     const double stairness =
         planner.stairs_pitch() > 0.0 ? std::clamp(std::abs(feet_pitch) / planner.stairs_pitch(), 0.0, 1.0) : 0.0;
-    shift_ref[k] = set.stairs_com_shift * stairness;
+    d.shift_ref[k] = set.stairs_com_shift * stairness;
     for (int l = 0; l < kBodyLegs; ++l) {
       const LegPhase phase = schedule.Phase(l, t);
-      foot_z[k * kBodyLegs + l] = phase.foot_W.z();
+      d.foot_z[k * kBodyLegs + l] = phase.foot_W.z();
       if (k == 0 || !phase.stance) continue;
       const Eigen::Vector3d& c = schedule.footholds()[static_cast<std::size_t>(phase.foothold)].contact_W;
-      rows.push_back({k, l, phase.foothold, c.x(), c.z()});
+      d.rows.push_back({k, l, phase.foothold, c.x(), c.z()});
     }
   }
+  return d;
+}
 
-  // One variable block per knot, [z, pitch, shift]: each knot's constraints then touch only its
-  // own block, so the solvers see a sparse Jacobian instead of a dense one.
-  optim::Program prog;
-  std::vector<optim::VariableBlock> knot_blocks;
-  for (int k = 0; k < n; ++k) knot_blocks.push_back(prog.AddVariables("knot" + std::to_string(k), 3));
-  const auto Z = [](int k) { return 3 * k; };
-  const auto P = [](int k) { return 3 * k + 1; };
-  const auto S = [](int k) { return 3 * k + 2; };
+// Which constraints a round's program holds: per stance row its lower and upper side, per
+// acceleration row (quantity q, knot k at q * (n - 2) + k) whether it is there.
+struct Selection {
+  std::vector<std::array<bool, 2>> sides;
+  std::vector<bool> accel;
+  void All() {
+    std::fill(sides.begin(), sides.end(), std::array<bool, 2>{true, true});
+    std::fill(accel.begin(), accel.end(), true);
+  }
+};
+
+// The acceleration of quantity q over knots k .. k + 2 [per knot^2] and its limit.
+double AccelAt(const Eigen::VectorXd& x, int q, int k) { return x[3 * k + q] - 2.0 * x[3 * (k + 1) + q] + x[3 * (k + 2) + q]; }
+double AccelLimit(const BodyPlannerSettings& set, int q) {
+  const double dt2 = set.knot_dt * set.knot_dt;
+  return (q == 0 ? set.max_height_accel : q == 1 ? set.max_pitch_accel : set.max_shift_accel) * dt2;
+}
+
+// Adds to `sel` every constraint within `margin` (bounds) or above `fraction` of its limit
+// (accelerations) at x; returns how many it added.
+int Screen(const WindowData& d, const Eigen::VectorXd& x, double margin, double fraction, Selection* sel) {
+  int added = 0;
+  for (std::size_t i = 0; i < d.rows.size(); ++i) {
+    const Eigen::Vector2d m = d.Margins(d.rows[i], x);
+    for (int side = 0; side < 2; ++side) {
+      if (m[side] < margin && !sel->sides[i][static_cast<std::size_t>(side)]) {
+        sel->sides[i][static_cast<std::size_t>(side)] = true;
+        ++added;
+      }
+    }
+  }
+  const BodyPlannerSettings& set = d.planner->settings();
+  for (int q = 0; q < 3; ++q) {
+    for (int k = 0; k + 2 < d.n; ++k) {
+      const std::size_t row = static_cast<std::size_t>(q * (d.n - 2) + k);
+      if (!sel->accel[row] && std::abs(AccelAt(x, q, k)) > fraction * AccelLimit(set, q)) {
+        sel->accel[row] = true;
+        ++added;
+      }
+    }
+  }
+  return added;
+}
+
+// The quadratic costs (pitch and shift references, smoothness) and the exact hip-height cost
+// with its Hessian.
+void AddCosts(const WindowData& d, const std::vector<optim::VariableBlock>& blocks, optim::Program* prog) {
+  const BodyPlannerSettings& set = d.planner->settings();
+  const int n = d.n;
+  const double dt = set.knot_dt;
   const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
   const Eigen::MatrixXd d1 = FirstDifferences(n), d2 = SecondDifferences(n);
   const Eigen::MatrixXd smooth = 2.0 * set.velocity_weight / (dt * dt) * d1.transpose() * d1 +
                                  2.0 * set.acceleration_weight / (dt * dt * dt * dt) * d2.transpose() * d2;
   const Eigen::MatrixXd hp = 2.0 * set.pitch_weight * identity + smooth;
   const Eigen::MatrixXd hs = 2.0 * set.shift_weight * identity + smooth;
-  Eigen::MatrixXd& hessian = prog.MutableHessian();
-  Eigen::VectorXd& linear = prog.MutableLinearCost();
+  Eigen::MatrixXd& hessian = prog->MutableHessian();
+  Eigen::VectorXd& linear = prog->MutableLinearCost();
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       hessian(Z(i), Z(j)) = smooth(i, j);
       hessian(P(i), P(j)) = hp(i, j);
       hessian(S(i), S(j)) = hs(i, j);
     }
-    linear[P(i)] = -2.0 * set.pitch_weight * pitch_ref[i];
-    linear[S(i)] = -2.0 * set.shift_weight * shift_ref[i];
+    linear[P(i)] = -2.0 * set.pitch_weight * d.pitch_ref[i];
+    linear[S(i)] = -2.0 * set.shift_weight * d.shift_ref[i];
   }
-  prog.AddConstant(set.pitch_weight * pitch_ref.squaredNorm() + set.shift_weight * shift_ref.squaredNorm());
-  // Acceleration limits: rows (quantity, k) over knots k .. k + 2.
-  {
-    const int rows_per = n - 2;
-    std::vector<optim::LinearTerm> terms;
-    for (int k = 0; k < n; ++k) terms.emplace_back(knot_blocks[static_cast<std::size_t>(k)], Eigen::MatrixXd::Zero(3 * rows_per, 3));
-    for (int q = 0; q < 3; ++q) {
-      for (int r = 0; r < rows_per; ++r) {
-        terms[static_cast<std::size_t>(r)].second(q * rows_per + r, q) = 1.0;
-        terms[static_cast<std::size_t>(r + 1)].second(q * rows_per + r, q) = -2.0;
-        terms[static_cast<std::size_t>(r + 2)].second(q * rows_per + r, q) = 1.0;
-      }
-    }
-    Eigen::VectorXd accel_hi(3 * rows_per);
-    accel_hi << Eigen::VectorXd::Constant(rows_per, set.max_height_accel * dt * dt),
-        Eigen::VectorXd::Constant(rows_per, set.max_pitch_accel * dt * dt),
-        Eigen::VectorXd::Constant(rows_per, set.max_shift_accel * dt * dt);
-    prog.AddLinearConstraint(terms, -accel_hi, accel_hi, "acceleration");
-  }
-  Eigen::VectorXd x0(3 * n);
-  for (int k = 0; k < n; ++k) {
-    const BodyState& g = guess[static_cast<std::size_t>(k)];
-    x0.segment<3>(Z(k)) << g.z, g.pitch, g.com_shift;
-    Eigen::Vector3d lo(-optim::kInf, -set.max_pitch, -set.max_shift), hi = -lo;
-    if (k == 0) lo = hi = x0.segment<3>(0);  // knot 0 is the state
-    prog.SetVariableBounds(knot_blocks[static_cast<std::size_t>(k)], lo, hi);
-  }
-  prog.MutableInitialGuess() = x0;
+  prog->AddConstant(set.pitch_weight * d.pitch_ref.squaredNorm() + set.shift_weight * d.shift_ref.squaredNorm());
 
   // Exact hip heights: sum over knots and legs of w (z + hip_dz(pitch) - foot_z - wanted)^2.
-  const double wh = set.height_weight;
+  const double wh = set.height_weight, wanted = d.planner->desired_hip_height();
+  const BodyPlanner& planner = *d.planner;
+  const Eigen::VectorXd& foot_z = d.foot_z;
   optim::NonlinearCost height;
   height.name = "hip_height";
-  height.blocks = knot_blocks;
-  height.value = [&, n](const Eigen::VectorXd& x) {
+  height.blocks = blocks;
+  height.value = [&planner, &foot_z, wh, wanted, n](const Eigen::VectorXd& x) {
     double f = 0.0;
     for (int k = 0; k < n; ++k) {
       for (int l = 0; l < kBodyLegs; ++l) {
-        const double r = x[Z(k)] + planner.HipDz(l, x[P(k)]) - foot_z[k * kBodyLegs + l] - hip_height;
+        const double r = x[Z(k)] + planner.HipDz(l, x[P(k)]) - foot_z[k * kBodyLegs + l] - wanted;
         f += wh * r * r;
       }
     }
     return f;
   };
-  height.gradient = [&](const Eigen::VectorXd& x, int k, Eigen::Ref<Eigen::VectorXd> g) {
+  height.gradient = [&planner, &foot_z, wh, wanted](const Eigen::VectorXd& x, int k, Eigen::Ref<Eigen::VectorXd> g) {
     g.setZero();
     const double p = x[P(k)];
     for (int l = 0; l < kBodyLegs; ++l) {
-      const double r = x[Z(k)] + planner.HipDz(l, p) - foot_z[k * kBodyLegs + l] - hip_height;
+      const double r = x[Z(k)] + planner.HipDz(l, p) - foot_z[k * kBodyLegs + l] - wanted;
       const Eigen::Vector3d& h = planner.hip_B(l);
       g[0] += 2.0 * wh * r;
       g[1] += 2.0 * wh * r * (-std::cos(p) * h.x() - std::sin(p) * h.z());
     }
   };
-  prog.AddNonlinearCost(height);
-
-  // Each stance row: (hip height - lowest valid) >= 0 and (highest valid - hip height) >= 0, the
-  // bounds at the exact hip offset and pitch; one constraint per knot, on that knot's block.
-  const auto margins = [&](const StanceRow& r, double z, double p, double s) {
-    const double h = z + planner.HipDz(r.leg, p) - r.contact_z;
-    HipBox box;
-    box.leg = r.leg;
-    box.foothold = r.foothold;
-    box.dx_lo = box.dx_hi = heading * (neutral_x[r.knot] - r.contact_x) + s + planner.HipDx(r.leg, p);
-    box.pitch_lo = box.pitch_hi = p;
-    const HeightRange range = bounds.HipHeight(box);
-    if (range.empty()) return Eigen::Vector2d(-1.0, -1.0);  // no valid height here
-    return Eigen::Vector2d(h - range.lo, range.hi - h);
+  // Its exact Hessian, one 2x2 [z, pitch] per knot (d2 HipDz / dpitch2 = -HipDz): with it Ipopt
+  // takes Newton steps instead of a quasi-Newton model of a problem it mostly knows exactly.
+  height.hessian = [&planner, &foot_z, wh, wanted](const Eigen::VectorXd& x, int k, int, Eigen::Ref<Eigen::MatrixXd> h) {
+    h.setZero();
+    const double p = x[P(k)];
+    for (int l = 0; l < kBodyLegs; ++l) {
+      const double dz = planner.HipDz(l, p);
+      const double r = x[Z(k)] + dz - foot_z[k * kBodyLegs + l] - wanted;
+      const Eigen::Vector3d& hip = planner.hip_B(l);
+      const double dr = -std::cos(p) * hip.x() - std::sin(p) * hip.z();
+      h(0, 0) += 2.0 * wh;
+      h(1, 0) += 2.0 * wh * dr;
+      h(1, 1) += 2.0 * wh * (dr * dr - r * dz);
+    }
+    h(0, 1) = h(1, 0);
   };
-  for (std::size_t first = 0; first < rows.size();) {
-    std::size_t last = first;
-    while (last < rows.size() && rows[last].knot == rows[first].knot) ++last;
-    const int k = rows[first].knot, m = static_cast<int>(last - first);
-    optim::NonlinearConstraint limits;
-    limits.name = "hip_bounds" + std::to_string(k);
-    limits.blocks = {knot_blocks[static_cast<std::size_t>(k)]};
-    limits.lower = Eigen::VectorXd::Zero(2 * m);
-    limits.upper = Eigen::VectorXd::Constant(2 * m, optim::kInf);
-    limits.value = [&, first, m, k](const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> c) {
-      for (int i = 0; i < m; ++i) c.segment<2>(2 * i) = margins(rows[first + static_cast<std::size_t>(i)], x[Z(k)], x[P(k)], x[S(k)]);
-    };
-    limits.jacobian = [&, first, m, k](const Eigen::VectorXd& x, int, Eigen::Ref<Eigen::MatrixXd> jac) {
-      const double z = x[Z(k)], p = x[P(k)], s = x[S(k)];
-      for (int i = 0; i < m; ++i) {
-        const StanceRow& r = rows[first + static_cast<std::size_t>(i)];
-        const Eigen::Vector2d dp = (margins(r, z, p + kFiniteStep, s) - margins(r, z, p - kFiniteStep, s)) / (2.0 * kFiniteStep);
-        const Eigen::Vector2d ds = (margins(r, z, p, s + kFiniteStep) - margins(r, z, p, s - kFiniteStep)) / (2.0 * kFiniteStep);
-        jac.row(2 * i) << 1.0, dp[0], ds[0];
-        jac.row(2 * i + 1) << -1.0, dp[1], ds[1];
-      }
-    };
-    prog.AddNonlinearConstraint(limits);
-    first = last;
+  for (int k = 0; k < n; ++k) height.hessian_pairs.emplace_back(k, k);
+  prog->AddNonlinearCost(height);
+}
+
+// A stance row in a knot's constraint: which of its sides are there and where the first goes.
+struct KnotRow {
+  std::size_t row = 0;
+  std::array<bool, 2> on{};
+  int out = 0;
+};
+
+// The selected acceleration rows (linear) and bound sides (one nonlinear constraint per knot,
+// on that knot's block, each side a margin >= 0).
+void AddConstraints(const WindowData& d, const Selection& sel, const std::vector<optim::VariableBlock>& blocks,
+                    optim::Program* prog) {
+  const BodyPlannerSettings& set = d.planner->settings();
+  const int n = d.n, rows_per = n - 2;
+  std::vector<int> accel_rows;
+  for (int r = 0; r < 3 * rows_per; ++r) {
+    if (sel.accel[static_cast<std::size_t>(r)]) accel_rows.push_back(r);
+  }
+  if (!accel_rows.empty()) {
+    const int m = static_cast<int>(accel_rows.size());
+    std::vector<optim::LinearTerm> terms;
+    for (int k = 0; k < n; ++k) terms.emplace_back(blocks[static_cast<std::size_t>(k)], Eigen::MatrixXd::Zero(m, 3));
+    Eigen::VectorXd hi(m);
+    for (int i = 0; i < m; ++i) {
+      const int q = accel_rows[static_cast<std::size_t>(i)] / rows_per, k = accel_rows[static_cast<std::size_t>(i)] % rows_per;
+      terms[static_cast<std::size_t>(k)].second(i, q) = 1.0;
+      terms[static_cast<std::size_t>(k + 1)].second(i, q) = -2.0;
+      terms[static_cast<std::size_t>(k + 2)].second(i, q) = 1.0;
+      hi[i] = AccelLimit(set, q);
+    }
+    prog->AddLinearConstraint(terms, -hi, hi, "acceleration");
   }
 
-  const auto bound_distance = [&](const Eigen::VectorXd& x) {
-    double worst = std::numeric_limits<double>::infinity();
-    for (const StanceRow& r : rows) worst = std::min(worst, margins(r, x[Z(r.knot)], x[P(r.knot)], x[S(r.knot)]).minCoeff());
-    return worst;
-  };
+  for (std::size_t first = 0; first < d.rows.size();) {
+    std::size_t last = first;
+    while (last < d.rows.size() && d.rows[last].knot == d.rows[first].knot) ++last;
+    // This knot's stance rows with a selected side; each is evaluated once per point (one
+    // HipHeight call gives both sides) and writes its selected sides in order.
+    std::vector<KnotRow> knot_rows;
+    int m = 0;
+    for (std::size_t i = first; i < last; ++i) {
+      const std::array<bool, 2>& on = sel.sides[i];
+      if (!on[0] && !on[1]) continue;
+      knot_rows.push_back({i, on, m});
+      m += static_cast<int>(on[0]) + static_cast<int>(on[1]);
+    }
+    const int k = d.rows[first].knot;
+    first = last;
+    if (m == 0) continue;
+    optim::NonlinearConstraint limits;
+    limits.name = "hip_bounds" + std::to_string(k);
+    limits.blocks = {blocks[static_cast<std::size_t>(k)]};
+    limits.lower = Eigen::VectorXd::Zero(m);
+    limits.upper = Eigen::VectorXd::Constant(m, optim::kInf);
+    limits.value = [&d, knot_rows](const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> c) {
+      for (const KnotRow& kr : knot_rows) {
+        const Eigen::Vector2d margins = d.Margins(d.rows[kr.row], x);
+        int out = kr.out;
+        for (int side = 0; side < 2; ++side) {
+          if (kr.on[static_cast<std::size_t>(side)]) c[out++] = margins[side];
+        }
+      }
+    };
+    // d/dz is exact (+1 for h - lo, -1 for hi - h); pitch and shift by central differences.
+    limits.jacobian = [&d, knot_rows, k](const Eigen::VectorXd& x, int, Eigen::Ref<Eigen::MatrixXd> jac) {
+      const double z = x[Z(k)], p = x[P(k)], s = x[S(k)], e = kFiniteStep;
+      for (const KnotRow& kr : knot_rows) {
+        const StanceRow& r = d.rows[kr.row];
+        const Eigen::Vector2d dp = (d.Margins(r, z, p + e, s) - d.Margins(r, z, p - e, s)) / (2.0 * e);
+        const Eigen::Vector2d ds = (d.Margins(r, z, p, s + e) - d.Margins(r, z, p, s - e)) / (2.0 * e);
+        int out = kr.out;
+        for (int side = 0; side < 2; ++side) {
+          if (kr.on[static_cast<std::size_t>(side)]) jac.row(out++) << (side == 0 ? 1.0 : -1.0), dp[side], ds[side];
+        }
+      }
+    };
+    // The margins' curvature in (pitch, shift) by second differences over the same stencil:
+    // the hip's sin/cos (the hip height is linear in z) and the blended slope changes of the
+    // tabulated bounds near a cell edge, which a Hessian without them would miss there.
+    limits.hessian = [&d, knot_rows, k](const Eigen::VectorXd& x, const Eigen::Ref<const Eigen::VectorXd>& w, int, int,
+                                        Eigen::Ref<Eigen::MatrixXd> h) {
+      h.setZero();
+      const double z = x[Z(k)], p = x[P(k)], s = x[S(k)], e = kFiniteStep;
+      for (const KnotRow& kr : knot_rows) {
+        // This row's sides weighted by their multipliers: one combined margin to differentiate.
+        Eigen::Vector2d weight = Eigen::Vector2d::Zero();
+        int out = kr.out;
+        for (int side = 0; side < 2; ++side) {
+          if (kr.on[static_cast<std::size_t>(side)]) weight[side] = w[out++];
+        }
+        if (weight.isZero()) continue;
+        const StanceRow& r = d.rows[kr.row];
+        const auto f = [&](double dp, double ds) { return weight.dot(d.Margins(r, z, p + dp, s + ds)); };
+        const double c = f(0.0, 0.0);
+        h(1, 1) += (f(e, 0.0) - 2.0 * c + f(-e, 0.0)) / (e * e);
+        h(2, 2) += (f(0.0, e) - 2.0 * c + f(0.0, -e)) / (e * e);
+        const double ps = (f(e, e) - f(e, -e) - f(-e, e) + f(-e, -e)) / (4.0 * e * e);
+        h(2, 1) += ps;
+        h(1, 2) += ps;
+      }
+    };
+    prog->AddNonlinearConstraint(limits);
+  }
+}
 
-  BodyNlpWindow window;
-  window.qp_objective = prog.Objective(x0);
-  window.qp_bound_distance = bound_distance(x0);
+optim::SolveResult SolveProgram(const optim::Program& prog, const BodyNlpSettings& ns) {
   optim::SolveResult result;
-  const auto start = std::chrono::steady_clock::now();
   if (ns.solver == "nlopt") {
     optim::NloptSettings s;
     s.xtol_rel = ns.tolerance * 1e-2;
@@ -205,29 +351,108 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
     s.max_evaluations = ns.max_iterations * 20;
     optim::NloptSolver solver(s);
     solver.Solve(prog, &result);
-  } else {
-    optim::IpoptSettings s;
-    s.tolerance = ns.tolerance;
-    s.max_iterations = ns.max_iterations;
-    optim::IpoptSolver solver(s);
-    solver.Solve(prog, &result);
+    return result;
+  }
+  optim::IpoptSettings s;
+  s.tolerance = ns.tolerance;
+  s.max_iterations = ns.max_iterations;
+  // The initial point is a plan already (the QP's or a previous solution): start the barrier
+  // small and close to it instead of Ipopt's mu 0.1 and 1% push, which re-centre it first.
+  s.numeric_options["mu_init"] = 1e-5;
+  s.numeric_options["bound_push"] = 1e-6;
+  s.numeric_options["bound_frac"] = 1e-6;
+  // Feasibility is what the plan is checked on: no bound broken by more than 0.1 um (Ipopt's
+  // default allows 1e-4, i.e. 0.1 mm), also for the acceptable stop below.
+  s.numeric_options["constr_viol_tol"] = 1e-7;
+  s.numeric_options["acceptable_constr_viol_tol"] = 1e-7;
+  // Stop at the first feasible iterate whose optimality error is small: the blended slopes at
+  // the bounds' cell edges keep the last digits of the dual error from converging fast, and
+  // they do not move the plan (objective changes there are ~1e-7 relative).
+  s.integer_options["acceptable_iter"] = 1;
+  s.numeric_options["acceptable_tol"] = 1e-2;
+  s.numeric_options["acceptable_dual_inf_tol"] = 1e-1;
+  s.numeric_options["acceptable_compl_inf_tol"] = 1e-3;
+  optim::IpoptSolver solver(s);
+  solver.Solve(prog, &result);
+  return result;
+}
+
+// The NLP over knots t0 + k dt with `guess` as the initial point (knot 0 pinned to it).
+//
+// Constraint screening: most bound sides and acceleration rows are far from active, and each
+// one costs Ipopt a slack and two rows in the linear system it factorises every iteration
+// (MUMPS's time there grows with that size, not with the few nonzeros). So the first round
+// holds only the constraints near active at the guess; its solution is checked against every
+// constraint, the broken ones (and those near active there) are added, and the program is
+// solved again from that solution, up to kMaxRounds times, the last with every constraint. A
+// solution that breaks none of the left-out constraints leaves them inactive, so it is a
+// solution of the whole NLP: the answer is the same as with every constraint from the start.
+BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, double t0,
+                          const std::vector<BodyState>& guess, std::vector<BodyState>* out) {
+  const BodyPlannerSettings& set = planner.settings();
+  const FootSchedule& schedule = planner.schedule();
+  const int n = static_cast<int>(guess.size());
+  const WindowData d = Prepare(planner, t0, n);
+
+  Eigen::VectorXd x0(3 * n);
+  for (int k = 0; k < n; ++k) {
+    const BodyState& g = guess[static_cast<std::size_t>(k)];
+    x0.segment<3>(Z(k)) << g.z, g.pitch, g.com_shift;
+  }
+  Selection sel;
+  sel.sides.assign(d.rows.size(), {false, false});
+  sel.accel.assign(static_cast<std::size_t>(3 * (n - 2)), false);
+  Screen(d, x0, kScreenMargin, kScreenAccelFraction, &sel);
+  // SLSQP gets every constraint at once: started from a point that breaks a left-out one it
+  // stalled (reported infeasible), and its cost is its dense subproblem, not the rows' count.
+  if (ns.solver == "nlopt" || !ns.screen_constraints) sel.All();
+
+  BodyNlpWindow window;
+  window.qp_bound_distance = d.BoundDistance(x0);
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  Eigen::VectorXd x = x0;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    if (round + 1 == kMaxRounds) sel.All();
+    optim::Program prog;
+    std::vector<optim::VariableBlock> blocks;
+    for (int k = 0; k < n; ++k) blocks.push_back(prog.AddVariables("knot" + std::to_string(k), 3));
+    for (int k = 0; k < n; ++k) {
+      Eigen::Vector3d lo(-optim::kInf, -set.max_pitch, -set.max_shift), hi = -lo;
+      if (k == 0) lo = hi = x0.segment<3>(0);  // knot 0 is the state
+      prog.SetVariableBounds(blocks[static_cast<std::size_t>(k)], lo, hi);
+    }
+    AddCosts(d, blocks, &prog);
+    AddConstraints(d, sel, blocks, &prog);
+    prog.MutableInitialGuess() = x;
+    if (round == 0) window.qp_objective = prog.Objective(x0);
+    const optim::SolveResult result = SolveProgram(prog, ns);
+    window.status = result.status;
+    window.iterations += result.info.iterations;
+    if (result.x.size() == x.size() && result.x.allFinite()) x = result.x;
+    window.nlp_objective = prog.Objective(x);
+    // Done when no left-out constraint is broken (the selection then already holds all).
+    Selection broken = sel;
+    if (Screen(d, x, 0.0, 1.0, &broken) == 0) break;
+    // A broken constraint means the solution moved far from the guess (a cold start): the
+    // next round holds every acceleration row, the cheap linear ones, rather than creeping up
+    // on them round by round.
+    Screen(d, x, kScreenMargin, kScreenAccelFraction, &sel);
+    std::fill(sel.accel.begin(), sel.accel.end(), true);
   }
   window.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  window.status = result.status;
-  window.iterations = result.info.iterations;
-  const Eigen::VectorXd& x = result.x.size() == x0.size() && result.x.allFinite() ? result.x : x0;
-  window.nlp_objective = prog.Objective(x);
-  window.nlp_bound_distance = bound_distance(x);
+  window.solve_cpu_ms = 1e3 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  window.nlp_bound_distance = d.BoundDistance(x);
   out->resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
     BodyState& b = (*out)[static_cast<std::size_t>(k)];
-    b.t = t0 + k * dt;
+    b.t = t0 + k * set.knot_dt;
     b.z = x[Z(k)];
     b.pitch = x[P(k)];
     b.com_shift = x[S(k)];
     b.com_shift_y = guess[static_cast<std::size_t>(k)].com_shift_y;  // the QP's sideways shift is kept
-    b.x = neutral_x[k] + heading * b.com_shift;
-    b.y = neutral_y[k] + heading * b.com_shift_y;
+    b.x = d.neutral_x[k] + d.heading * b.com_shift;
+    b.y = d.neutral_y[k] + d.heading * b.com_shift_y;
     b.yaw = schedule.yaw();
   }
   return window;
@@ -280,6 +505,7 @@ Plan RefineBodyNlp(const RobotModel& robot, const Staircase& stairs, const Const
     worst.qp_bound_distance = std::min(worst.qp_bound_distance, w.qp_bound_distance);
     worst.nlp_bound_distance = std::min(worst.nlp_bound_distance, w.nlp_bound_distance);
     worst.solve_ms += w.solve_ms;
+    worst.solve_cpu_ms += w.solve_cpu_ms;
     worst.iterations += w.iterations;
     ++worst.windows;
     if (w.status != optim::SolveStatus::kSolved) worst.status = w.status;

@@ -3,7 +3,10 @@
 // at each knot's exact hip offset and pitch (not the worst case over a trust region), and the
 // FCL clearance bound (the lowest clear hip height per foothold, from the same cache) as
 // constraints. Solved with Ipopt or NLopt's SLSQP. It refines plans offline and measures how
-// conservative the per-cycle QP is (objective gap, distance to the bounds).
+// conservative the per-cycle QP is (objective gap, distance to the bounds). Ipopt gets the exact
+// Hessian of the costs (and finite-difference curvature of the bounds) and, first, only the
+// constraints near active at the initial point; its solution is checked against all of them and
+// re-solved with the broken ones until none is (see body_nlp.cc), so the answer is the whole NLP's.
 #pragma once
 
 #include <string>
@@ -18,6 +21,9 @@ struct BodyNlpSettings {
   std::string solver = "ipopt";  ///< "ipopt" or "nlopt" (SLSQP)
   double tolerance = 1e-4;       ///< the solver's convergence tolerance
   int max_iterations = 200;
+  /// Ipopt: solve with the constraints near active at the initial point first and add the ones
+  /// its solution breaks (same answer, smaller linear systems); false: every constraint at once.
+  bool screen_constraints = true;
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
 };
@@ -29,8 +35,9 @@ struct BodyNlpWindow {
   double nlp_objective = 0.0;  ///< ... at its own solution
   double qp_bound_distance = 0.0;   ///< smallest distance of a stance hip from its exact bounds, QP plan [m]
   double nlp_bound_distance = 0.0;  ///< ... NLP solution [m] (negative: a bound is broken)
-  double solve_ms = 0.0;
-  int iterations = 0;
+  double solve_ms = 0.0;      ///< wall-clock time of the solve (all screening rounds)
+  double solve_cpu_ms = 0.0;  ///< ... CPU time of this process over it (what the load does not inflate)
+  int iterations = 0;       ///< the solver's iterations (NLopt: evaluations), summed over screening rounds
   int windows = 0;          ///< RefineBodyNlp: windows solved
   int windows_refined = 0;  ///< ... whose NLP solution replaced the QP's values
 };

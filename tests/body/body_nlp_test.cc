@@ -98,6 +98,21 @@ TEST_CASE("NLopt's SLSQP solves the same horizon NLP to a point inside the exact
     INFO(check.first_violation);
     CHECK(check.ok());
   }
+  // Screening the constraints changes how Ipopt gets there, not where: the same solution as
+  // with every constraint from the start, inside every bound (screened or not).
+  BodyNlpSettings all, screened;
+  all.screen_constraints = false;
+  std::vector<BodyState> all_knots, screened_knots;
+  const BodyNlpWindow a = SolveBodyNlp(planner, all, now, &all_knots);
+  const BodyNlpWindow b = SolveBodyNlp(planner, screened, now, &screened_knots);
+  INFO("objective all " << a.nlp_objective << " screened " << b.nlp_objective << "; bound distance all "
+                        << a.nlp_bound_distance << " screened " << b.nlp_bound_distance);
+  REQUIRE(a.status == optim::SolveStatus::kSolved);
+  REQUIRE(b.status == optim::SolveStatus::kSolved);
+  CHECK(b.nlp_objective == Approx(a.nlp_objective).epsilon(1e-5));
+  CHECK(b.nlp_bound_distance >= -1e-6);
+  CHECK(a.nlp_bound_distance >= -1e-6);
+  for (std::size_t k = 0; k < all_knots.size(); ++k) CHECK(screened_knots[k].z == Approx(all_knots[k].z).margin(1e-4));
   BodyNlpSettings bad;
   bad.solver = "cplex";
   std::vector<BodyState> knots;
