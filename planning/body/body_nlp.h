@@ -4,9 +4,10 @@
 // FCL clearance bound (the lowest clear hip height per foothold, from the same cache) as
 // constraints. Solved with Ipopt or NLopt's SLSQP. It refines plans offline and measures how
 // conservative the per-cycle QP is (objective gap, distance to the bounds). Ipopt gets the exact
-// Hessian of the costs (and finite-difference curvature of the bounds) and, first, only the
-// constraints near active at the initial point; its solution is checked against all of them and
-// re-solved with the broken ones until none is (see body_nlp.cc), so the answer is the whole NLP's.
+// Hessian of the costs (and finite-difference curvature of the bounds), SLSQP variables scaled by
+// that curvature; both first see only the constraints near active at the initial point, and the
+// solution is checked against all of them and re-solved with the broken ones until none is (see
+// body_nlp.cc), so the answer is the whole NLP's.
 #pragma once
 
 #include <string>
@@ -21,8 +22,8 @@ struct BodyNlpSettings {
   std::string solver = "ipopt";  ///< "ipopt" or "nlopt" (SLSQP)
   double tolerance = 1e-4;       ///< the solver's convergence tolerance
   int max_iterations = 200;
-  /// Ipopt: solve with the constraints near active at the initial point first and add the ones
-  /// its solution breaks (same answer, smaller linear systems); false: every constraint at once.
+  /// Solve with the constraints near active at the initial point first and add the ones the
+  /// solution breaks (same answer, smaller linear systems); false: every constraint at once.
   bool screen_constraints = true;
   /// Throws std::invalid_argument naming the field.
   void Validate() const;

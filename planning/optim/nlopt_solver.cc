@@ -13,7 +13,7 @@ namespace {
 // All constraints of a program as g(x) <= 0 (inequalities) and h(x) = 0 (equalities).
 class ConstraintSet {
  public:
-  explicit ConstraintSet(const Program& p) : p_(p) {
+  ConstraintSet(const Program& p, const Eigen::VectorXd& scale) : p_(p), scale_(scale) {
     const auto add = [&](int source, double lo, double hi) {
       if (std::isfinite(lo) && lo == hi) {
         eq_.push_back({source, 1.0, lo});
@@ -41,7 +41,7 @@ class ConstraintSet {
   // Evaluates the stacked values (and Jacobian when grad != nullptr) at x.
   void Evaluate(const double* x, bool with_jacobian) {
     const int n = p_.num_variables();
-    x_ = Eigen::Map<const Eigen::VectorXd>(x, n);
+    x_ = scale_.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(x, n));
     const int m = p_.num_rows();
     if (m > 0) values_.head(m).noalias() = p_.constraint_matrix() * x_;
     if (with_jacobian && m > 0) jacobian_.topRows(m) = p_.constraint_matrix();
@@ -69,12 +69,13 @@ class ConstraintSet {
       const Entry& e = entries[k];
       result[k] = e.sign * (values_[e.source] - e.bound);
       if (grad != nullptr) {
-        for (int j = 0; j < n; ++j) grad[k * n + j] = e.sign * jacobian_(e.source, j);
+        for (int j = 0; j < n; ++j) grad[k * n + j] = e.sign * jacobian_(e.source, j) * scale_[j];
       }
     }
   }
 
   const Program& p_;
+  const Eigen::VectorXd& scale_;  // x = scale .* (NLopt's variables)
   std::vector<Entry> ineq_, eq_;
   Eigen::VectorXd x_, values_;
   Eigen::MatrixXd jacobian_;
@@ -83,6 +84,7 @@ class ConstraintSet {
 struct Context {
   const Program* program;
   ConstraintSet* constraints;
+  const Eigen::VectorXd* scale;
   Eigen::VectorXd x, part;
   int evaluations = 0;
 };
@@ -91,7 +93,7 @@ double Objective(unsigned n, const double* x, double* grad, void* data) {
   auto& c = *static_cast<Context*>(data);
   ++c.evaluations;
   const Program& p = *c.program;
-  c.x = Eigen::Map<const Eigen::VectorXd>(x, n);
+  c.x = c.scale->cwiseProduct(Eigen::Map<const Eigen::VectorXd>(x, n));
   if (grad != nullptr) {
     Eigen::Map<Eigen::VectorXd> out(grad, n);
     out.noalias() = p.hessian() * c.x;
@@ -103,6 +105,7 @@ double Objective(unsigned n, const double* x, double* grad, void* data) {
         out.segment(cost.blocks[b].start, cost.blocks[b].size) += c.part;
       }
     }
+    out.array() *= c.scale->array();
   }
   return p.Objective(c.x);
 }
@@ -119,6 +122,29 @@ void Equalities(unsigned, double* result, unsigned, const double* x, double* gra
   c.constraints->Fill(c.constraints->eq_, result, grad);
 }
 
+// Per variable 1 / sqrt of the objective's curvature at the initial guess (the quadratic part and
+// the nonlinear costs' Hessians where they have one), 1 where it is not positive: in these units
+// SLSQP's first quasi-Newton matrix, the identity, is the Hessian's diagonal.
+Eigen::VectorXd HessianScale(const Program& p) {
+  Eigen::VectorXd diagonal = p.hessian().diagonal();
+  const Eigen::VectorXd& x0 = p.initial_guess();
+  for (const auto& cost : p.nonlinear_costs()) {
+    if (!cost.hessian) continue;
+    for (const auto& [a, b] : HessianPairs(cost.hessian_pairs, static_cast<int>(cost.blocks.size()))) {
+      if (a != b) continue;
+      const VariableBlock& block = cost.blocks[static_cast<std::size_t>(a)];
+      Eigen::MatrixXd h = Eigen::MatrixXd::Zero(block.size, block.size);
+      cost.hessian(x0, a, a, h);
+      diagonal.segment(block.start, block.size) += h.diagonal();
+    }
+  }
+  Eigen::VectorXd scale(diagonal.size());
+  for (Eigen::Index j = 0; j < diagonal.size(); ++j) {
+    scale[j] = diagonal[j] > 0.0 && std::isfinite(diagonal[j]) ? 1.0 / std::sqrt(diagonal[j]) : 1.0;
+  }
+  return scale;
+}
+
 }  // namespace
 
 void NloptSettings::Validate() const {
@@ -133,14 +159,15 @@ void NloptSolver::DoSolve(const Program& program, SolveResult* result) {
   const nlopt::algorithm algorithm =
       settings_.algorithm == NloptSettings::Algorithm::kSlsqp ? nlopt::LD_SLSQP : nlopt::LN_COBYLA;
   nlopt::opt opt(algorithm, static_cast<unsigned>(n));
-  ConstraintSet constraints(program);
-  Context context{&program, &constraints, Eigen::VectorXd(n), Eigen::VectorXd(), 0};
+  const Eigen::VectorXd scale = settings_.scale_by_hessian ? HessianScale(program) : Eigen::VectorXd::Ones(n);
+  ConstraintSet constraints(program, scale);
+  Context context{&program, &constraints, &scale, Eigen::VectorXd(n), Eigen::VectorXd(), 0};
   std::vector<double> lower(n), upper(n), x(n);
   for (int j = 0; j < n; ++j) {
-    lower[j] = program.variable_lower()[j];
-    upper[j] = program.variable_upper()[j];
+    lower[j] = program.variable_lower()[j] / scale[j];
+    upper[j] = program.variable_upper()[j] / scale[j];
     // NLopt requires a start within the bounds.
-    x[j] = std::min(std::max(program.initial_guess()[j], lower[j]), upper[j]);
+    x[j] = std::min(std::max(program.initial_guess()[j] / scale[j], lower[j]), upper[j]);
   }
   opt.set_lower_bounds(lower);
   opt.set_upper_bounds(upper);
@@ -171,7 +198,7 @@ void NloptSolver::DoSolve(const Program& program, SolveResult* result) {
   } catch (const std::runtime_error&) {
     code = nlopt::FAILURE;
   }
-  for (int j = 0; j < n; ++j) result->x[j] = x[j];
+  for (int j = 0; j < n; ++j) result->x[j] = scale[j] * x[j];
   const double violation = program.MaxViolation(result->x);
   const double feasible_tol = 1e-6 * (1.0 + result->x.lpNorm<Eigen::Infinity>());
   switch (code) {

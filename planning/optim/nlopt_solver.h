@@ -23,6 +23,10 @@ struct NloptSettings {
   double constraint_tol = 1e-6;
   /// Function evaluations allowed.
   int max_evaluations = 100000;
+  /// Solve in variables scaled by 1 / sqrt of the objective's Hessian diagonal at the initial
+  /// guess (quadratic part plus the nonlinear costs' Hessian callbacks): SLSQP's quasi-Newton
+  /// matrix starts as the identity, far from a badly scaled problem's curvature.
+  bool scale_by_hessian = false;
   /// Wall-clock limit per solve [s]. Infinity means none.
   double time_limit_s = kInf;
   /// Throws std::invalid_argument naming the offending field.

@@ -299,3 +299,41 @@ TEST_CASE("Ipopt uses the nonlinear parts' exact Hessians when every part has on
   CHECK(without.info.iterations == lbfgs.info.iterations);
   CHECK(newton.info.iterations < lbfgs.info.iterations);
 }
+
+TEST_CASE("NLopt's Hessian scaling reaches the same optimum of a badly scaled problem in fewer evaluations",
+          "[nonlinear]") {
+  // min 1e4 (x - 1)^2 + 1e3 (y - 2)^2 + 1e3 (y - 2)^4 s.t. x + y >= 3.5: curvatures 2e4 and 2e3
+  // (the quadratic part and a nonlinear cost's Hessian). With v = y - 2: 2v^3 + 11v - 5 = 0.
+  Program p;
+  const VariableBlock x = p.AddVariables("x", 1);
+  const VariableBlock y = p.AddVariables("y", 1);
+  p.AddQuadraticCost(x, Eigen::MatrixXd::Constant(1, 1, 2e4), Eigen::VectorXd::Constant(1, -2e4));
+  p.AddConstant(1e4);
+  NonlinearCost quartic;
+  quartic.name = "quartic";
+  quartic.blocks = {y};
+  quartic.value = [](const Eigen::VectorXd& v) { return 1e3 * std::pow(v[1] - 2, 2) + 1e3 * std::pow(v[1] - 2, 4); };
+  quartic.gradient = [](const Eigen::VectorXd& v, int, Eigen::Ref<Eigen::VectorXd> g) {
+    g[0] = 2e3 * (v[1] - 2) + 4e3 * std::pow(v[1] - 2, 3);
+  };
+  quartic.hessian = [](const Eigen::VectorXd& v, int, int, Eigen::Ref<Eigen::MatrixXd> h) {
+    h(0, 0) = 2e3 + 12e3 * std::pow(v[1] - 2, 2);
+  };
+  p.AddNonlinearCost(quartic);
+  p.AddLinearConstraint({{x, Eigen::MatrixXd::Ones(1, 1)}, {y, Eigen::MatrixXd::Ones(1, 1)}}, Eigen::VectorXd::Constant(1, 3.5),
+                        Eigen::VectorXd::Constant(1, kInf), "sum");
+  p.SetInitialGuess(x, Eigen::VectorXd::Constant(1, 3.0));
+  p.SetInitialGuess(y, Eigen::VectorXd::Constant(1, -1.0));
+  NloptSettings plain, scaled;
+  scaled.scale_by_hessian = true;
+  const SolveResult a = NloptSolver(plain).Solve(p);
+  const SolveResult b = NloptSolver(scaled).Solve(p);
+  INFO("evaluations: plain " << a.info.iterations << ", scaled " << b.info.iterations);
+  for (const SolveResult* r : {&a, &b}) {
+    REQUIRE(r->status == SolveStatus::kSolved);
+    CHECK(r->x[0] == Approx(1.0608526771308044).margin(1e-5));
+    CHECK(r->x[1] == Approx(2.4391473228691956).margin(1e-5));
+    CHECK(r->objective == Approx(267.07211998853165).epsilon(1e-5));  // within SLSQP's 1e-6 constraint tolerance
+  }
+  CHECK(b.info.iterations < a.info.iterations);
+}
