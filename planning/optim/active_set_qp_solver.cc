@@ -342,7 +342,15 @@ SolveStatus ActiveSetQpSolver::Iterate() {
       if (OverLimits()) return time_exceeded_ ? SolveStatus::kTimeLimit : SolveStatus::kIterationLimit;
       ComputeStepVector(p, sigma);
       const int q = q_;
-      z_.noalias() = J_.rightCols(n_ - q) * d_.tail(n_ - q);
+      // z = J2 d2 over the columns d reaches: J's last columns often still hold the untouched
+      // block structure of L^{-T} (e.g. variables no active row involves), where d is exactly 0.
+      int reach = n_;
+      while (reach > q && d_[reach - 1] == 0.0) --reach;
+      if (reach > q) {
+        z_.noalias() = J_.middleCols(q, reach - q) * d_.segment(q, reach - q);
+      } else {
+        z_.setZero();
+      }
       const double free_norm2 = d_.tail(n_ - q).squaredNorm();
       if (q > 0) {
         r_.head(q) = d_.head(q);
