@@ -380,7 +380,7 @@ void BodyPlanner::StoreSolution(const optim::SolveResult& result, double now) {
   previous_z_ = result.x.segment(qp_->z().start, n);
   previous_pitch_ = result.x.segment(qp_->pitch().start, n);
   previous_shift_ = result.x.segment(qp_->shift().start, n);
-  previous_lateral_ = result.x.segment(qp_->lateral().start, n);
+  previous_lateral_ = qp_->LateralOf(result);
   has_previous_ = true;
 }
 
@@ -478,7 +478,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
           i > 0 ? std::max({(result_.x.segment(qp_->z().start, n) - previous_z_).lpNorm<Eigen::Infinity>(),
                                     (result_.x.segment(qp_->pitch().start, n) - previous_pitch_).lpNorm<Eigen::Infinity>(),
                                     (result_.x.segment(qp_->shift().start, n) - previous_shift_).lpNorm<Eigen::Infinity>(),
-                                    (result_.x.segment(qp_->lateral().start, n) - previous_lateral_).lpNorm<Eigen::Infinity>()})
+                                    (qp_->LateralOf(result_) - previous_lateral_).lpNorm<Eigen::Infinity>()})
                         : optim::kInf;
       StoreSolution(result_, now);
       if (change < kWarmupTolerance) break;
