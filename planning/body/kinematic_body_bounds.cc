@@ -95,9 +95,7 @@ StanceLegCheck KinematicBodyBounds::CheckLeg(int leg, const Eigen::Vector3d& con
   return check;
 }
 
-const KinematicBodyBounds::ReachNode& KinematicBodyBounds::Reach(int leg, int i, int j) {
-  ReachNode& node = reach_[static_cast<std::size_t>(leg)][static_cast<std::size_t>(i * np_ + j)];
-  if (node.done) return node;
+const KinematicBodyBounds::ReachNode& KinematicBodyBounds::FillReach(ReachNode& node, int leg, int i, int j) {
   node.done = true;
   ++reach_computed_;
   const double dx = x0_ + i * settings_.grid_dx, pitch = p0_ + j * settings_.grid_pitch;
@@ -140,9 +138,7 @@ const KinematicBodyBounds::ReachNode& KinematicBodyBounds::Reach(int leg, int i,
   return node;
 }
 
-float KinematicBodyBounds::ClearLow(int foothold, int i, int j) {
-  ClearNode& node = clear_[static_cast<std::size_t>(foothold)][static_cast<std::size_t>(i * np_ + j)];
-  if (node.done) return node.lo;
+float KinematicBodyBounds::FillClearLow(ClearNode& node, int foothold, int i, int j) {
   node.done = true;
   ++clearance_computed_;
   const Foothold& f = footholds_[static_cast<std::size_t>(foothold)];
