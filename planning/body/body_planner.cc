@@ -33,6 +33,16 @@ constexpr double kReferenceInset = 0.002;
 // A plan counts as breaking a leg's bound only beyond this [m] (solver tolerance).
 constexpr double kRowTolerance = 1e-6;
 
+// sin and cos of one pitch, for the hip offsets of all four legs at it.
+struct PitchTurn {
+  explicit PitchTurn(double pitch) : s(std::sin(pitch)), c(std::cos(pitch)) {}
+  double s, c;
+};
+
+// The hip's offset from the body origin, vertical and along the heading (as HipDz, HipDx).
+double HipDzAt(const Eigen::Vector3d& hip_B, const PitchTurn& turn) { return -turn.s * hip_B.x() + turn.c * hip_B.z(); }
+double HipDxAt(const Eigen::Vector3d& hip_B, const PitchTurn& turn) { return turn.c * hip_B.x() + turn.s * hip_B.z(); }
+
 void CheckFinite(double value, const char* what) {
   if (!std::isfinite(value)) throw std::invalid_argument(std::string("BodyPlanner::Update: ") + what + " is not finite");
 }
@@ -101,13 +111,11 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
 }
 
 double BodyPlanner::HipDz(int leg, double pitch) const {
-  const Eigen::Vector3d& h = hips_B_[static_cast<std::size_t>(leg)];
-  return -std::sin(pitch) * h.x() + std::cos(pitch) * h.z();
+  return HipDzAt(hips_B_[static_cast<std::size_t>(leg)], PitchTurn(pitch));
 }
 
 double BodyPlanner::HipDx(int leg, double pitch) const {
-  const Eigen::Vector3d& h = hips_B_[static_cast<std::size_t>(leg)];
-  return std::cos(pitch) * h.x() + std::sin(pitch) * h.z();
+  return HipDxAt(hips_B_[static_cast<std::size_t>(leg)], PitchTurn(pitch));
 }
 
 BodyState BodyPlanner::StartState() const {
@@ -146,7 +154,8 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
   }
   for (int k = 0; k < n; ++k) {
     const double t = now + k * dt;
-    const Eigen::Vector2d xy = schedule_.NeutralBodyXY(t);
+    const LegPhase* knot_phases = &phases_[static_cast<std::size_t>(k * kBodyLegs)];
+    const Eigen::Vector2d xy = schedule_.NeutralBodyXY(knot_phases);
     neutral_x_[k] = xy.x();
     neutral_y_[k] = xy.y();
     if (k == 0) {
@@ -167,7 +176,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.shift_lo[k] = std::max(-smax, s0 - settings_.trust_shift);
       qp.shift_hi[k] = std::min(smax, s0 + settings_.trust_shift);
     }
-    const double feet_pitch = schedule_.FeetPitch(t);
+    const double feet_pitch = schedule_.FeetPitch(knot_phases);
     qp.pitch_ref[k] = std::clamp(feet_pitch + command.pitch_offset, -pmax, pmax);
     const double stairness = stairs_pitch_ > 0.0 ? std::clamp(std::abs(feet_pitch) / stairs_pitch_, 0.0, 1.0) : 0.0;
     qp.shift_ref[k] = settings_.stairs_com_shift * stairness;
@@ -178,6 +187,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     const double lateral_pad = y_far * y_far / (2.0 * hip_height_);
 
     const double pl = qp.pitch_lo[k], ph = qp.pitch_hi[k], pm = 0.5 * (pl + ph);
+    const PitchTurn turn_l(pl), turn_m(pm), turn_h(ph);
     double narrowest = optim::kInf;  // the stance legs' narrowest hip-height range at this knot
     for (int g = 0; g < qp.groups(); ++g) {
       qp.hip_lo[k * qp.groups() + g] = -optim::kInf;
@@ -188,14 +198,16 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       leg_lo_[k * kBodyLegs + l] = -optim::kInf;
       leg_hi_[k * kBodyLegs + l] = optim::kInf;
       const double c = qp.row_coefficient(l);
-      const LegPhase& phase = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
-      qp.height_ref[k * kBodyLegs + l] = phase.foot_W.z() + hip_height_ + command.height_offset - (HipDz(l, pm) - c * pm);
+      const LegPhase& phase = knot_phases[l];
+      const Eigen::Vector3d& hip_B = hips_B_[static_cast<std::size_t>(l)];
+      qp.height_ref[k * kBodyLegs + l] = phase.foot_W.z() + hip_height_ + command.height_offset - (HipDzAt(hip_B, turn_m) - c * pm);
       if (!phase.stance || k == 0) continue;
       // The exact hip offsets over the pitch interval: sampled at its ends and middle, padded by
       // the curvature bound (|hip_B| (w/2)^2 / 8 per half).
-      const double pad = hips_B_[static_cast<std::size_t>(l)].norm() * (ph - pl) * (ph - pl) / 32.0;
-      const double e1 = HipDz(l, pl) - c * pl, e2 = HipDz(l, pm) - c * pm, e3 = HipDz(l, ph) - c * ph;
-      const double g1 = HipDx(l, pl), g2 = HipDx(l, pm), g3 = HipDx(l, ph);
+      const double pad = hip_B.norm() * (ph - pl) * (ph - pl) / 32.0;
+      const double e1 = HipDzAt(hip_B, turn_l) - c * pl, e2 = HipDzAt(hip_B, turn_m) - c * pm,
+                   e3 = HipDzAt(hip_B, turn_h) - c * ph;
+      const double g1 = HipDxAt(hip_B, turn_l), g2 = HipDxAt(hip_B, turn_m), g3 = HipDxAt(hip_B, turn_h);
       const double e_min = std::min({e1, e2, e3}) - pad, e_max = std::max({e1, e2, e3}) + pad;
       const double g_min = std::min({g1, g2, g3}) - pad, g_max = std::max({g1, g2, g3}) + pad;
       const Eigen::Vector3d& contact = schedule_.footholds()[static_cast<std::size_t>(phase.foothold)].contact_W;
@@ -239,7 +251,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.hip_lo[row] = row_lo;
       qp.hip_hi[row] = row_hi;
     }
-    if (k > 0 && narrowest < kRestoreWidth) RestoreShift(k, t, xy.x(), pl, ph, narrowest);
+    if (k > 0 && narrowest < kRestoreWidth) RestoreShift(k, xy.x(), pl, ph, narrowest);
     SupportRows(k, t, pm);
   }
 }
@@ -317,25 +329,25 @@ void BodyPlanner::SupportRows(int k, double t, double pitch) {
   }
 }
 
-void BodyPlanner::RestoreShift(int k, double t, double neutral_x, double pitch_lo, double pitch_hi, double width) {
+void BodyPlanner::RestoreShift(int k, double neutral_x, double pitch_lo, double pitch_hi, double width) {
   // The rows only see the shift through their trust box, so nothing in the QP moves the body
   // fore or aft to widen a leg's range. Here the knot's shift reference moves to the candidate
   // shift that leaves the stance legs the widest ranges; the trust region then walks the plan
   // there over the next cycles, long before the knot is executed.
   const double smax = settings_.max_shift, heading = schedule_.heading();
-  const double pm = 0.5 * (pitch_lo + pitch_hi);
+  const PitchTurn turn(0.5 * (pitch_lo + pitch_hi));
   double best_width = width, best_shift = qp_->shift_ref[k];
   for (int i = 0; i < kRestoreCandidates; ++i) {
     const double s = -smax + 2.0 * smax * i / (kRestoreCandidates - 1);
     double narrowest = optim::kInf;
     for (int l = 0; l < kBodyLegs && narrowest > best_width; ++l) {
-      const LegPhase phase = schedule_.Phase(l, t);
+      const LegPhase& phase = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
       if (!phase.stance) continue;
       const Eigen::Vector3d& contact = schedule_.footholds()[static_cast<std::size_t>(phase.foothold)].contact_W;
       HipBox box;
       box.leg = l;
       box.foothold = phase.foothold;
-      box.dx_lo = box.dx_hi = heading * (neutral_x - contact.x()) + s + HipDx(l, pm);
+      box.dx_lo = box.dx_hi = heading * (neutral_x - contact.x()) + s + HipDxAt(hips_B_[static_cast<std::size_t>(l)], turn);
       box.pitch_lo = pitch_lo;
       box.pitch_hi = pitch_hi;
       const HeightRange range = bounds_->HipHeight(box);
@@ -368,7 +380,7 @@ void BodyPlanner::StoreSolution(const optim::SolveResult& result, double now) {
   previous_z_ = result.x.segment(qp_->z().start, n);
   previous_pitch_ = result.x.segment(qp_->pitch().start, n);
   previous_shift_ = result.x.segment(qp_->shift().start, n);
-  previous_lateral_ = result.x.segment(qp_->lateral().start, n);
+  previous_lateral_ = qp_->LateralOf(result);
   has_previous_ = true;
 }
 
@@ -466,7 +478,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
           i > 0 ? std::max({(result_.x.segment(qp_->z().start, n) - previous_z_).lpNorm<Eigen::Infinity>(),
                                     (result_.x.segment(qp_->pitch().start, n) - previous_pitch_).lpNorm<Eigen::Infinity>(),
                                     (result_.x.segment(qp_->shift().start, n) - previous_shift_).lpNorm<Eigen::Infinity>(),
-                                    (result_.x.segment(qp_->lateral().start, n) - previous_lateral_).lpNorm<Eigen::Infinity>()})
+                                    (qp_->LateralOf(result_) - previous_lateral_).lpNorm<Eigen::Infinity>()})
                         : optim::kInf;
       StoreSolution(result_, now);
       if (change < kWarmupTolerance) break;

@@ -124,7 +124,7 @@ class BodyPlanner {
   // knots k-1..k+1, shrunk by the stability margin (rows free where no polygon applies).
   void SupportRows(int k, double t, double pitch);
   // Moves knot k's shift reference to the shift that widens its narrowest stance-leg range.
-  void RestoreShift(int k, double t, double neutral_x, double pitch_lo, double pitch_hi, double width);
+  void RestoreShift(int k, double neutral_x, double pitch_lo, double pitch_hi, double width);
   // Previous plan's pitch and shift at time t (held beyond its ends).
   double PreviousAt(const Eigen::VectorXd& values, double t) const;
   void StoreSolution(const optim::SolveResult& result, double now);

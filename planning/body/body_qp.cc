@@ -21,7 +21,7 @@ Eigen::MatrixXd SecondDifferences(int n) {
 }  // namespace
 
 BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients)
-    : knots_(settings.knots), settings_(settings), c_(row_coefficients) {
+    : knots_(settings.knots), settings_(settings), c_(row_coefficients), lateral_apart_(settings.stability_margin < 0.0) {
   settings_.Validate();
   const int n = knots_;
   for (int l = 0; l < kBodyLegs; ++l) {
@@ -43,7 +43,8 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   z_ = program_.AddVariables("height", n);
   pitch_ = program_.AddVariables("pitch", n);
   shift_ = program_.AddVariables("com_shift", n);
-  lateral_ = program_.AddVariables("com_shift_y", n);
+  optim::Program& lateral_program = lateral_apart_ ? lateral_program_ : program_;
+  lateral_ = lateral_program.AddVariables("com_shift_y", n);
 
   // Costs (0.5 x'Hx + g'x: a weight w on (a'x - r)^2 adds 2w aa' to H).
   const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
@@ -58,7 +59,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   program_.AddQuadraticCost(pitch_, (2.0 * wh * sum_c2 + 2.0 * settings_.pitch_weight) * identity + smooth, zero);
   program_.AddCrossQuadraticCost(z_, pitch_, 2.0 * wh * sum_c * identity);
   program_.AddQuadraticCost(shift_, 2.0 * settings_.shift_weight * identity + smooth, zero);
-  program_.AddQuadraticCost(lateral_, 2.0 * settings_.lateral_weight * identity + smooth, zero);
+  lateral_program.AddQuadraticCost(lateral_, 2.0 * settings_.lateral_weight * identity + smooth, zero);
 
   // Hip rows: z_k + c_g pitch_k, row k * groups + g.
   Eigen::MatrixXd a_z = Eigen::MatrixXd::Zero(groups_ * n, n), a_p = a_z;
@@ -72,32 +73,37 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   const Eigen::VectorXd free_hi = Eigen::VectorXd::Constant(groups_ * n, optim::kInf);
   hip_rows_ = program_.AddLinearConstraint({{z_, a_z}, {pitch_, a_p}}, free_lo, free_hi, "hip_height");
 
-  // Acceleration limits.
+  // Acceleration limits (the sideways shift's with its own variables).
   const Eigen::MatrixXd zeros = Eigen::MatrixXd::Zero(n - 2, n);
-  Eigen::MatrixXd accel_z(4 * (n - 2), n), accel_p(4 * (n - 2), n), accel_s(4 * (n - 2), n), accel_y(4 * (n - 2), n);
-  accel_z << d2, zeros, zeros, zeros;
-  accel_p << zeros, d2, zeros, zeros;
-  accel_s << zeros, zeros, d2, zeros;
-  accel_y << zeros, zeros, zeros, d2;
-  Eigen::VectorXd accel_hi(4 * (n - 2));
+  Eigen::MatrixXd accel_z(3 * (n - 2), n), accel_p(3 * (n - 2), n), accel_s(3 * (n - 2), n);
+  accel_z << d2, zeros, zeros;
+  accel_p << zeros, d2, zeros;
+  accel_s << zeros, zeros, d2;
+  Eigen::VectorXd accel_hi(3 * (n - 2));
   accel_hi << Eigen::VectorXd::Constant(n - 2, settings_.max_height_accel * dt * dt),
       Eigen::VectorXd::Constant(n - 2, settings_.max_pitch_accel * dt * dt),
-      Eigen::VectorXd::Constant(n - 2, settings_.max_shift_accel * dt * dt),
-      Eigen::VectorXd::Constant(n - 2, settings_.max_lateral_accel * dt * dt);
-  accel_rows_ = program_.AddLinearConstraint(
-      {{z_, accel_z}, {pitch_, accel_p}, {shift_, accel_s}, {lateral_, accel_y}}, -accel_hi, accel_hi, "acceleration");
+      Eigen::VectorXd::Constant(n - 2, settings_.max_shift_accel * dt * dt);
+  accel_rows_ = program_.AddLinearConstraint({{z_, accel_z}, {pitch_, accel_p}, {shift_, accel_s}}, -accel_hi, accel_hi,
+                                             "acceleration");
+  const Eigen::VectorXd lateral_accel = Eigen::VectorXd::Constant(n - 2, settings_.max_lateral_accel * dt * dt);
+  lateral_program.AddLinearConstraint({{lateral_, d2}}, -lateral_accel, lateral_accel, "lateral_acceleration");
 
-  // Support rows: free until the planner gives them feet.
-  const Eigen::MatrixXd no_coefficients = Eigen::MatrixXd::Zero(kSupportRows * n, n);
-  const Eigen::VectorXd support_free = Eigen::VectorXd::Constant(kSupportRows * n, optim::kInf);
-  support_rows_ = program_.AddLinearConstraint({{shift_, no_coefficients}, {lateral_, no_coefficients}}, -support_free,
-                                               support_free, "support");
+  // Support rows: free until the planner gives them feet (none when the lateral QP is apart).
+  const int support_count = lateral_apart_ ? 0 : kSupportRows * n;
+  const Eigen::MatrixXd no_coefficients = Eigen::MatrixXd::Zero(support_count, n);
+  const Eigen::VectorXd support_free = Eigen::VectorXd::Constant(support_count, optim::kInf);
+  if (lateral_apart_) {
+    support_rows_ = {"support", program_.num_rows(), 0};
+  } else {
+    support_rows_ = program_.AddLinearConstraint({{shift_, no_coefficients}, {lateral_, no_coefficients}}, -support_free,
+                                                 support_free, "support");
+  }
   support_cx.setZero(kSupportRows * n);
   support_cy.setZero(kSupportRows * n);
   pushed_cx_ = support_cx;
   pushed_cy_ = support_cy;
-  support_lo = -support_free;
-  support_hi = support_free;
+  support_lo.setConstant(kSupportRows * n, -optim::kInf);
+  support_hi.setConstant(kSupportRows * n, optim::kInf);
   coefficient_row_.setZero(1, n);
   single_row_ = {support_rows_.name, support_rows_.start, 1};
 
@@ -137,12 +143,14 @@ void BodyQp::PushInputs() {
   program_.SetLinearCost(z_, g_z_);
   program_.SetLinearCost(pitch_, g_pitch_);
   program_.SetLinearCost(shift_, g_shift_);
-  program_.SetLinearCost(lateral_, g_lateral_);
+  optim::Program& lateral_program = lateral_apart_ ? lateral_program_ : program_;
+  lateral_program.SetLinearCost(lateral_, g_lateral_);
   program_.SetVariableBounds(z_, z_lo, z_hi);
   program_.SetVariableBounds(pitch_, pitch_lo, pitch_hi);
   program_.SetVariableBounds(shift_, shift_lo, shift_hi);
-  program_.SetVariableBounds(lateral_, lateral_lo, lateral_hi);
+  lateral_program.SetVariableBounds(lateral_, lateral_lo, lateral_hi);
   program_.SetConstraintBounds(hip_rows_, hip_lo, hip_hi);
+  if (lateral_apart_) return;  // no support rows
   // Only rows whose feet changed get new coefficients: the solver keeps its factorisation when
   // they are inactive (the planner changes a pair's feet only while its row is free).
   for (int row = 0; row < static_cast<int>(support_cx.size()); ++row) {
@@ -164,6 +172,18 @@ void BodyQp::Solve(double time_limit_s, optim::SolveResult* result) {
   PushInputs();
   solver_.settings().time_limit_s = time_limit_s > 0.0 ? time_limit_s : 1e-9;
   solver_.Solve(program_, result);
+  if (!lateral_apart_) return;
+  // The sideways shift's own QP, in what is left of the time; its outcome joins the result's.
+  const double left_s = time_limit_s - 1e-6 * result->info.solve_time_us;
+  lateral_solver_.settings().time_limit_s = left_s > 0.0 ? left_s : 1e-9;
+  lateral_solver_.Solve(lateral_program_, &lateral_result_);
+  result->info.iterations += lateral_result_.info.iterations;
+  if (result->solved() && !lateral_result_.solved()) result->status = lateral_result_.status;
+}
+
+Eigen::VectorBlock<const Eigen::VectorXd> BodyQp::LateralOf(const optim::SolveResult& result) const {
+  const Eigen::VectorXd& x = lateral_apart_ ? lateral_result_.x : result.x;
+  return x.segment(lateral_.start, knots_);
 }
 
 }  // namespace stairplan

@@ -15,6 +15,10 @@
 //                                 side of the support polygon's edge between the two feet
 //        variable bounds (limits intersected with the cycle's trust region; knot 0 pinned)
 //
+// Without stability rows (stability_margin < 0, the default) nothing couples the sideways shift to
+// the rest, so it is its own small QP with its own solver (lateral_program()): the per-cycle
+// solver's cost grows with n^2 per active-set change, and 40 of the 160 variables never took part.
+//
 // c_l = -hip_x_l cos(pitch_nominal) is the hip's height change per unit pitch at the flight's
 // nominal pitch. It is fixed so the matrix never changes; the planner evaluates the exact hip
 // height at the linearisation point and makes each row's bounds hold over the trust region.
@@ -61,16 +65,27 @@ class BodyQp {
   /// (+-inf: none). Coefficients are pushed only where they changed.
   Eigen::VectorXd support_cx, support_cy, support_lo, support_hi;
 
-  /// Pushes the inputs into the program and solves warm; `time_limit_s` may be +inf.
-  /// Allocation-free after the first call.
+  /// Pushes the inputs into the program(s) and solves warm; `time_limit_s` may be +inf.
+  /// Allocation-free after the first call. Without support rows the sideways shift is its own
+  /// QP (lateral_apart()): `result` then holds the rest, and its status and iterations both's.
   void Solve(double time_limit_s, optim::SolveResult* result);
   /// The next solve starts cold.
-  void ResetWarmStart() { solver_.ResetWarmStart(); }
+  void ResetWarmStart() {
+    solver_.ResetWarmStart();
+    lateral_solver_.ResetWarmStart();
+  }
+  /// The knots' sideways shift in `result` of Solve().
+  Eigen::VectorBlock<const Eigen::VectorXd> LateralOf(const optim::SolveResult& result) const;
 
+  /// True when no support row couples the sideways shift to the rest (stability_margin < 0):
+  /// it is then a separate QP, lateral_program(), and program() holds the rest.
+  bool lateral_apart() const { return lateral_apart_; }
   const optim::Program& program() const { return program_; }
+  const optim::Program& lateral_program() const { return lateral_apart_ ? lateral_program_ : program_; }
   const optim::VariableBlock& z() const { return z_; }
   const optim::VariableBlock& pitch() const { return pitch_; }
   const optim::VariableBlock& shift() const { return shift_; }
+  /// In lateral_program().
   const optim::VariableBlock& lateral() const { return lateral_; }
   const optim::ConstraintRows& support_rows() const { return support_rows_; }
   const optim::ConstraintRows& hip_rows() const { return hip_rows_; }
@@ -85,7 +100,11 @@ class BodyQp {
   int groups_ = 0;
   std::array<int, kBodyLegs> group_of_{};
   std::array<double, kBodyLegs> group_c_{};
+  bool lateral_apart_ = false;
   optim::Program program_;
+  optim::Program lateral_program_;  // the sideways shift when apart (else empty)
+  optim::ActiveSetQpSolver lateral_solver_;
+  optim::SolveResult lateral_result_;
   optim::VariableBlock z_, pitch_, shift_, lateral_;
   optim::ConstraintRows hip_rows_, accel_rows_, support_rows_;
   optim::ActiveSetQpSolver solver_;

@@ -83,19 +83,21 @@ LegPhase FootSchedule::Phase(int leg, double t) const {
   return phase;
 }
 
-Eigen::Vector2d FootSchedule::NeutralBodyXY(double t) const {
+template <typename FootAt>
+Eigen::Vector2d FootSchedule::NeutralBodyXYOf(const FootAt& foot_W) const {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   for (int l = 0; l < leg_count(); ++l) {
-    sum += Phase(l, t).foot_W.head<2>() - legs_[static_cast<std::size_t>(l)].offset_W;
+    sum += foot_W(l).template head<2>() - legs_[static_cast<std::size_t>(l)].offset_W;
   }
   return sum / static_cast<double>(std::max(1, leg_count()));
 }
 
-double FootSchedule::FeetPitch(double t) const {
+template <typename FootAt>
+double FootSchedule::FeetPitchOf(const FootAt& foot_W) const {
   double front_x = 0.0, front_z = 0.0, hind_x = 0.0, hind_z = 0.0;
   int fronts = 0, hinds = 0;
   for (int l = 0; l < leg_count(); ++l) {
-    const Eigen::Vector3d p = Phase(l, t).foot_W;
+    const Eigen::Vector3d p = foot_W(l);
     if (legs_[static_cast<std::size_t>(l)].front) {
       front_x += p.x(), front_z += p.z(), ++fronts;
     } else {
@@ -106,6 +108,22 @@ double FootSchedule::FeetPitch(double t) const {
   const double run = (front_x / fronts - hind_x / hinds) * heading_;
   if (!(run > 1e-6)) return 0.0;
   return -std::atan2(front_z / fronts - hind_z / hinds, run);
+}
+
+Eigen::Vector2d FootSchedule::NeutralBodyXY(double t) const {
+  return NeutralBodyXYOf([&](int l) { return Phase(l, t).foot_W; });
+}
+
+double FootSchedule::FeetPitch(double t) const {
+  return FeetPitchOf([&](int l) { return Phase(l, t).foot_W; });
+}
+
+Eigen::Vector2d FootSchedule::NeutralBodyXY(const LegPhase* phases) const {
+  return NeutralBodyXYOf([&](int l) -> const Eigen::Vector3d& { return phases[l].foot_W; });
+}
+
+double FootSchedule::FeetPitch(const LegPhase* phases) const {
+  return FeetPitchOf([&](int l) -> const Eigen::Vector3d& { return phases[l].foot_W; });
 }
 
 }  // namespace stairplan

@@ -53,6 +53,10 @@ class FootSchedule {
   Eigen::Vector2d NeutralBodyXY(double t) const;
   /// The pitch of the line from the hind feet to the front feet at t (nose-up negative).
   double FeetPitch(double t) const;
+  /// The same two from the legs' phases at one instant (leg_count() of them, in leg order, as
+  /// Phase() gives them), for callers that have the phases already.
+  Eigen::Vector2d NeutralBodyXY(const LegPhase* phases) const;
+  double FeetPitch(const LegPhase* phases) const;
   /// The leg's neutral foot offset from the body origin in the world, horizontal [m].
   const Eigen::Vector2d& NeutralOffset(int leg) const { return legs_[static_cast<std::size_t>(leg)].offset_W; }
   bool IsFront(int leg) const { return legs_[static_cast<std::size_t>(leg)].front; }
@@ -65,6 +69,12 @@ class FootSchedule {
     std::vector<double> liftoffs;   // liftoffs[j]: leaving footholds[j]
     std::vector<double> touchdowns; // touchdowns[j]: arriving on footholds[j + 1]
   };
+  // The two above over the feet foot_W(leg) gives.
+  template <typename FootAt>
+  Eigen::Vector2d NeutralBodyXYOf(const FootAt& foot_W) const;
+  template <typename FootAt>
+  double FeetPitchOf(const FootAt& foot_W) const;
+
   std::vector<Foothold> footholds_;
   std::vector<LegTimeline> legs_;
   double end_time_ = 0.0;

@@ -1,6 +1,7 @@
 #include "planning/body/kinematic_body_bounds.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -94,9 +95,7 @@ StanceLegCheck KinematicBodyBounds::CheckLeg(int leg, const Eigen::Vector3d& con
   return check;
 }
 
-const KinematicBodyBounds::ReachNode& KinematicBodyBounds::Reach(int leg, int i, int j) {
-  ReachNode& node = reach_[static_cast<std::size_t>(leg)][static_cast<std::size_t>(i * np_ + j)];
-  if (node.done) return node;
+const KinematicBodyBounds::ReachNode& KinematicBodyBounds::FillReach(ReachNode& node, int leg, int i, int j) {
   node.done = true;
   ++reach_computed_;
   const double dx = x0_ + i * settings_.grid_dx, pitch = p0_ + j * settings_.grid_pitch;
@@ -139,9 +138,7 @@ const KinematicBodyBounds::ReachNode& KinematicBodyBounds::Reach(int leg, int i,
   return node;
 }
 
-float KinematicBodyBounds::ClearLow(int foothold, int i, int j) {
-  ClearNode& node = clear_[static_cast<std::size_t>(foothold)][static_cast<std::size_t>(i * np_ + j)];
-  if (node.done) return node.lo;
+float KinematicBodyBounds::FillClearLow(ClearNode& node, int foothold, int i, int j) {
   node.done = true;
   ++clearance_computed_;
   const Foothold& f = footholds_[static_cast<std::size_t>(foothold)];
@@ -187,22 +184,34 @@ HeightRange KinematicBodyBounds::HipHeight(const HipBox& box) {
   // continuous as the box moves (no jumps when a box crosses a node), and the box is smaller
   // than a grid cell, so its corners bracket it.
   HeightRange range{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  // The box is smaller than a grid cell, so its corners mostly share one cell: its nodes are
+  // looked up once (each look-up walks the caches) and kept while the next corner's cell is the same.
+  int cell_i = -1, cell_j = -1;
+  std::array<double, 4> cell_lo{}, cell_hi{};  // the cell's nodes, index di * 2 + dj
   for (const double dx : {box.dx_lo, box.dx_hi}) {
     for (const double pitch : {box.pitch_lo, box.pitch_hi}) {
       const double u = (dx - x0_) / settings_.grid_dx, v = (pitch - p0_) / settings_.grid_pitch;
       const int i = static_cast<int>(std::floor(u)), j = static_cast<int>(std::floor(v));
       if (i < 0 || j < 0 || i + 1 >= nx_ || j + 1 >= np_) return {1.0, 0.0};  // beyond the grid
-      const double a = u - i, b = v - j;
-      double lo = 0.0, hi = 0.0;
-      for (int di = 0; di < 2; ++di) {
-        for (int dj = 0; dj < 2; ++dj) {
-          const double w = (di ? a : 1.0 - a) * (dj ? b : 1.0 - b);
+      if (i != cell_i || j != cell_j) {
+        for (int c = 0; c < 4; ++c) {
+          const int di = c / 2, dj = c % 2;
           const ReachNode& r = Reach(box.leg, i + di, j + dj);
           const double node_lo = std::max(static_cast<double>(r.lo), static_cast<double>(ClearLow(box.foothold, i + di, j + dj)));
           if (!(node_lo <= r.hi)) return {1.0, 0.0};  // a corner node has no valid height
-          lo += w * node_lo;
-          hi += w * r.hi;
+          cell_lo[static_cast<std::size_t>(c)] = node_lo;
+          cell_hi[static_cast<std::size_t>(c)] = r.hi;
         }
+        cell_i = i;
+        cell_j = j;
+      }
+      const double a = u - i, b = v - j;
+      double lo = 0.0, hi = 0.0;
+      for (int c = 0; c < 4; ++c) {
+        const int di = c / 2, dj = c % 2;
+        const double w = (di ? a : 1.0 - a) * (dj ? b : 1.0 - b);
+        lo += w * cell_lo[static_cast<std::size_t>(c)];
+        hi += w * cell_hi[static_cast<std::size_t>(c)];
       }
       range.lo = std::max(range.lo, lo);
       range.hi = std::min(range.hi, hi);

@@ -64,8 +64,18 @@ class KinematicBodyBounds final : public BodyBounds {
   // The body pose putting leg `leg`'s hip at (dx along the heading, nominal lateral, h above)
   // relative to `contact_W`, pitched by `pitch`.
   BodyPose PoseFor(int leg, const Eigen::Vector3d& contact_W, double dx, double h, double pitch) const;
-  const ReachNode& Reach(int leg, int i, int j);
-  float ClearLow(int foothold, int i, int j);
+  // The node at grid (i, j), computed the first time it is asked for (inline: the per-cycle
+  // queries nearly always find it done).
+  const ReachNode& Reach(int leg, int i, int j) {
+    ReachNode& node = reach_[static_cast<std::size_t>(leg)][static_cast<std::size_t>(i * np_ + j)];
+    return node.done ? node : FillReach(node, leg, i, j);
+  }
+  float ClearLow(int foothold, int i, int j) {
+    ClearNode& node = clear_[static_cast<std::size_t>(foothold)][static_cast<std::size_t>(i * np_ + j)];
+    return node.done ? node.lo : FillClearLow(node, foothold, i, j);
+  }
+  const ReachNode& FillReach(ReachNode& node, int leg, int i, int j);
+  float FillClearLow(ClearNode& node, int foothold, int i, int j);
 
   BodyPlannerSettings settings_;
   std::unique_ptr<RobotKinematics> kinematics_;

@@ -57,18 +57,25 @@ void ActiveSetQpSolver::SetWarmStart(const ActiveSet& active_set) {
   pending_warm_start_ = true;
 }
 
-double ActiveSetQpSolver::Lower(int k) const {
-  return k < m_ ? program_->row_lower()[k] : program_->variable_lower()[k - m_];
-}
-
-double ActiveSetQpSolver::Upper(int k) const {
-  return k < m_ ? program_->row_upper()[k] : program_->variable_upper()[k - m_];
+void ActiveSetQpSolver::LoadBounds(const Program& program) {
+  // The bounds do not change during a solve: one contiguous copy, and the lists of constraints
+  // that can be violated (a finite side) and of equalities, so the scans skip free rows.
+  lower_.head(m_) = program.row_lower();
+  lower_.tail(n_) = program.variable_lower();
+  upper_.head(m_) = program.row_upper();
+  upper_.tail(n_) = program.variable_upper();
+  bounded_.clear();
+  equalities_.clear();
+  for (int k = 0; k < m_ + n_; ++k) {
+    if (std::isfinite(lower_[k]) || std::isfinite(upper_[k])) bounded_.push_back(k);
+    if (IsEquality(k) && std::isfinite(lower_[k])) equalities_.push_back(k);
+  }
 }
 
 double ActiveSetQpSolver::Value(int k) const { return k < m_ ? ax_[k] : x_[k - m_]; }
 
 double ActiveSetQpSolver::RowValue(int k) const {
-  return k < m_ ? program_->constraint_matrix().row(k).dot(x_) : x_[k - m_];
+  return k < m_ ? rows_.RowDot(k, x_) : x_[k - m_];
 }
 
 bool ActiveSetQpSolver::OverLimits() {
@@ -78,7 +85,8 @@ bool ActiveSetQpSolver::OverLimits() {
 
 void ActiveSetQpSolver::Prepare(const Program& program) {
   const int n = program.num_variables(), m = program.num_rows();
-  if (n != n_ || m != m_) {
+  const bool resized = n != n_ || m != m_;
+  if (resized) {
     n_ = n;
     m_ = m;
     factorization_valid_ = false;
@@ -90,9 +98,15 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     active_.assign(n, -1);
     state_.assign(n + m, 0);
     u_.resize(n);
-    for (Eigen::VectorXd* v : {&x_, &g_eff_, &x_prox_, &d_, &z_, &r_, &tmp_, &row_, &hx_}) v->resize(n);
+    for (Eigen::VectorXd* v : {&x_, &g_eff_, &x_prox_, &d_, &z_, &r_, &tmp_, &hx_}) v->resize(n);
     ax_.resize(m);
     row_norm_.resize(m);
+    rows_.Resize(m, n);
+    hessian_rows_.Resize(n, n);
+    lower_.resize(n + m);
+    upper_.resize(n + m);
+    bounded_.reserve(static_cast<std::size_t>(n + m));
+    equalities_.reserve(static_cast<std::size_t>(n + m));
     llt_ = Eigen::LLT<Eigen::MatrixXd>(n);
     q_ = 0;
     has_previous_ = false;
@@ -101,8 +115,8 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
       warm_start_.bounds.assign(n, 0);
     }
   }
-  if (program.matrix_revision() != matrix_revision_) {
-    if (program.whole_matrix_revision() == whole_matrix_revision_) {
+  if (resized || program.matrix_revision() != matrix_revision_) {
+    if (!resized && program.whole_matrix_revision() == whole_matrix_revision_) {
       // Only some rows changed (SetConstraintCoefficients): the factorisation depends on the
       // active rows alone, so it stays valid once the changed active rows leave the active set
       // (the iteration adds them back with their new coefficients if they are still needed).
@@ -112,6 +126,7 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
       for (int k = 0; k < m; ++k) {
         if (program.row_revision(k) <= matrix_revision_) continue;
         row_norm_[k] = std::max(program.constraint_matrix().row(k).norm(), 1e-300);
+        rows_.UpdateRow(program.constraint_matrix(), k);
         if (state_[k] != 0) ++changed_active;
       }
       if (changed_active > 0 && (!factorization_valid_ || 4 * changed_active > q_)) {
@@ -125,6 +140,7 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
       whole_matrix_revision_ = program.whole_matrix_revision();
       factorization_valid_ = false;
       for (int k = 0; k < m; ++k) row_norm_[k] = std::max(program.constraint_matrix().row(k).norm(), 1e-300);
+      rows_.Assign(program.constraint_matrix());
     }
     matrix_revision_ = program.matrix_revision();
   }
@@ -134,6 +150,7 @@ bool ActiveSetQpSolver::FactorizeHessian(const Program& program) {
   if (program.hessian_revision() == hessian_revision_) return true;
   factorization_valid_ = false;
   const Eigen::MatrixXd& H = program.hessian();
+  hessian_rows_.Assign(H);
   const double scale = std::max(1.0, H.diagonal().cwiseAbs().maxCoeff());
   hessian_reg_ = H;
   rho_ = 0.0;
@@ -165,9 +182,7 @@ void ActiveSetQpSolver::StartCold() {
 
 void ActiveSetQpSolver::ComputeStepVector(int k, double sigma) {
   if (k < m_) {
-    row_ = program_->constraint_matrix().row(k).transpose();
-    d_.noalias() = J_.transpose() * row_;
-    d_ *= sigma;
+    rows_.TransposedTimesRow(J_, k, sigma, &d_);
   } else {
     d_ = sigma * J_.row(k - m_).transpose();
   }
@@ -215,6 +230,9 @@ void ActiveSetQpSolver::DropConstraint(int position) {
       R_(j + 1, col) = -s * ra + c * rb;
     }
     RotateColumns(J_, j, j + 1, c, s);
+    const double ta = tmp_[j], tb = tmp_[j + 1];  // keeps tmp_ = J' g where Restart relies on it
+    tmp_[j] = c * ta + s * tb;
+    tmp_[j + 1] = -s * ta + c * tb;
   }
 }
 
@@ -233,29 +251,32 @@ void ActiveSetQpSolver::StartFromActiveSet(const ActiveSet& set) {
 }
 
 void ActiveSetQpSolver::AddEqualities() {
-  for (int k = 0; k < m_ + n_; ++k) {
-    if (state_[k] != 0 || !IsEquality(k) || !std::isfinite(Lower(k))) continue;
+  for (const int k : equalities_) {
+    if (state_[k] != 0) continue;
     if (q_ == n_) break;
     ComputeStepVector(k, 1.0);
     AddConstraint(k, -1);  // dependent rows are skipped here and checked for violation later
   }
 }
 
-void ActiveSetQpSolver::ComputePrimalDual() {
-  // b (in r_), then a = R^{-T} b (in r_), x = J1 a - J2 J2' g, u = R^{-1} (a + J1' g).
+void ActiveSetQpSolver::ComputeMultipliers() {
+  // b (in r_), then a = R^{-T} b (in r_) and u = R^{-1} (a + J1' g), with J' g in tmp_.
   for (int j = 0; j < q_; ++j) {
     const int k = active_[j];
     r_[j] = state_[k] < 0 ? Lower(k) : -Upper(k);
   }
   const int q = q_;
-  if (q > 0) R_.topLeftCorner(q, q).triangularView<Eigen::Upper>().transpose().solveInPlace(r_.head(q));
-  tmp_.noalias() = J_.transpose() * g_eff_;
+  if (q == 0) return;
+  R_.topLeftCorner(q, q).triangularView<Eigen::Upper>().transpose().solveInPlace(r_.head(q));
+  u_.head(q) = r_.head(q) + tmp_.head(q);
+  R_.topLeftCorner(q, q).triangularView<Eigen::Upper>().solveInPlace(u_.head(q));
+}
+
+void ActiveSetQpSolver::ComputePrimal() {
+  // x = J1 a - J2 J2' g (a in r_ and J' g in tmp_ from ComputeMultipliers).
+  const int q = q_;
   x_.noalias() = -J_.rightCols(n_ - q) * tmp_.tail(n_ - q);
-  if (q > 0) {
-    x_.noalias() += J_.leftCols(q) * r_.head(q);
-    u_.head(q) = r_.head(q) + tmp_.head(q);
-    R_.topLeftCorner(q, q).triangularView<Eigen::Upper>().solveInPlace(u_.head(q));
-  }
+  if (q > 0) x_.noalias() += J_.leftCols(q) * r_.head(q);
 }
 
 int ActiveSetQpSolver::Restart() {
@@ -269,8 +290,11 @@ int ActiveSetQpSolver::Restart() {
     }
   }
   AddEqualities();
+  // J' g once: a drop rotates columns of J, and DropConstraint rotates tmp_ alike, so only the
+  // O(q^2) multipliers are recomputed per drop, and x once at the end.
+  tmp_.noalias() = J_.transpose() * g_eff_;
   for (;;) {
-    ComputePrimalDual();
+    ComputeMultipliers();
     int worst = -1;
     double most_negative = 0.0;
     for (int j = 0; j < q_; ++j) {
@@ -285,7 +309,8 @@ int ActiveSetQpSolver::Restart() {
     DropConstraint(worst);
     ++drops;
   }
-  if (m_ > 0) ax_.noalias() = program_->constraint_matrix() * x_;
+  ComputePrimal();
+  rows_.Multiply(x_, &ax_);
   return drops;
 }
 
@@ -296,7 +321,7 @@ SolveStatus ActiveSetQpSolver::Iterate() {
     // Step 1: the most violated constraint (violation scaled by the normal's length).
     int p = -1, side = 0;
     double worst = 0.0;
-    for (int k = 0; k < m_ + n_; ++k) {
+    for (const int k : bounded_) {
       if (state_[k] != 0) continue;
       const double v = Value(k), lo = Lower(k), hi = Upper(k);
       const double norm = k < m_ ? row_norm_[k] : 1.0;
@@ -317,7 +342,15 @@ SolveStatus ActiveSetQpSolver::Iterate() {
       if (OverLimits()) return time_exceeded_ ? SolveStatus::kTimeLimit : SolveStatus::kIterationLimit;
       ComputeStepVector(p, sigma);
       const int q = q_;
-      z_.noalias() = J_.rightCols(n_ - q) * d_.tail(n_ - q);
+      // z = J2 d2 over the columns d reaches: J's last columns often still hold the untouched
+      // block structure of L^{-T} (e.g. variables no active row involves), where d is exactly 0.
+      int reach = n_;
+      while (reach > q && d_[reach - 1] == 0.0) --reach;
+      if (reach > q) {
+        z_.noalias() = J_.middleCols(q, reach - q) * d_.segment(q, reach - q);
+      } else {
+        z_.setZero();
+      }
       const double free_norm2 = d_.tail(n_ - q).squaredNorm();
       if (q > 0) {
         r_.head(q) = d_.head(q);
@@ -347,7 +380,7 @@ SolveStatus ActiveSetQpSolver::Iterate() {
       }
       DropConstraint(drop);
     }
-    if (m_ > 0) ax_.noalias() = program_->constraint_matrix() * x_;
+    rows_.Multiply(x_, &ax_);
     if (!(x_.lpNorm<Eigen::Infinity>() < kUnboundedNorm)) return SolveStatus::kUnbounded;
   }
 }
@@ -364,6 +397,7 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
   }
   const double previous_rho = rho_;
   Prepare(program);
+  LoadBounds(program);
   if (!FactorizeHessian(program)) {
     x_ = program.initial_guess();
     return FillResult(program, SolveStatus::kInvalidInput, result);  // H is not positive semidefinite
@@ -431,14 +465,19 @@ SolveStatus ActiveSetQpSolver::Run(bool regularized, int* outer_iterations) {
     status = SolveStatus::kIterationLimit;
     for (int polish = 0; polish < kMaxPolish; ++polish) {
       iterations_ += Restart();
+      const int before = iterations_;
       status = Iterate();
       if (status != SolveStatus::kSolved) break;
+      // Nothing changed since Restart: x and u are already its closed form, and Iterate found
+      // nothing violated, so the polish below would repeat the same computation.
+      if (iterations_ == before) break;
       // Polish: recompute x and u in closed form on the final active set; done when that point
       // needs no change (no negative multiplier, nothing violated).
       const int q_before = q_;
       if (Restart() == 0 && q_ == q_before) {
         bool violated = false;
-        for (int k = 0; k < m_ + n_ && !violated; ++k) {
+        for (std::size_t b = 0; b < bounded_.size() && !violated; ++b) {
+          const int k = bounded_[b];
           if (state_[k] != 0) continue;
           const double v = Value(k), lo = Lower(k), hi = Upper(k);
           violated = (lo - v > settings_.feasibility_tol * (1.0 + std::abs(lo))) ||
@@ -458,7 +497,7 @@ SolveStatus ActiveSetQpSolver::Run(bool regularized, int* outer_iterations) {
     // gradient); stop when that residual can change the objective by a negligible amount, or when
     // the iterates stand still.
     const double x_norm = x_.lpNorm<Eigen::Infinity>();
-    hx_.noalias() = program.hessian() * x_;
+    hessian_rows_.Multiply(x_, &hx_);
     const double objective = 0.5 * x_.dot(hx_) + g.dot(x_) + program.constant();
     if (step <= settings_.proximal_tol * (1.0 + x_norm) ||
         rho_ * step * (1.0 + x_norm) <= settings_.proximal_objective_tol * (1.0 + std::abs(objective))) {
@@ -484,10 +523,10 @@ bool ActiveSetQpSolver::IsUnboundedRay() {
   d_ /= norm;
   const Eigen::VectorXd& g = program_->linear_cost();
   if (!(g.dot(d_) < -1e-9 * (1.0 + g.lpNorm<Eigen::Infinity>()))) return false;
-  hx_.noalias() = program_->hessian() * d_;
+  hessian_rows_.Multiply(d_, &hx_);
   if (hx_.lpNorm<Eigen::Infinity>() > 1e-9 * (1.0 + program_->hessian().diagonal().cwiseAbs().maxCoeff())) return false;
   for (int k = 0; k < m_ + n_; ++k) {
-    const double rate = k < m_ ? program_->constraint_matrix().row(k).dot(d_) : d_[k - m_];
+    const double rate = k < m_ ? rows_.RowDot(k, d_) : d_[k - m_];
     const double tol = 1e-9 * (k < m_ ? row_norm_[k] : 1.0);
     if (std::isfinite(Lower(k)) && rate < -tol) return false;
     if (std::isfinite(Upper(k)) && rate > tol) return false;
@@ -516,19 +555,19 @@ void ActiveSetQpSolver::FillResult(const Program& program, SolveStatus status, S
       }
     }
   }
-  hx_.noalias() = program.hessian() * x_;
+  hessian_rows_.Multiply(x_, &hx_);
   result->objective = 0.5 * x_.dot(hx_) + program.linear_cost().dot(x_) + program.constant();
   // Residuals of the original (unregularised) problem.
   double primal = 0.0;
-  if (m_ > 0) ax_.noalias() = program.constraint_matrix() * x_;
-  for (int k = 0; k < m_ + n_; ++k) {
+  rows_.Multiply(x_, &ax_);
+  for (const int k : bounded_) {
     const double v = Value(k), lo = Lower(k), hi = Upper(k);
     if (lo > -kInf) primal = std::max(primal, lo - v);
     if (hi < kInf) primal = std::max(primal, v - hi);
   }
   hx_ += program.linear_cost();
   hx_ += result->bound_duals;
-  if (m_ > 0) hx_.noalias() += program.constraint_matrix().transpose() * result->row_duals;
+  rows_.AddTransposeMultiply(result->row_duals, &hx_);
   result->info.primal_residual = primal;
   result->info.dual_residual = hx_.lpNorm<Eigen::Infinity>();
   result->info.iterations = iterations_;

@@ -34,6 +34,7 @@
 #include <Eigen/Core>
 
 #include "planning/optim/solver.h"
+#include "planning/optim/sparse_rows.h"
 
 namespace stairplan::optim {
 
@@ -90,7 +91,9 @@ class ActiveSetQpSolver final : public Solver {
   // Closed-form primal and dual on the current active set; drops constraints with negative
   // multipliers until the start is dual feasible. Returns the number of drops.
   int Restart();
-  void ComputePrimalDual();
+  // The closed form on the active set from tmp_ = J' g: multipliers (and R^{-T} b in r_), then x.
+  void ComputeMultipliers();
+  void ComputePrimal();
   // The proximal (if regularized) and polishing loops around Iterate() from the current start.
   SolveStatus Run(bool regularized, int* outer_iterations);
   // The Goldfarb-Idnani loop from a dual-feasible start.
@@ -101,8 +104,10 @@ class ActiveSetQpSolver final : public Solver {
   void DropConstraint(int position);
 
   // Constraint k: k < m is row k of A, k >= m bounds variable k - m.
-  double Lower(int k) const;
-  double Upper(int k) const;
+  double Lower(int k) const { return lower_[k]; }
+  double Upper(int k) const { return upper_[k]; }
+  // Copies this solve's bounds into lower_/upper_ and lists the bounded constraints and equalities.
+  void LoadBounds(const Program& program);
   double Value(int k) const;
   double RowValue(int k) const;
   bool IsEquality(int k) const { return Lower(k) == Upper(k); }
@@ -135,8 +140,15 @@ class ActiveSetQpSolver final : public Solver {
   int q_ = 0;
   Eigen::VectorXd u_;
 
+  // The nonzeros of A and H by row (the products below use them, not the dense matrices).
+  SparseRows rows_, hessian_rows_;
+  // This solve's bounds per constraint (rows, then variables); the constraints with a finite
+  // bound, and the equalities, in index order.
+  Eigen::VectorXd lower_, upper_;
+  std::vector<int> bounded_, equalities_;
+
   // Vectors of size n or m.
-  Eigen::VectorXd x_, g_eff_, x_prox_, d_, z_, r_, tmp_, row_, hx_;
+  Eigen::VectorXd x_, g_eff_, x_prox_, d_, z_, r_, tmp_, hx_;
   Eigen::VectorXd ax_, row_norm_;
 
   int iterations_ = 0;

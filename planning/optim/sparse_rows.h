@@ -1,0 +1,51 @@
+// SparseRows: a compressed-row copy of a Program's dense constraint matrix, for the active-set
+// solver's per-iteration products (A x, A' y, one row times a vector).
+//
+// Why: the programs the solver sees every cycle are structurally sparse (the body QP's 472 x 160
+// matrix has about 1,100 nonzeros: two per hip and support row, three per acceleration row), and
+// dense products over all of A were most of a warm solve's time. The copy follows the Program's
+// row revisions: a changed row whose nonzeros fit in the row's slots is rewritten in place (a
+// slot may then hold a zero); one that does not fit rebuilds the copy. Storage for a dense
+// matrix is reserved when the size is set, so neither allocates.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace stairplan::optim {
+
+class SparseRows {
+ public:
+  /// Reserves storage for an m x n matrix (allocates; once per size).
+  void Resize(int m, int n);
+  /// Copies the nonzeros of `a` (m x n as sized).
+  void Assign(const Eigen::MatrixXd& a);
+  /// Takes row k of `a` again; rebuilds from `a` when its nonzeros do not fit the row's slots.
+  void UpdateRow(const Eigen::MatrixXd& a, int k);
+
+  int rows() const { return m_; }
+  /// Row k times x.
+  double RowDot(int k, const Eigen::VectorXd& x) const {
+    double sum = 0.0;
+    for (int e = start_[static_cast<std::size_t>(k)]; e < start_[static_cast<std::size_t>(k) + 1]; ++e) {
+      sum += value_[static_cast<std::size_t>(e)] * x[column_[static_cast<std::size_t>(e)]];
+    }
+    return sum;
+  }
+  /// y = A x.
+  void Multiply(const Eigen::VectorXd& x, Eigen::VectorXd* y) const;
+  /// y += A' u.
+  void AddTransposeMultiply(const Eigen::VectorXd& u, Eigen::VectorXd* y) const;
+  /// d = sigma J' a_k for the row a_k of A (J square, column-major: reads the rows of J that
+  /// row k touches).
+  void TransposedTimesRow(const Eigen::MatrixXd& j, int k, double sigma, Eigen::VectorXd* d) const;
+
+ private:
+  int m_ = 0, n_ = 0;
+  std::vector<int> start_;   // m + 1 offsets into column_ and value_
+  std::vector<int> column_;  // capacity m * n
+  std::vector<double> value_;
+};
+
+}  // namespace stairplan::optim

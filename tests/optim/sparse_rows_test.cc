@@ -1,0 +1,79 @@
+// SparseRows, the active-set solver's copy of A's nonzeros: its products equal the dense ones,
+// and it follows row updates, in place when the new nonzeros fit the row's slots and by a
+// rebuild when they do not.
+#include <catch2/catch.hpp>
+
+#include <Eigen/Core>
+
+#include "planning/optim/sparse_rows.h"
+
+using stairplan::optim::SparseRows;
+
+namespace {
+
+// A 7 x 5 matrix with a free row (row 3), a full row (row 5) and scattered entries.
+Eigen::MatrixXd Example() {
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(7, 5);
+  a(0, 0) = 1.0, a(0, 4) = -2.0;
+  a(1, 1) = 3.0;
+  a(2, 2) = -1.0, a(2, 3) = 2.0, a(2, 4) = 0.5;
+  for (int i = 0; i < 5; ++i) a(5, i) = 1.0 + i;
+  a(4, 0) = 4.0;
+  a(6, 3) = -3.0;
+  return a;
+}
+
+// Every product of `rows` against the dense `a`.
+void CheckAgainstDense(const SparseRows& rows, const Eigen::MatrixXd& a) {
+  const Eigen::VectorXd x = (Eigen::VectorXd(5) << 0.3, -1.2, 2.0, 0.7, -0.4).finished();
+  Eigen::VectorXd ax(7);
+  rows.Multiply(x, &ax);
+  CHECK((ax - a * x).lpNorm<Eigen::Infinity>() < 1e-14);
+  for (int k = 0; k < 7; ++k) CHECK(rows.RowDot(k, x) == Approx(a.row(k).dot(x)).margin(1e-14));
+  const Eigen::VectorXd u = (Eigen::VectorXd(7) << 1.0, 0.0, -2.0, 5.0, 0.5, -1.0, 3.0).finished();
+  Eigen::VectorXd aty = Eigen::VectorXd::Constant(5, 1.0);
+  rows.AddTransposeMultiply(u, &aty);
+  CHECK((aty - (Eigen::VectorXd::Constant(5, 1.0) + a.transpose() * u)).lpNorm<Eigen::Infinity>() < 1e-14);
+  Eigen::MatrixXd j(5, 5);
+  for (int r = 0; r < 5; ++r) {
+    for (int c = 0; c < 5; ++c) j(r, c) = 0.1 * (r + 1) - 0.3 * c + (r == c ? 1.0 : 0.0);
+  }
+  Eigen::VectorXd d(5);
+  for (int k = 0; k < 7; ++k) {
+    rows.TransposedTimesRow(j, k, -1.0, &d);
+    CHECK((d - (-1.0) * j.transpose() * a.row(k).transpose()).lpNorm<Eigen::Infinity>() < 1e-14);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("sparse rows multiply as the dense matrix does", "[sparse_rows]") {
+  const Eigen::MatrixXd a = Example();
+  SparseRows rows;
+  rows.Resize(7, 5);
+  rows.Assign(a);
+  CheckAgainstDense(rows, a);
+}
+
+TEST_CASE("a changed row is taken in place when it fits and rebuilt when it does not", "[sparse_rows]") {
+  Eigen::MatrixXd a = Example();
+  SparseRows rows;
+  rows.Resize(7, 5);
+  rows.Assign(a);
+  // Fits: row 2 loses one nonzero and changes another (its slots keep a zero).
+  a(2, 2) = 0.0;
+  a(2, 4) = 7.0;
+  rows.UpdateRow(a, 2);
+  CheckAgainstDense(rows, a);
+  // Does not fit: the free row 3 and row 1 gain nonzeros where they had no slot.
+  a(3, 1) = 2.5;
+  a(3, 4) = -1.5;
+  rows.UpdateRow(a, 3);
+  a(1, 0) = -6.0;
+  rows.UpdateRow(a, 1);
+  CheckAgainstDense(rows, a);
+  // The zeroed slot of row 2 takes a value again.
+  a(2, 2) = 9.0;
+  rows.UpdateRow(a, 2);
+  CheckAgainstDense(rows, a);
+}
