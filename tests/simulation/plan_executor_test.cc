@@ -76,7 +76,7 @@ TEST_CASE("the default-pace crawl is dynamically infeasible as planned: it tips,
   const SimulationOutcome o = Simulate(robot, stairs, planned.plan);
   INFO(Describe(o));
   CHECK(o.status == SimStatus::kFall);
-  CHECK(o.t_end < 3.0);  // within the first few shifts
+  CHECK(o.t_end < 6.0);  // within the first two crawl cycles (0.65 s a step)
   CHECK(o.plan_zmp_margin_m < -0.2);
   CHECK(o.plan_max_acceleration > 9.81);
   CHECK(o.FirstCause().find("ZMP") != std::string::npos);
