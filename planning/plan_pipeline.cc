@@ -1,10 +1,12 @@
 #include "planning/plan_pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 
+#include "geometry/field_error.h"
 #include "planning/body/plan_body.h"
 #include "planning/body_path.h"
 #include "planning/step/ik_reach_model.h"
@@ -101,7 +103,12 @@ PipelineOptions OptionsForPlan(const Plan& plan) {
 }
 
 PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
-                                const PipelineOptions& options) {
+                                const PipelineOptions& given) {
+  PipelineOptions options = given;
+  RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
+  if (stairs.direction() == TravelDirection::kDown) {
+    options.crawl.shift_duration = std::max(options.crawl.shift_duration, options.descent_shift_duration);
+  }
   PipelineResult result;
   result.map = std::move(map);
   const auto t_plan = std::chrono::steady_clock::now();

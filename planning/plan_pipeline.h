@@ -59,6 +59,12 @@ struct PipelineOptions {
   bool robot_regions = true;
   RobotRegionSettings regions;
   CrawlSettings crawl;
+  /// Going down, the crawl's four-feet phases last at least this long [s] (0: crawl.shift_duration
+  /// as it is). The COM rides high above the lower front feet (0.57 m for the built-in robot on
+  /// the default stairs), so the deceleration that ends a 0.6 s shift (about 2 m/s^2) pushes the
+  /// ZMP over the front and downhill side feet: the hind stance foot unloads and slides (18 cm in
+  /// MuJoCo at the plan's pace). At 0.8 s the feet hold (2.5 cm, rolling and creep).
+  double descent_shift_duration = 0.8;
   bool validate = true;  ///< replay the plan through the validator
   /// Postures RunPipeline tries, in order, after crawl.body's when the validator rejects a plan:
   /// descending, the legs need to stand taller and the body to pitch with the whole flight to

@@ -13,11 +13,13 @@
 namespace stairplan {
 namespace {
 
-// A posture correction from `t` on: a shift along the flight and a height change.
+// A posture correction from `t` on: a shift along the flight and a height change. A repair (a
+// height put back inside its window between two swings) changes the height only.
 struct PostureKey {
   double t = 0.0;
   double dx = 0.0;
   double dz = 0.0;
+  bool repair = false;
 };
 
 // What the fit needs to know about one instant: the feet (swing feet on their swings), the
@@ -78,7 +80,7 @@ class PostureFitter {
     const Interval1& w = windows.front();
     if (eased.dz >= w.lo + settings_.height_margin && eased.dz <= w.hi - settings_.height_margin) return false;
     const double keep = Keep(w.hi - w.lo);
-    repaired = {t, eased.dx, std::clamp(eased.dz, w.lo + keep, w.hi - keep)};
+    repaired = {t, eased.dx, std::clamp(eased.dz, w.lo + keep, w.hi - keep), true};
     return true;
   }
 
@@ -213,14 +215,32 @@ std::vector<Segment> SwingSegments(const std::vector<Footstep>& footsteps) {
   return merged;
 }
 
-// The corrections eased between keys (zero velocity at each), held before the first and after the last.
+// One component of the corrections eased between the keys that set it (zero velocity at each),
+// held before the first and after the last.
+double EasedAt(const std::vector<PostureKey>& keys, double t, double PostureKey::*value, bool with_repairs) {
+  const PostureKey* before = nullptr;
+  const PostureKey* after = nullptr;
+  for (const PostureKey& k : keys) {
+    if (k.repair && !with_repairs) continue;
+    if (k.t <= t) {
+      before = &k;
+    } else {
+      after = &k;
+      break;
+    }
+  }
+  if (before == nullptr) return after != nullptr ? after->*value : 0.0;
+  if (after == nullptr) return before->*value;
+  const double u = after->t > before->t ? SmoothStep((t - before->t) / (after->t - before->t)) : 0.0;
+  return before->*value + u * (after->*value - before->*value);
+}
+
+// The corrections at t. The shift eases from one swing's key to the next in one go: a repair in
+// between changes the height only, and were the shift to stop there as well, the body would halt
+// and restart along the flight within the four-feet phase (the backward descent's body then
+// accelerated at 15 m/s^2, more than its feet can carry).
 PostureKey CorrectionAt(const std::vector<PostureKey>& keys, double t) {
-  const auto next = std::upper_bound(keys.begin(), keys.end(), t, [](double v, const PostureKey& k) { return v < k.t; });
-  if (next == keys.begin()) return keys.front();
-  if (next == keys.end()) return keys.back();
-  const PostureKey& a = *(next - 1);
-  const double u = next->t > a.t ? SmoothStep((t - a.t) / (next->t - a.t)) : 0.0;
-  return {t, a.dx + u * (next->dx - a.dx), a.dz + u * (next->dz - a.dz)};
+  return {t, EasedAt(keys, t, &PostureKey::dx, false), EasedAt(keys, t, &PostureKey::dz, true)};
 }
 
 }  // namespace

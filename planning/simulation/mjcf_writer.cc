@@ -147,6 +147,7 @@ void MjcfSettings::Validate() const {
   check("min_inertia", min_inertia, 1e-12, 1.0);
   check("effort_scale", effort_scale, 1e-3, 1e3);
   check("detect_margin", detect_margin, 0.0, 0.1);
+  check("impratio", impratio, 1.0, 1e4);
 }
 
 std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const MjcfSettings& settings) {
@@ -158,7 +159,8 @@ std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const Mj
   out << "<mujoco model='" << robot.name() << "'>\n"
       << "  <compiler angle='radian' inertiafromgeom='false' boundmass='" << settings.min_mass
       << "' boundinertia='" << settings.min_inertia << "'/>\n"
-      << "  <option timestep='" << settings.timestep << "' gravity='0 0 -9.81'/>\n"
+      << "  <option timestep='" << settings.timestep << "' gravity='0 0 -9.81' cone='"
+      << (settings.elliptic_cone ? "elliptic" : "pyramidal") << "' impratio='" << settings.impratio << "'/>\n"
       << "  <default><geom friction='" << settings.friction << " 0.005 0.0001' condim='3' margin='"
       << settings.detect_margin << "' gap='" << settings.detect_margin << "'/></default>\n"
       << "  <worldbody>\n"

@@ -14,6 +14,14 @@ namespace stairplan {
 /// Contact and integration parameters of the simulated world.
 struct MjcfSettings {
   double friction = 0.8;          ///< sliding friction of every geom
+  /// Friction cones: elliptic (true) or MuJoCo's default pyramid. With either, MuJoCo's friction is
+  /// a soft constraint that lets a loaded contact creep well below its friction limit unless
+  /// `impratio` stiffens it; only the elliptic cone takes impratio in MuJoCo 2.2.
+  bool elliptic_cone = true;
+  /// Ratio of frictional to normal constraint impedance: 1 (MuJoCo's default) lets a stance foot
+  /// creep centimetres under a tangential load of 10 % of its normal force (the stairbot's hind
+  /// foot slid off its tread descending); 100, as MuJoCo Menagerie's quadrupeds use, holds it.
+  double impratio = 100.0;
   double timestep = 0.001;        ///< simulation step [s] (1 kHz)
   double default_damping = 0.2;   ///< joint damping where the URDF gives none [N m s/rad]
   double armature = 0.01;         ///< rotor inertia added to every joint [kg m^2], for stability

@@ -35,6 +35,8 @@ struct PlanExecutor::LegState {
   double foot_radius = 0.0;
   bool stance = true;
   Eigen::Vector3d foothold_W = Eigen::Vector3d::Zero();  // where the stance foot stands
+  bool stance_measured = false;             // stance_start_W holds where this stance began
+  Eigen::Vector3d stance_start_W = Eigen::Vector3d::Zero();
   int step = -1;                            // the footstep being swung, -1 in stance
   int next = 0;                             // next entry of leg_steps_
   std::unique_ptr<SwingTrajectory> swing;
@@ -172,6 +174,7 @@ void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touchin
       const Footstep& f = plan_.footsteps[static_cast<std::size_t>(steps[static_cast<std::size_t>(leg.next)])];
       if (tp >= f.t_liftoff) {
         leg.stance = false;
+        leg.stance_measured = false;
         leg.step = steps[static_cast<std::size_t>(leg.next)];
         ++leg.next;
         leg.t_switch = tp;
@@ -399,6 +402,24 @@ bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
   return fallen_;
 }
 
+void PlanExecutor::MeasureSlip(double tp) {
+  for (LegState& leg : legs_) {
+    if (!leg.stance) continue;
+    const Eigen::Vector3d foot = FootContactPoint(leg);
+    if (!leg.stance_measured) {
+      leg.stance_start_W = foot;
+      leg.stance_measured = true;
+      continue;
+    }
+    const double slip = (foot - leg.stance_start_W).head<2>().norm();
+    if (slip > outcome_.max_foot_slip_m) {
+      outcome_.max_foot_slip_m = slip;
+      outcome_.slipped_leg = leg.name;
+      outcome_.slip_t = tp;
+    }
+  }
+}
+
 void PlanExecutor::RecordFrame(double tp) {
   const mjModel* m = world_->model();
   const mjData* d = world_->data();
@@ -475,6 +496,8 @@ SimulationOutcome PlanExecutor::Run() {
     world_->Step();
     ++outcome_.sim_steps;
     if (CheckContacts(PlanTime(), touching)) break;
+    // From the plan's start on: while settling the feet find the treads.
+    if (PlanTime() >= 0.0) MeasureSlip(PlanTime());
     Judge(PlanTime());
   }
   const double tp = PlanTime();

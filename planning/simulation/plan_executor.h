@@ -45,6 +45,8 @@ class PlanExecutor {
   void UpdatePhases(double tp, const std::vector<bool>& foot_touching);
   void Control(double tp);
   bool CheckContacts(double tp, std::vector<bool>& foot_touching);
+  /// Records how far each stance foot has moved from where its stance began (max_foot_slip_m).
+  void MeasureSlip(double tp);
   Eigen::Vector3d FootContactPoint(const LegState& leg) const;
   BodyPose MeasuredPose() const;
   /// How much of a full load a leg may carry now: 0 in swing, rising after touchdown and falling

@@ -90,6 +90,12 @@ struct SimulationOutcome {
   double plan_zmp_t = 0.0;
   double plan_max_acceleration = 0.0;
   int force_qp_failures = 0;       ///< control steps whose stance-force QP did not solve (forces zero then)
+  /// Largest horizontal distance a stance foot moved from where its stance began [m]: slip on the
+  /// tread (rolling adds the foot radius times the shank's turn, millimetres). A foot that slides
+  /// away unloads its leg and the support polygon with it.
+  double max_foot_slip_m = 0.0;
+  std::string slipped_leg;         ///< the leg of that largest slip
+  double slip_t = 0.0;             ///< when it was reached [s, plan time]
   double time_scale = 1.0;         ///< how many times slower than planned the plan was played
   int sim_steps = 0;
   double sim_time_s = 0.0;

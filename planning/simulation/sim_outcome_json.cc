@@ -52,6 +52,9 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
   j["max_torque_ratio"] = o.max_torque_ratio;
   j["time_scale"] = o.time_scale;
   j["force_qp_failures"] = o.force_qp_failures;
+  j["max_foot_slip_m"] = o.max_foot_slip_m;
+  j["slipped_leg"] = o.slipped_leg;
+  j["slip_t_s"] = o.slip_t;
   j["plan_zmp_margin_m"] = o.plan_zmp_margin_m;
   j["plan_zmp_t"] = o.plan_zmp_t;
   j["plan_max_acceleration"] = o.plan_max_acceleration;

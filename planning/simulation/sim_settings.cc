@@ -45,7 +45,7 @@ void SimSettings::Set(const std::string& name, double value) {
       {"world.friction", &world.friction}, {"world.timestep", &world.timestep},
       {"world.default_damping", &world.default_damping}, {"world.armature", &world.armature},
       {"world.effort_scale", &world.effort_scale},
-      {"world.detect_margin", &world.detect_margin},
+      {"world.detect_margin", &world.detect_margin}, {"world.impratio", &world.impratio},
       {"kp_per_kg", &kp_per_kg}, {"kd_per_kg", &kd_per_kg}, {"xy_kp", &xy_kp}, {"xy_kd", &xy_kd},
       {"height_kp", &height_kp}, {"height_kd", &height_kd}, {"attitude_kp", &attitude_kp},
       {"attitude_kd", &attitude_kd}, {"swing_pose_feedback", &swing_pose_feedback}, {"settle_time", &settle_time}, {"time_scale", &time_scale},

@@ -25,6 +25,7 @@ const char* ToString(ViolationKind kind) {
     case ViolationKind::kLegCollision: return "leg_collision";
     case ViolationKind::kBodyCollision: return "body_collision";
     case ViolationKind::kStability: return "stability";
+    case ViolationKind::kBodyAcceleration: return "body_acceleration";
   }
   return "unknown";
 }
@@ -33,6 +34,7 @@ void ValidationSettings::Validate() const {
   RequireInRange("time_step", time_step, 1e-4, 1.0);
   RequireInRange("min_clearance", min_clearance, -1.0, 1.0);
   RequireInRange("min_stability_margin", min_stability_margin, -1.0, 1.0);
+  RequireInRange("max_body_acceleration", max_body_acceleration, 0.0, 1e4);
   if (max_violations < 1) throw FieldError("max_violations", "must be at least 1");
   swing.Validate();
   ik.Validate();
@@ -54,6 +56,7 @@ ValidationReport TraversalValidator::Validate(const Plan& plan) {
   report.min_clearance_m = std::numeric_limits<double>::infinity();
   report.min_stability_margin_m = std::numeric_limits<double>::infinity();
   CheckTouchdowns(plan, report);
+  if (QuasiStatic(plan.gait)) CheckBodyAcceleration(plan, report);
   std::set<double> times;
   for (double t = 0.0; t < plan.duration(); t += settings_.time_step) times.insert(t);
   times.insert(plan.duration());
@@ -82,6 +85,25 @@ void TraversalValidator::CheckTouchdowns(const Plan& plan, ValidationReport& rep
     map_.NearestStepRegion(f.position_W.head<2>(), &distance);
     report.violations.push_back({f.t_touchdown, f.leg, ViolationKind::kFootOutsideStepRegion, distance,
                                  stair < 0 ? "off the stairs" : "stair " + std::to_string(stair)});
+  }
+}
+
+// The body's acceleration between consecutive samples, per axis; the first sample beyond the
+// bound is reported (once: a jump shows on the samples either side of it).
+void TraversalValidator::CheckBodyAcceleration(const Plan& plan, ValidationReport& report) const {
+  const std::vector<BodyState>& body = plan.body;
+  for (std::size_t i = 1; i + 1 < body.size(); ++i) {
+    const double dt0 = body[i].t - body[i - 1].t, dt1 = body[i + 1].t - body[i].t;
+    if (dt0 < 1e-9 || dt1 < 1e-9) continue;
+    const Eigen::Vector3d p0(body[i - 1].x, body[i - 1].y, body[i - 1].z), p1(body[i].x, body[i].y, body[i].z),
+        p2(body[i + 1].x, body[i + 1].y, body[i + 1].z);
+    const Eigen::Vector3d a = ((p2 - p1) / dt1 - (p1 - p0) / dt0) / (0.5 * (dt0 + dt1));
+    Eigen::Index axis = 0;
+    const double peak = a.cwiseAbs().maxCoeff(&axis);
+    if (peak <= settings_.max_body_acceleration) continue;
+    report.violations.push_back({body[i].t, "body", ViolationKind::kBodyAcceleration, peak,
+                                 std::string("along ") + "xyz"[axis]});
+    return;
   }
 }
 

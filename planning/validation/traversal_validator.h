@@ -27,6 +27,7 @@ enum class ViolationKind {
   kLegCollision,           ///< contralateral legs closer than the margin
   kBodyCollision,          ///< the body closer to the stairs than the margin
   kStability,              ///< the centre of mass outside the support polygon (by less than the margin)
+  kBodyAcceleration,       ///< a quasi-static plan's body accelerating faster than a robot can (value in m/s^2)
 };
 const char* ToString(ViolationKind kind);
 
@@ -34,7 +35,7 @@ struct Violation {
   double t = 0.0;
   std::string leg;     ///< "LF".."RH", or "body"
   ViolationKind kind = ViolationKind::kStairCollision;
-  double value = 0.0;  ///< clearance, margin or distance that failed [m]
+  double value = 0.0;  ///< clearance, margin or distance that failed [m]; an acceleration [m/s^2]
   std::string detail;  ///< e.g. the link and stair part involved
 };
 
@@ -45,6 +46,12 @@ struct ValidationSettings {
   /// Quasi-static gaits (the crawl) need the COM inside the support polygon at all times;
   /// dynamic gaits (trot) do not, and are only reported.
   bool stability_for_dynamic_gaits = false;
+  /// A quasi-static gait's body may accelerate at most this much between its samples [m/s^2]. The
+  /// instants of a plan can each be fine while the body jumps between them: the posture fit's
+  /// fallback of one height per instant once moved the body 18 cm in 0.1 s (37 m/s^2) at a swing's
+  /// liftoff, and MuJoCo fell there. 2 g is far above what a crawl needs (the default plans ask
+  /// 3-5) and far below a jump.
+  double max_body_acceleration = 19.62;
   int max_violations = 64;             ///< violations listed at most (the first ones in time)
   SwingSettings swing;                 ///< for footsteps whose plan gives no swing apex
   IkSettings ik;
@@ -71,6 +78,7 @@ class TraversalValidator {
 
  private:
   void CheckTouchdowns(const Plan& plan, ValidationReport& report) const;
+  void CheckBodyAcceleration(const Plan& plan, ValidationReport& report) const;
   void CheckInstant(const Plan& plan, double t, ValidationReport& report);
 
   const Staircase& stairs_;

@@ -59,8 +59,10 @@ TEST_CASE("the built-in robot's default descents validate, facing forward and ba
     REQUIRE(r.plan.body.size() > 2);
     CHECK(r.plan.body.front().z - r.plan.body.back().z > 1.0);
     for (const Footstep& f : r.plan.footsteps) CHECK(f.in_step_region);
-    // The posture fit's corrections are eased, not jumps between nearby instants.
-    CHECK(PeakAcceleration(r.plan.body) < 10.0);
+    // The posture fit's corrections are eased, not jumps between nearby instants, and a repair
+    // between two swings does not halt the shift along the flight (backward: 8.4 m/s^2 between
+    // samples when it did, 4.5 since; forward 2.7; the climb 2.8).
+    CHECK(PeakAcceleration(r.plan.body) < 5.5);
     // The map it was planned on is recorded, for validate and simulate to rebuild.
     CHECK(std::isfinite(r.plan.hip_height_fraction));
   }
