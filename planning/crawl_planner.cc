@@ -233,12 +233,13 @@ struct FootholdLayout {
 };
 
 // Layouts whose stance lengths fit the robot. Through a crawl cycle the trailing feet are s and
-// s - 1 treads behind the leading ones (plus the offset d between the two pairs' footholds in
-// their step regions), so the legs stand least stretched or squeezed when (s - 1/2) run + d is the
-// hip spacing along the pitched body: for the s nearest that and its neighbours, d as near it as
-// the narrowest step region allows, the largest d the regions allow that way, and none; each also
-// with the trailing legs' first stride halved (their first touchdown is the farthest reach of all:
-// the body is still over the hindmost triangle).
+// s - 1 treads behind the leading ones, plus the offset d between the two pairs' footholds in
+// their step regions. Stretched legs run out of reach (and into their knee limits) long before
+// squeezed ones do, so the longer stance, s run + d, is fitted to the hip spacing along the
+// pitched body: for the s nearest that and its neighbours, d as near it as the narrowest step
+// region allows, the largest d the regions allow the other way, and none; each also with the
+// trailing legs' first stride halved (their first touchdown is the farthest reach of all: the
+// body is still over the hindmost triangle).
 std::vector<FootholdLayout> CandidateLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                              const CrawlSettings& settings) {
   double front = -1e9, hind = 1e9;
@@ -257,13 +258,13 @@ std::vector<FootholdLayout> CandidateLayouts(const RobotModel& robot, const Stai
     half = std::min(half, 0.5 * (r.hi - r.lo) - settings.trailing_margin);
   }
   const double d_max = half < 1e8 ? 2.0 * std::max(0.0, half) : 0.0;
-  const int nearest = std::max(1, static_cast<int>(std::lround(spacing / run + 0.5)));
+  const int nearest = std::max(1, static_cast<int>(std::lround(spacing / run)));
   std::vector<FootholdLayout> layouts;
   for (const int s : {nearest, nearest - 1, nearest + 1}) {
     if (s < 1) continue;
-    const double want = spacing - (s - 0.5) * run;
+    const double want = spacing - s * run;
     std::vector<double> ds = {std::clamp(want, -d_max, d_max)};
-    if (std::abs(std::copysign(d_max, want) - ds.front()) > 1e-3) ds.push_back(std::copysign(d_max, want));
+    if (std::abs(ds.front() + std::copysign(d_max, want)) > 1e-3) ds.push_back(-std::copysign(d_max, want));
     if (std::abs(ds.front()) > 1e-3) ds.push_back(0.0);
     for (const double d : ds) {
       for (const double first : {1.0, 0.5}) layouts.push_back({s, 0.5 * d, -0.5 * d, first});
@@ -280,14 +281,16 @@ class TouchdownChecker {
 
   // Touchdowns whose stance, with the plan's own body pose, fails the stance check.
   int Failed(const Plan& plan) {
-    return Count(plan, [this](const BodyPose& pose, const Contacts& feet) { return checker_.Check(pose, feet).ok(); });
+    const int all = static_cast<int>(plan.footsteps.size());
+    return Count(plan, all, [this](const BodyPose& pose, const Contacts& feet) { return checker_.Check(pose, feet).ok(); });
   }
 
   // Touchdowns at which no body pose passes among the plan's own shifted along x by up to the
   // posture fit's max_shift, at any height from 0.2 m below to 0.1 m above it: footholds that no
-  // posture fit can stand on. Cheap enough to screen layouts on sketches (no posture fit).
-  int Unstandable(const Plan& plan) {
-    return Count(plan, [this](const BodyPose& pose, const Contacts& feet) {
+  // posture fit can stand on. Cheap enough to screen layouts on sketches (no posture fit). Counts
+  // up to `limit` (a layout that bad is of no interest).
+  int Unstandable(const Plan& plan, int limit) {
+    return Count(plan, limit, [this](const BodyPose& pose, const Contacts& feet) {
       const int shifts = static_cast<int>(std::floor(body_.max_shift / body_.shift_step + 1e-9));
       for (int k = 0; k <= 2 * shifts; ++k) {
         BodyPose shifted = pose;
@@ -303,7 +306,7 @@ class TouchdownChecker {
   using Contacts = std::array<Eigen::Vector3d, 4>;
 
   template <typename Passes>
-  int Count(const Plan& plan, Passes passes) {
+  int Count(const Plan& plan, int limit, Passes passes) {
     Contacts feet;
     for (std::size_t i = 0; i < plan.legs.size() && i < 4; ++i) {
       feet[static_cast<std::size_t>(checker_.kinematics().LegIndex(plan.legs[i]))] = plan.initial_feet_W[i];
@@ -311,7 +314,7 @@ class TouchdownChecker {
     int failed = 0;
     for (const Footstep& step : plan.footsteps) {
       feet[static_cast<std::size_t>(checker_.kinematics().LegIndex(step.leg))] = step.position_W;
-      if (!passes(BodyPoseAt(plan.body, step.t_touchdown), feet)) ++failed;
+      if (!passes(BodyPoseAt(plan.body, step.t_touchdown), feet) && ++failed >= limit) break;
     }
     return failed;
   }
@@ -333,7 +336,7 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   // one whose every touchdown some posture can stand on is planned in full at once; when none
   // passes, the least unstandable ones are, up to fit_footholds full plans in all.
   std::vector<std::pair<int, CrawlSettings>> screened;
-  int full = 0;
+  int full = 0, least = failed;  // full plans made; fewest unstandable touchdowns screened
   const auto try_full = [&](const CrawlSettings& layout) {
     ++full;
     Plan plan = PlanCrawlLayout(robot, stairs, map, layout, &stairs);
@@ -346,10 +349,11 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
     const CrawlSettings candidate = layout.Apply(settings);
     const Plan sketch = PlanCrawlLayout(robot, stairs, map, candidate, nullptr);
     if (sketch.status != PlanStatus::kOk) continue;
-    const int unstandable = checker.Unstandable(sketch);
+    const int unstandable = checker.Unstandable(sketch, least);
+    least = std::min(least, unstandable);
     if (unstandable == 0) try_full(candidate);
     if (failed == 0 || full >= settings.fit_footholds) return best;
-    if (unstandable > 0) screened.emplace_back(unstandable, candidate);
+    if (unstandable > 0 && unstandable < failed) screened.emplace_back(unstandable, candidate);
   }
   std::stable_sort(screened.begin(), screened.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (std::size_t i = 0; i < screened.size() && failed > 0 && full < settings.fit_footholds; ++i) try_full(screened[i].second);

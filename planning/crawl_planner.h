@@ -39,7 +39,7 @@ struct CrawlSettings {
   /// against the stairs), other foothold layouts fitted to the robot's hip spacing are screened
   /// (stance checks at their touchdowns) and up to this many of them planned in full; the plan
   /// that fails fewest touchdowns is returned. 0: the layout given, whatever its stances.
-  int fit_footholds = 3;
+  int fit_footholds = 2;
   BodyPathSettings body;              ///< how the body follows the feet
   SwingSettings swing;                ///< how high the feet swing over the stairs
 
