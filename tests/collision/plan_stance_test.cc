@@ -85,13 +85,28 @@ TEST_CASE("CLI plan stances are reachable and clear: built-in stairbot", "[plan_
   CheckCliPlan("stairbot", BuiltinRobot());
 }
 
-TEST_CASE("CLI plan stances are reachable and clear: shared robots", "[plan_stance][!mayfail]") {
+TEST_CASE("CLI plan stances are reachable and clear: shared robots", "[plan_stance]") {
   const auto robots = testing::TestRobots(false);
   if (robots.empty()) {
     WARN("shared robots skipped: ../shared not found");
     return;
   }
-  // Under the sanitizers, where each robot's plan and check take a minute, the first two robots.
-  const std::size_t count = testing::FullOrSanitized(robots.size(), std::min<std::size_t>(robots.size(), 2));
-  for (std::size_t r = 0; r < count; ++r) CheckCliPlan(robots[r].label, RobotModel::FromUrdfFile(robots[r].path));
+  // Under the sanitizers, where each robot's plan and check take minutes, the first two robots.
+  std::size_t checked = 0;
+  for (const testing::RobotFile& file : robots) {
+    if (file.label == "anymal_b" || checked == testing::FullOrSanitized<std::size_t>(robots.size(), 2)) continue;
+    CheckCliPlan(file.label, RobotModel::FromUrdfFile(file.path));
+    ++checked;
+  }
+}
+
+// Still failing: ANYmal B's shank adapter cylinders end 7.75 mm above the contact point, so at the
+// posture fit's 5 mm clearance margin (BodyPathSettings::touchdown_clearance) nearly every height
+// counts as a collision, and the fitted body stands too tall for the first hind touchdown (RH at
+// t = 1.05 s out of reach by 3 cm) whichever foothold layout the crawl tries.
+TEST_CASE("CLI plan stances are reachable and clear: ANYmal B", "[plan_stance][!mayfail]") {
+  const auto robots = testing::TestRobots(false);
+  const auto b = std::find_if(robots.begin(), robots.end(), [](const testing::RobotFile& f) { return f.label == "anymal_b"; });
+  if (b == robots.end() || testing::kSanitized) return;
+  CheckCliPlan(b->label, RobotModel::FromUrdfFile(b->path));
 }
