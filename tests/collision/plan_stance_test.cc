@@ -110,3 +110,39 @@ TEST_CASE("CLI plan stances are reachable and clear: ANYmal B", "[plan_stance][!
   if (b == robots.end() || testing::kSanitized) return;
   CheckCliPlan(b->label, RobotModel::FromUrdfFile(b->path));
 }
+
+// The crawl's foothold search (CrawlSettings::fit_footholds) is what gives the small robots
+// standable touchdowns: without it, A1's front legs end beyond their knee limits.
+TEST_CASE("without the crawl's foothold search A1's touchdowns fail; with it they pass", "[plan_stance]") {
+  const auto robots = testing::TestRobots(false);
+  const auto a1 = std::find_if(robots.begin(), robots.end(), [](const testing::RobotFile& f) { return f.label == "unitree_a1"; });
+  if (a1 == robots.end() || testing::kSanitized) return;
+  const RobotModel robot = RobotModel::FromUrdfFile(a1->path);
+  const Staircase stairs{StairSpec{}};
+  const PipelineOptions options;
+  const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
+  CrawlSettings fixed = options.crawl;
+  fixed.fit_footholds = 0;
+  const Plan first = PlanCrawl(robot, stairs, map, fixed);
+  const Plan searched = PlanCrawl(robot, stairs, map, options.crawl);
+  REQUIRE(first.status == PlanStatus::kOk);
+  REQUIRE(searched.status == PlanStatus::kOk);
+  CHECK(CheckTouchdowns(robot, stairs, first).failed > 0);
+  const Failure f = CheckTouchdowns(robot, stairs, searched);
+  INFO(f.first);
+  CHECK(f.failed == 0);
+  // Every touchdown still lands inside its step region.
+  for (const Footstep& step : searched.footsteps) CHECK(step.in_step_region);
+}
+
+TEST_CASE("crawl settings name the bad field", "[plan_stance]") {
+  CrawlSettings s;
+  s.fit_footholds = -1;
+  CHECK_THROWS_WITH(s.Validate(), Catch::Contains("fit_footholds"));
+  s = CrawlSettings{};
+  s.trail_first_stride = 0.0;
+  CHECK_THROWS_WITH(s.Validate(), Catch::Contains("trail_first_stride"));
+  s = CrawlSettings{};
+  s.stance_treads = 11;
+  CHECK_THROWS_WITH(s.Validate(), Catch::Contains("stance_treads"));
+}
