@@ -334,16 +334,18 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   if (failed == 0) return best;
   // Other layouts, in CandidateLayouts' order: each is sketched (no posture fit) and screened, and
   // one whose every touchdown some posture can stand on is planned in full at once; when none
-  // passes, the least unstandable ones are, up to fit_footholds full plans in all.
+  // screens clean, the least unstandable ones are, up to fit_footholds full plans in all. Only a
+  // layout with every touchdown passing replaces the first: one that merely fails fewer is not
+  // worth leaving the lattice the other planners are tuned on (stairbot's QP body on its forward
+  // descent is infeasible on the footholds that fail 14 touchdowns of the first layout's 15).
   std::vector<std::pair<int, CrawlSettings>> screened;
   int full = 0, least = failed;  // full plans made; fewest unstandable touchdowns screened
-  const auto try_full = [&](const CrawlSettings& layout) {
+  const auto passes_in_full = [&](const CrawlSettings& layout) {
     ++full;
     Plan plan = PlanCrawlLayout(robot, stairs, map, layout, &stairs);
-    const int f = checker.Failed(plan);
-    if (f >= failed) return;
-    failed = f;
+    if (checker.Failed(plan) > 0) return false;
     best = std::move(plan);
+    return true;
   };
   for (const FootholdLayout& layout : CandidateLayouts(robot, stairs, map, settings)) {
     const CrawlSettings candidate = layout.Apply(settings);
@@ -351,12 +353,14 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
     if (sketch.status != PlanStatus::kOk) continue;
     const int unstandable = checker.Unstandable(sketch, least);
     least = std::min(least, unstandable);
-    if (unstandable == 0) try_full(candidate);
-    if (failed == 0 || full >= settings.fit_footholds) return best;
+    if (unstandable == 0 && passes_in_full(candidate)) return best;
+    if (full >= settings.fit_footholds) return best;
     if (unstandable > 0 && unstandable < failed) screened.emplace_back(unstandable, candidate);
   }
   std::stable_sort(screened.begin(), screened.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (std::size_t i = 0; i < screened.size() && failed > 0 && full < settings.fit_footholds; ++i) try_full(screened[i].second);
+  for (std::size_t i = 0; i < screened.size() && full < settings.fit_footholds; ++i) {
+    if (passes_in_full(screened[i].second)) return best;
+  }
   return best;
 }
 

@@ -37,8 +37,8 @@ struct CrawlSettings {
   double trail_first_stride = 1.0;
   /// When a touchdown of the plan fails the stance check (a leg out of reach, beyond its limits or
   /// against the stairs), other foothold layouts fitted to the robot's hip spacing are screened
-  /// (stance checks at their touchdowns) and up to this many of them planned in full; the plan
-  /// that fails fewest touchdowns is returned. 0: the layout given, whatever its stances.
+  /// (stance checks at their touchdowns) and up to this many of them planned in full; the first
+  /// whose every touchdown passes is returned, else the layout given. 0: no search.
   int fit_footholds = 2;
   BodyPathSettings body;              ///< how the body follows the feet
   SwingSettings swing;                ///< how high the feet swing over the stairs
