@@ -39,7 +39,7 @@ struct CrawlSettings {
   /// against the stairs), other foothold layouts fitted to the robot's hip spacing are screened
   /// (stance checks at their touchdowns) and up to this many of them planned in full; the first
   /// whose every touchdown passes is returned, else the layout given. 0: no search.
-  int fit_footholds = 2;
+  int fit_footholds = 1;
   BodyPathSettings body;              ///< how the body follows the feet
   SwingSettings swing;                ///< how high the feet swing over the stairs
 
