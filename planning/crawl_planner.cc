@@ -5,6 +5,7 @@
 #include <cmath>
 #include <deque>
 
+#include "collision/stance_check.h"
 #include "geometry/field_error.h"
 #include "planning/swing_trajectory.h"
 
@@ -81,12 +82,22 @@ void CrawlSettings::Validate() const {
   RequireInRange("shift_duration", shift_duration, 0.0, 5.0);
   RequireInRange("start_gap", start_gap, -1.0, 5.0);
   RequireInRange("trailing_margin", trailing_margin, 0.0, 0.2);
+  RequireInRange("stance_treads", stance_treads, 0, 10);
+  RequireInRange("fit_footholds", fit_footholds, 0, 100);
+  RequireInRange("lead_first_stride", lead_first_stride, 0.1, 1.0);
+  RequireInRange("trail_first_stride", trail_first_stride, 0.1, 1.0);
+  RequireInRange("lead_offset", lead_offset, -0.5, 0.5);
+  RequireInRange("trail_offset", trail_offset, -0.5, 0.5);
   body.Validate();
   swing.Validate();
 }
 
-Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const CrawlSettings& settings) {
-  settings.Validate();
+namespace {
+
+// The crawl with the footholds `settings` lay out; the body fitted to the stairs' stances when
+// `fit_stairs` is given (the quasi-static path alone otherwise, for screening layouts).
+Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                     const CrawlSettings& settings, const Staircase* fit_stairs) {
   Plan plan;
   plan.robot_name = robot.name();
   plan.robot_source = robot.source();
@@ -128,8 +139,18 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
     if (it == lattice.begin()) return Infeasible(plan, "landing_before is too short for the robot's " + track.name + " foot");
     const bool next_is_nearer = it != lattice.end() && *it - want < want - *(it - 1) && map.StairAt({*it, 0.0}) == 0;
     track.start_index = static_cast<int>(it - lattice.begin()) - (next_is_nearer ? 0 : 1);
-    cycles = std::max(cycles, first_top - track.start_index);
   }
+  if (settings.stance_treads > 0) {
+    int lead = 0;
+    for (const LegTrack& l : tracks) {
+      if (l.foot_offset_W.x() >= front_x - 1e-9) lead = std::max(lead, l.start_index);
+    }
+    for (LegTrack& l : tracks) {
+      if (l.foot_offset_W.x() < front_x - 1e-9) l.start_index = lead - settings.stance_treads;
+      if (l.start_index < 0) return Infeasible(plan, "landing_before is too short for the robot's " + l.name + " foot");
+    }
+  }
+  for (const LegTrack& track : tracks) cycles = std::max(cycles, first_top - track.start_index);
   for (const LegTrack& track : tracks) {
     if (track.start_index + cycles >= static_cast<int>(lattice.size())) {
       return Infeasible(plan, "landing_after is too short for the robot's " + track.name + " foot");
@@ -149,6 +170,9 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   // allows, so the legs keep the posture the body path assumes whatever the run.
   const auto foothold = [&](const LegTrack& l, int k) {
     double x = lattice[static_cast<std::size_t>(k)];
+    const bool leading = l.foot_offset_W.x() >= lead_x - 1e-9;
+    const double offset = leading ? settings.lead_offset : settings.trail_offset;
+    if (offset != 0.0) x = ClampToStepRegion(map, x, x + offset, settings.trailing_margin);
     if (settings.keep_stance_length && l.foot_offset_W.x() < lead_x - 1e-9) {
       const int lead_k = std::min(k + lead_start - l.start_index, static_cast<int>(lattice.size()) - 1);
       const double stance = (lead_x - l.foot_offset_W.x()) * std::cos(pitch);
@@ -157,7 +181,17 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
     const double y = l.foot_offset_W.y();
     return Eigen::Vector3d(x, y, stairs.HeightAt(x, y));
   };
-  for (const LegTrack& l : tracks) plan.initial_feet_W.push_back(foothold(l, l.start_index));
+  // Where a leg starts: its first foothold, or that far toward its second (a shorter first stride).
+  const auto start = [&](const LegTrack& l) {
+    const Eigen::Vector3d a = foothold(l, l.start_index);
+    const bool leading = l.foot_offset_W.x() >= lead_x - 1e-9;
+    const double f = leading ? settings.lead_first_stride : settings.trail_first_stride;
+    if (f >= 1.0) return a;
+    const Eigen::Vector3d b = foothold(l, l.start_index + 1);
+    const double x = b.x() + f * (a.x() - b.x());
+    return Eigen::Vector3d(x, a.y(), stairs.HeightAt(x, a.y()));
+  };
+  for (const LegTrack& l : tracks) plan.initial_feet_W.push_back(start(l));
 
   // Each swing is preceded by a four-feet phase in which the COM moves over the next triangle.
   const double slot_duration = settings.shift_duration + settings.swing_duration;
@@ -168,7 +202,7 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
       step.leg = leg->name;
       step.t_liftoff = (4.0 * c + static_cast<double>(slot)) * slot_duration + settings.shift_duration;
       step.t_touchdown = step.t_liftoff + settings.swing_duration;
-      step.from_W = foothold(*leg, leg->start_index + c);
+      step.from_W = c == 0 ? start(*leg) : foothold(*leg, leg->start_index + c);
       step.position_W = foothold(*leg, leg->start_index + c + 1);
       step.stair_index = map.StairAt(step.position_W.head<2>());
       step.in_step_region = step.stair_index >= 0 && map.InStepRegion(step.stair_index, step.position_W.head<2>());
@@ -178,8 +212,156 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   }
   BodyPathSettings body = settings.body;
   body.swing = settings.swing;
-  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, body, &stairs);
+  plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, body, fit_stairs);
   return plan;
+}
+
+// A foothold layout the crawl can try instead of the one it was given (see CrawlSettings).
+struct FootholdLayout {
+  int stance_treads = 0;
+  double lead_offset = 0.0;
+  double trail_offset = 0.0;
+  double trail_first_stride = 1.0;
+
+  CrawlSettings Apply(CrawlSettings settings) const {
+    settings.stance_treads = stance_treads;
+    settings.lead_offset = lead_offset;
+    settings.trail_offset = trail_offset;
+    settings.trail_first_stride = trail_first_stride;
+    return settings;
+  }
+};
+
+// Layouts whose stance lengths fit the robot. Through a crawl cycle the trailing feet are s and
+// s - 1 treads behind the leading ones, plus the offset d between the two pairs' footholds in
+// their step regions. Stretched legs run out of reach (and into their knee limits) long before
+// squeezed ones do, so the longer stance, s run + d, is fitted to the hip spacing along the
+// pitched body: for the s nearest that and its neighbours, d as near it as the narrowest step
+// region allows, the largest d the regions allow the other way, and none; each also with the
+// trailing legs' first stride halved (their first touchdown is the farthest reach of all: the
+// body is still over the hindmost triangle).
+std::vector<FootholdLayout> CandidateLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                                             const CrawlSettings& settings) {
+  double front = -1e9, hind = 1e9;
+  for (const LegModel& leg : robot.legs()) {
+    front = std::max(front, leg.hip_B.x());
+    hind = std::min(hind, leg.hip_B.x());
+  }
+  const double pitch = settings.body.pitch_fraction * std::atan(std::abs(FlightSlope(stairs)));
+  const double spacing = (front - hind) * std::cos(pitch);
+  const double run = MeanRun(stairs.spec());
+  // Each pair moves at most this far from its region's centre, so d spans twice that.
+  double half = 1e9;
+  for (int k = 1; k + 1 < map.size(); ++k) {
+    if (map.stair(k).step_region.empty()) continue;
+    const Extent r = map.stair(k).step_region.XExtent();
+    half = std::min(half, 0.5 * (r.hi - r.lo) - settings.trailing_margin);
+  }
+  const double d_max = half < 1e8 ? 2.0 * std::max(0.0, half) : 0.0;
+  const int nearest = std::max(1, static_cast<int>(std::lround(spacing / run)));
+  std::vector<FootholdLayout> layouts;
+  for (const int s : {nearest, nearest - 1, nearest + 1}) {
+    if (s < 1) continue;
+    const double want = spacing - s * run;
+    std::vector<double> ds = {std::clamp(want, -d_max, d_max)};
+    if (std::abs(ds.front() + std::copysign(d_max, want)) > 1e-3) ds.push_back(-std::copysign(d_max, want));
+    if (std::abs(ds.front()) > 1e-3) ds.push_back(0.0);
+    for (const double d : ds) {
+      for (const double first : {1.0, 0.5}) layouts.push_back({s, 0.5 * d, -0.5 * d, first});
+    }
+  }
+  return layouts;
+}
+
+// Touchdown stances of crawl plans through the stance check.
+class TouchdownChecker {
+ public:
+  TouchdownChecker(const RobotModel& robot, const Staircase& stairs, const BodyPathSettings& body)
+      : checker_(robot, stairs), body_(body) {}
+
+  // Touchdowns whose stance, with the plan's own body pose, fails the stance check.
+  int Failed(const Plan& plan) {
+    const int all = static_cast<int>(plan.footsteps.size());
+    return Count(plan, all, [this](const BodyPose& pose, const Contacts& feet) { return checker_.Check(pose, feet).ok(); });
+  }
+
+  // Touchdowns at which no body pose passes among the plan's own shifted along x by up to the
+  // posture fit's max_shift, at any height from 0.2 m below to 0.1 m above it: footholds that no
+  // posture fit can stand on. Cheap enough to screen layouts on sketches (no posture fit). Counts
+  // up to `limit` (a layout that bad is of no interest).
+  int Unstandable(const Plan& plan, int limit) {
+    return Count(plan, limit, [this](const BodyPose& pose, const Contacts& feet) {
+      const int shifts = static_cast<int>(std::floor(body_.max_shift / body_.shift_step + 1e-9));
+      for (int k = 0; k <= 2 * shifts; ++k) {
+        BodyPose shifted = pose;
+        shifted.position_W.x() += (k % 2 == 0 ? -1.0 : 1.0) * ((k + 1) / 2) * body_.shift_step;
+        const double z = pose.position_W.z();
+        if (!checker_.FeasibleBodyHeights(shifted, feet, z - 0.2, z + 0.1, 0.02, 0.02).empty()) return true;
+      }
+      return false;
+    });
+  }
+
+ private:
+  using Contacts = std::array<Eigen::Vector3d, 4>;
+
+  template <typename Passes>
+  int Count(const Plan& plan, int limit, Passes passes) {
+    Contacts feet;
+    for (std::size_t i = 0; i < plan.legs.size() && i < 4; ++i) {
+      feet[static_cast<std::size_t>(checker_.kinematics().LegIndex(plan.legs[i]))] = plan.initial_feet_W[i];
+    }
+    int failed = 0;
+    for (const Footstep& step : plan.footsteps) {
+      feet[static_cast<std::size_t>(checker_.kinematics().LegIndex(step.leg))] = step.position_W;
+      if (!passes(BodyPoseAt(plan.body, step.t_touchdown), feet) && ++failed >= limit) break;
+    }
+    return failed;
+  }
+
+  StanceChecker checker_;
+  BodyPathSettings body_;
+};
+
+}  // namespace
+
+Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const CrawlSettings& settings) {
+  settings.Validate();
+  Plan best = PlanCrawlLayout(robot, stairs, map, settings, &stairs);
+  if (settings.fit_footholds <= 0 || best.status != PlanStatus::kOk) return best;
+  TouchdownChecker checker(robot, stairs, settings.body);
+  int failed = checker.Failed(best);
+  if (failed == 0) return best;
+  // Other layouts, in CandidateLayouts' order: each is sketched (no posture fit) and screened, and
+  // one whose every touchdown some posture can stand on is planned in full at once; when none
+  // screens clean, the least unstandable ones are, up to fit_footholds full plans in all. Only a
+  // layout with every touchdown passing replaces the first: one that merely fails fewer is not
+  // worth leaving the lattice the other planners are tuned on (stairbot's QP body on its forward
+  // descent is infeasible on the footholds that fail 14 touchdowns of the first layout's 15).
+  std::vector<std::pair<int, CrawlSettings>> screened;
+  int full = 0, least = failed;  // full plans made; fewest unstandable touchdowns screened
+  const auto passes_in_full = [&](const CrawlSettings& layout) {
+    ++full;
+    Plan plan = PlanCrawlLayout(robot, stairs, map, layout, &stairs);
+    if (checker.Failed(plan) > 0) return false;
+    best = std::move(plan);
+    return true;
+  };
+  for (const FootholdLayout& layout : CandidateLayouts(robot, stairs, map, settings)) {
+    const CrawlSettings candidate = layout.Apply(settings);
+    const Plan sketch = PlanCrawlLayout(robot, stairs, map, candidate, nullptr);
+    if (sketch.status != PlanStatus::kOk) continue;
+    const int unstandable = checker.Unstandable(sketch, least);
+    least = std::min(least, unstandable);
+    if (unstandable == 0 && passes_in_full(candidate)) return best;
+    if (full >= settings.fit_footholds) return best;
+    if (unstandable > 0 && unstandable < failed) screened.emplace_back(unstandable, candidate);
+  }
+  std::stable_sort(screened.begin(), screened.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < screened.size() && full < settings.fit_footholds; ++i) {
+    if (passes_in_full(screened[i].second)) return best;
+  }
+  return best;
 }
 
 }  // namespace stairplan

@@ -24,6 +24,22 @@ struct CrawlSettings {
   bool keep_stance_length = false;
   /// Trailing feet stay this far inside their step region when they move to keep the stance length [m].
   double trailing_margin = 0.01;
+  /// Treads from the trailing to the leading feet at the start (0: each foot starts at the
+  /// foothold nearest under its hip).
+  int stance_treads = 0;
+  /// Leading and trailing feet this far forward (along travel) of their step region's centre,
+  /// kept trailing_margin inside the region [m].
+  double lead_offset = 0.0;
+  double trail_offset = 0.0;
+  /// The leading and trailing legs' first stride as a share of the others: they start that far
+  /// behind their first touchdown (1: on the lattice).
+  double lead_first_stride = 1.0;
+  double trail_first_stride = 1.0;
+  /// When a touchdown of the plan fails the stance check (a leg out of reach, beyond its limits or
+  /// against the stairs), other foothold layouts fitted to the robot's hip spacing are screened
+  /// (stance checks at their touchdowns) and up to this many of them planned in full; the first
+  /// whose every touchdown passes is returned, else the layout given. 0: no search.
+  int fit_footholds = 1;
   BodyPathSettings body;              ///< how the body follows the feet
   SwingSettings swing;                ///< how high the feet swing over the stairs
 

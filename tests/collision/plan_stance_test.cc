@@ -1,11 +1,9 @@
-// Acceptance: at every touchdown of the crawl plan on the default stairs, the four stance legs
-// reach their footholds within joint limits and every leg link is clear of the stairs. Checked
-// for the built-in robot and the five shared robots, from the plan's body pose and footholds.
-//
-// Tagged [!mayfail] while the crawl planner's body height (0.75 x the sum of the leg's offsets)
-// and pitch (the full stair slope) put the legs out of reach or the hind shanks into the nosings;
-// the output lists what fails per robot. Remove the tag once planning/body_path.cc chooses heights
-// with StanceChecker::FeasibleBodyHeights (see the kinematics report).
+// Acceptance (issue 4): `stairplan plan --robot FILE` on the default stairs gives, at every
+// touchdown, a stance whose four legs reach their footholds within joint limits and whose leg
+// links are clear of the stairs. Checked for the built-in robot and the five shared robots on the
+// plan the CLI makes (RunPipeline with the CLI's options: the step planner's cadence, robot-aware
+// step regions, posture retries), from the plan's body pose and footholds, independently of the
+// validator.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -16,30 +14,13 @@
 #include "../kinematics/robot_files.h"
 #include "collision/stance_check.h"
 #include "kinematics/builtin_robot.h"
-#include "planning/crawl_planner.h"
+#include "planning/body_path.h"
+#include "planning/plan_pipeline.h"
 #include "sanitized.h"
 
 using namespace stairplan;
 
 namespace {
-
-BodyState BodyAt(const Plan& plan, double t) {
-  const auto& body = plan.body;
-  if (t <= body.front().t) return body.front();
-  for (std::size_t i = 1; i < body.size(); ++i) {
-    if (body[i].t >= t) {
-      const double a = (t - body[i - 1].t) / (body[i].t - body[i - 1].t);
-      BodyState s = body[i - 1];
-      s.x += a * (body[i].x - s.x);
-      s.y += a * (body[i].y - s.y);
-      s.z += a * (body[i].z - s.z);
-      s.pitch += a * (body[i].pitch - s.pitch);
-      s.yaw += a * (body[i].yaw - s.yaw);
-      return s;
-    }
-  }
-  return body.back();
-}
 
 struct Failure {
   int touchdowns = 0;
@@ -47,26 +28,29 @@ struct Failure {
   std::string first;
 };
 
-// Checks every touchdown of the crawl plan of `robot`; returns what failed.
-Failure CheckPlan(const RobotModel& robot) {
-  const Staircase stairs{StairSpec{}};
-  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
-  const Plan plan = PlanCrawl(robot, stairs, map);
-  REQUIRE(plan.status == PlanStatus::kOk);
+// The stance at one touchdown, described for a failure message.
+std::string Describe(const StanceChecker& checker, const Footstep& step, const StanceResult& r) {
+  std::ostringstream why;
+  why << step.leg << " touchdown at t=" << step.t_touchdown << " s: " << ToString(r.status);
+  for (int l = 0; l < 4; ++l) {
+    const LegStance& s = r.legs[static_cast<std::size_t>(l)];
+    why << "; " << checker.kinematics().leg(l).name() << " " << ToString(s.ik.status) << " err " << s.ik.error
+        << " clearance " << s.stairs.distance << " (" << ToString(s.stairs.part) << ")";
+  }
+  return why.str();
+}
+
+// Checks every touchdown of `plan` on `stairs`; returns what failed.
+Failure CheckTouchdowns(const RobotModel& robot, const Staircase& stairs, const Plan& plan) {
   StanceChecker checker(robot, stairs);
   Failure failure;
   std::map<std::string, Eigen::Vector3d> feet;
   for (std::size_t l = 0; l < plan.legs.size(); ++l) feet[plan.legs[l]] = plan.initial_feet_W[l];
   for (const Footstep& step : plan.footsteps) {
     feet[step.leg] = step.position_W;
-    const BodyState b = BodyAt(plan, step.t_touchdown);
-    BodyPose pose;
-    pose.position_W = {b.x, b.y, b.z};
-    pose.pitch = b.pitch;
-    pose.yaw = b.yaw;
     std::array<Eigen::Vector3d, 4> contacts;
     for (int l = 0; l < 4; ++l) contacts[static_cast<std::size_t>(l)] = feet[checker.kinematics().leg(l).name()];
-    const StanceResult r = checker.Check(pose, contacts);
+    const StanceResult r = checker.Check(BodyPoseAt(plan.body, step.t_touchdown), contacts);
     ++failure.touchdowns;
     for (int l = 0; l < 4; ++l) {
       // Within limits is guaranteed by IK's contract; check it independently anyway.
@@ -74,46 +58,91 @@ Failure CheckPlan(const RobotModel& robot) {
     }
     if (r.ok()) continue;
     ++failure.failed;
-    if (failure.first.empty()) {
-      std::ostringstream why;
-      why << step.leg << " touchdown at t=" << step.t_touchdown << " s: " << ToString(r.status);
-      for (int l = 0; l < 4; ++l) {
-        const LegStance& s = r.legs[static_cast<std::size_t>(l)];
-        why << "; " << checker.kinematics().leg(l).name() << " " << ToString(s.ik.status) << " err " << s.ik.error
-            << " clearance " << s.stairs.distance << " (" << ToString(s.stairs.part) << ")";
-      }
-      failure.first = why.str();
-    }
+    if (failure.first.empty()) failure.first = Describe(checker, step, r);
   }
   return failure;
 }
 
-}  // namespace
-
-TEST_CASE("crawl plan stances are reachable and clear: built-in stairbot", "[plan_stance][!mayfail]") {
-  const Failure f = CheckPlan(BuiltinRobot());
-  std::printf("plan stances %-12s %d/%d touchdowns ok%s%s\n", "stairbot", f.touchdowns - f.failed, f.touchdowns,
+// Plans the default stairs as the CLI does and checks its touchdowns; prints how far it got.
+void CheckCliPlan(const std::string& label, const RobotModel& robot) {
+  const Staircase stairs{StairSpec{}};
+  const PipelineOptions cli;  // what `stairplan plan` passes without flags
+  const PipelineResult result = RunPipeline(robot, stairs, cli);
+  REQUIRE(result.plan.status == PlanStatus::kOk);
+  const Failure f = CheckTouchdowns(robot, stairs, result.plan);
+  std::printf("plan stances %-12s %d/%d touchdowns ok (posture %.2f, validation %s, %zu violations)%s%s\n",
+              label.c_str(), f.touchdowns - f.failed, f.touchdowns, result.plan.hip_height_fraction,
+              result.validation.ok ? "ok" : "fails", result.validation.violations.size(),
               f.first.empty() ? "" : "; first failure: ", f.first.c_str());
-  INFO(f.first);
+  INFO(label << ": " << f.first);
   CHECK(f.touchdowns > 20);
   CHECK(f.failed == 0);
 }
 
-TEST_CASE("crawl plan stances are reachable and clear: shared robots", "[plan_stance][!mayfail]") {
+}  // namespace
+
+TEST_CASE("CLI plan stances are reachable and clear: built-in stairbot", "[plan_stance]") {
+  CheckCliPlan("stairbot", BuiltinRobot());
+}
+
+TEST_CASE("CLI plan stances are reachable and clear: shared robots", "[plan_stance]") {
   const auto robots = testing::TestRobots(false);
   if (robots.empty()) {
     WARN("shared robots skipped: ../shared not found");
     return;
   }
-  // Under the sanitizers, where each robot's plan and check take a minute, the first two robots.
-  const std::size_t count = testing::FullOrSanitized(robots.size(), std::min<std::size_t>(robots.size(), 2));
-  for (std::size_t r = 0; r < count; ++r) {
-    const auto& file = robots[r];
-    INFO(file.label);
-    const Failure f = CheckPlan(RobotModel::FromUrdfFile(file.path));
-    std::printf("plan stances %-12s %d/%d touchdowns ok%s%s\n", file.label.c_str(), f.touchdowns - f.failed, f.touchdowns,
-                f.first.empty() ? "" : "; first failure: ", f.first.c_str());
-    INFO(f.first);
-    CHECK(f.failed == 0);
+  // Under the sanitizers, where each robot's plan and check take minutes, the first two robots.
+  std::size_t checked = 0;
+  for (const testing::RobotFile& file : robots) {
+    if (file.label == "anymal_b" || checked == testing::FullOrSanitized<std::size_t>(robots.size(), 2)) continue;
+    CheckCliPlan(file.label, RobotModel::FromUrdfFile(file.path));
+    ++checked;
   }
+}
+
+// Still failing: ANYmal B's shank adapter cylinders end 7.75 mm above the contact point, so at the
+// posture fit's 5 mm clearance margin (BodyPathSettings::touchdown_clearance) nearly every height
+// counts as a collision, and the fitted body stands too tall for the first hind touchdown (RH at
+// t = 1.05 s out of reach by 3 cm) whichever foothold layout the crawl tries.
+TEST_CASE("CLI plan stances are reachable and clear: ANYmal B", "[plan_stance][!mayfail]") {
+  const auto robots = testing::TestRobots(false);
+  const auto b = std::find_if(robots.begin(), robots.end(), [](const testing::RobotFile& f) { return f.label == "anymal_b"; });
+  if (b == robots.end() || testing::kSanitized) return;
+  CheckCliPlan(b->label, RobotModel::FromUrdfFile(b->path));
+}
+
+// The crawl's foothold search (CrawlSettings::fit_footholds) is what gives the small robots
+// standable touchdowns: without it, A1's front legs end beyond their knee limits.
+TEST_CASE("without the crawl's foothold search A1's touchdowns fail; with it they pass", "[plan_stance]") {
+  const auto robots = testing::TestRobots(false);
+  const auto a1 = std::find_if(robots.begin(), robots.end(), [](const testing::RobotFile& f) { return f.label == "unitree_a1"; });
+  if (a1 == robots.end() || testing::kSanitized) return;
+  const RobotModel robot = RobotModel::FromUrdfFile(a1->path);
+  const Staircase stairs{StairSpec{}};
+  const PipelineOptions options;
+  const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
+  CrawlSettings fixed = options.crawl;
+  fixed.fit_footholds = 0;
+  const Plan first = PlanCrawl(robot, stairs, map, fixed);
+  const Plan searched = PlanCrawl(robot, stairs, map, options.crawl);
+  REQUIRE(first.status == PlanStatus::kOk);
+  REQUIRE(searched.status == PlanStatus::kOk);
+  CHECK(CheckTouchdowns(robot, stairs, first).failed > 0);
+  const Failure f = CheckTouchdowns(robot, stairs, searched);
+  INFO(f.first);
+  CHECK(f.failed == 0);
+  // Every touchdown still lands inside its step region.
+  for (const Footstep& step : searched.footsteps) CHECK(step.in_step_region);
+}
+
+TEST_CASE("crawl settings name the bad field", "[plan_stance]") {
+  CrawlSettings s;
+  s.fit_footholds = -1;
+  CHECK_THROWS_WITH(s.Validate(), Catch::Contains("fit_footholds"));
+  s = CrawlSettings{};
+  s.trail_first_stride = 0.0;
+  CHECK_THROWS_WITH(s.Validate(), Catch::Contains("trail_first_stride"));
+  s = CrawlSettings{};
+  s.stance_treads = 11;
+  CHECK_THROWS_WITH(s.Validate(), Catch::Contains("stance_treads"));
 }
