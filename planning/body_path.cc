@@ -93,6 +93,14 @@ BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t) {
   return pose;
 }
 
+Eigen::Vector3d BodyAccelerationAt(const std::vector<BodyState>& body, std::size_t i) {
+  const BodyState &a = body[i - 1], &b = body[i], &c = body[i + 1];
+  const double dt0 = b.t - a.t, dt1 = c.t - b.t;
+  if (dt0 < 1e-9 || dt1 < 1e-9) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d p0(a.x, a.y, a.z), p1(b.x, b.y, b.z), p2(c.x, c.y, c.z);
+  return ((p2 - p1) / dt1 - (p1 - p0) / dt0) / (0.5 * (dt0 + dt1));
+}
+
 void BodyPathSettings::Validate() const {
   RequireInRange("hip_height_fraction", hip_height_fraction, 0.05, 1.0);
   RequireInRange("sample_period", sample_period, 1e-3, 1.0);

@@ -65,6 +65,10 @@ std::vector<Eigen::Vector3d> FeetAt(const std::vector<std::string>& legs, const 
 /// The body pose at time t, interpolated linearly between body samples.
 BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t);
 
+/// The acceleration of the body's position at sample i (0 < i < size - 1), by finite differences
+/// over its neighbours [m/s^2]; zero where two samples share a time.
+Eigen::Vector3d BodyAccelerationAt(const std::vector<BodyState>& body, std::size_t i);
+
 /// The body states for `footsteps` (sorted by touchdown) starting from `initial_feet`, facing `yaw`.
 std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::vector<std::string>& legs,
                                             const std::vector<Eigen::Vector3d>& initial_feet,

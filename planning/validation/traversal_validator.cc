@@ -93,11 +93,7 @@ void TraversalValidator::CheckTouchdowns(const Plan& plan, ValidationReport& rep
 void TraversalValidator::CheckBodyAcceleration(const Plan& plan, ValidationReport& report) const {
   const std::vector<BodyState>& body = plan.body;
   for (std::size_t i = 1; i + 1 < body.size(); ++i) {
-    const double dt0 = body[i].t - body[i - 1].t, dt1 = body[i + 1].t - body[i].t;
-    if (dt0 < 1e-9 || dt1 < 1e-9) continue;
-    const Eigen::Vector3d p0(body[i - 1].x, body[i - 1].y, body[i - 1].z), p1(body[i].x, body[i].y, body[i].z),
-        p2(body[i + 1].x, body[i + 1].y, body[i + 1].z);
-    const Eigen::Vector3d a = ((p2 - p1) / dt1 - (p1 - p0) / dt0) / (0.5 * (dt0 + dt1));
+    const Eigen::Vector3d a = BodyAccelerationAt(body, i);
     Eigen::Index axis = 0;
     const double peak = a.cwiseAbs().maxCoeff(&axis);
     if (peak <= settings_.max_body_acceleration) continue;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "kinematics/builtin_robot.h"
+#include "planning/body_path.h"
 #include "planning/plan_pipeline.h"
 
 using namespace stairplan;
@@ -27,14 +28,7 @@ PipelineResult PlanDescent(Facing facing, bool posture_retries) {
 // executing the plan must produce (the posture fit once made 24 m/s^2 here, and MuJoCo fell).
 double PeakAcceleration(const std::vector<BodyState>& body) {
   double peak = 0.0;
-  for (std::size_t i = 1; i + 1 < body.size(); ++i) {
-    const double dt0 = body[i].t - body[i - 1].t, dt1 = body[i + 1].t - body[i].t;
-    if (dt0 < 1e-9 || dt1 < 1e-9) continue;
-    const Eigen::Vector3d p0(body[i - 1].x, body[i - 1].y, body[i - 1].z), p1(body[i].x, body[i].y, body[i].z),
-        p2(body[i + 1].x, body[i + 1].y, body[i + 1].z);
-    const Eigen::Vector3d a = ((p2 - p1) / dt1 - (p1 - p0) / dt0) / (0.5 * (dt0 + dt1));
-    peak = std::max(peak, a.cwiseAbs().maxCoeff());
-  }
+  for (std::size_t i = 1; i + 1 < body.size(); ++i) peak = std::max(peak, BodyAccelerationAt(body, i).cwiseAbs().maxCoeff());
   return peak;
 }
 
