@@ -1,5 +1,7 @@
 #include "collision/clearance.h"
 
+#include <algorithm>
+
 #include "collision/signed_distance.h"
 
 namespace stairplan {
@@ -21,7 +23,7 @@ void ShapeAgainstStairs(const CollisionShape& shape, const Eigen::Isometry3d& po
       continue;
     }
     const double lower_bound = solid.box.SignedDistance(pose_W.translation()) - shape.bounding_radius;
-    if (lower_bound >= best.distance) continue;
+    if (lower_bound >= std::min(best.distance, options.prune_above)) continue;
     SignedDistanceHints hints;
     hints.bounding_radius_a = shape.bounding_radius;
     hints.box_b = &solid.box;
@@ -56,18 +58,20 @@ Clearance LegStairClearance(const RobotKinematics& kinematics, const RobotCollis
   return best;
 }
 
-Clearance BodyStairClearance(const RobotCollisionModel& robot, const StairCollisionModel& stairs, const BodyPose& body) {
+Clearance BodyStairClearance(const RobotCollisionModel& robot, const StairCollisionModel& stairs, const BodyPose& body,
+                             const ClearanceOptions& options) {
   const Eigen::Isometry3d body_W = body.ToIsometry();
   Clearance best;
   const std::vector<CollisionShape>& shapes = robot.body_shapes();
   for (std::size_t i = 0; i < shapes.size(); ++i) {
-    ShapeAgainstStairs(shapes[i], body_W * shapes[i].local, stairs, ClearanceOptions{}, -1, static_cast<int>(i), best);
+    ShapeAgainstStairs(shapes[i], body_W * shapes[i].local, stairs, options, -1, static_cast<int>(i), best);
   }
   return best;
 }
 
 Clearance LegLegClearance(const RobotKinematics& kinematics, const RobotCollisionModel& robot, int leg_a,
-                          const Eigen::Vector3d& q_a, int leg_b, const Eigen::Vector3d& q_b, RobotWorkspace& ws) {
+                          const Eigen::Vector3d& q_a, int leg_b, const Eigen::Vector3d& q_b, RobotWorkspace& ws,
+                          double prune_above) {
   const std::vector<Eigen::Isometry3d>& frames_a = kinematics.leg(leg_a).LinkFrames(q_a, ws.leg(leg_a));
   const std::vector<Eigen::Isometry3d>& frames_b = kinematics.leg(leg_b).LinkFrames(q_b, ws.leg(leg_b));
   const auto& shapes_a = robot.leg_shapes(leg_a);
@@ -79,7 +83,7 @@ Clearance LegLegClearance(const RobotKinematics& kinematics, const RobotCollisio
       const Eigen::Isometry3d pose_b = frames_b[static_cast<std::size_t>(shapes_b[j].segment)] * shapes_b[j].local;
       const double lower_bound = (pose_a.translation() - pose_b.translation()).norm() - shapes_a[i].bounding_radius -
                                  shapes_b[j].bounding_radius;
-      if (lower_bound >= best.distance) continue;
+      if (lower_bound >= std::min(best.distance, prune_above)) continue;
       SignedDistanceHints hints;
       hints.bounding_radius_a = shapes_a[i].bounding_radius;
       hints.bounding_radius_b = shapes_b[j].bounding_radius;

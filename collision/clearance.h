@@ -34,6 +34,10 @@ struct ClearanceOptions {
   /// its plane); it still sees the risers and nosings above it.
   bool skip_foot_support = true;
   double support_tolerance = 2e-3;  ///< [m]
+  /// Shape pairs that are surely farther apart than this are not measured: a result at or above
+  /// it then says only "at least this far". For yes/no checks against a margin (stance checks
+  /// probe thousands of poses); infinity (the default) measures the exact clearance.
+  double prune_above = std::numeric_limits<double>::infinity();  ///< [m]
 };
 
 /// Clearance of leg `leg` at joint angles q, with the body at `body`, to every stair solid.
@@ -41,12 +45,15 @@ Clearance LegStairClearance(const RobotKinematics& kinematics, const RobotCollis
                             const StairCollisionModel& stairs, int leg, const Eigen::Vector3d& q, const BodyPose& body,
                             RobotWorkspace& ws, const ClearanceOptions& options = {});
 
-/// Clearance of the body's shapes to every stair solid.
-Clearance BodyStairClearance(const RobotCollisionModel& robot, const StairCollisionModel& stairs, const BodyPose& body);
+/// Clearance of the body's shapes to every stair solid (options.prune_above applies; the foot
+/// support rule does not concern the body).
+Clearance BodyStairClearance(const RobotCollisionModel& robot, const StairCollisionModel& stairs, const BodyPose& body,
+                             const ClearanceOptions& options = {});
 
 /// Clearance between leg a at q_a and leg b at q_b (e.g. LF and RF, the contralateral pair); points
-/// in the base frame (the body pose does not change it).
+/// in the base frame (the body pose does not change it). prune_above as in ClearanceOptions.
 Clearance LegLegClearance(const RobotKinematics& kinematics, const RobotCollisionModel& robot, int leg_a,
-                          const Eigen::Vector3d& q_a, int leg_b, const Eigen::Vector3d& q_b, RobotWorkspace& ws);
+                          const Eigen::Vector3d& q_a, int leg_b, const Eigen::Vector3d& q_b, RobotWorkspace& ws,
+                          double prune_above = std::numeric_limits<double>::infinity());
 
 }  // namespace stairplan

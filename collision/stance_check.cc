@@ -76,11 +76,12 @@ StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollision
       return result;
     }
   }
-  result.body = BodyStairClearance(robot, stairs, body);
+  result.body = BodyStairClearance(robot, stairs, body, settings.clearance);
   bool collision = !(result.min_clearance > settings.min_clearance) || !(result.body.distance > settings.min_clearance);
   if (settings.check_contralateral) {
-    result.front_pair = LegLegClearance(kinematics, robot, 0, result.legs[0].ik.q, 1, result.legs[1].ik.q, ws);
-    result.hind_pair = LegLegClearance(kinematics, robot, 2, result.legs[2].ik.q, 3, result.legs[3].ik.q, ws);
+    const double prune = settings.clearance.prune_above;
+    result.front_pair = LegLegClearance(kinematics, robot, 0, result.legs[0].ik.q, 1, result.legs[1].ik.q, ws, prune);
+    result.hind_pair = LegLegClearance(kinematics, robot, 2, result.legs[2].ik.q, 3, result.legs[3].ik.q, ws, prune);
     collision = collision || !(result.front_pair.distance > settings.min_clearance) ||
                 !(result.hind_pair.distance > settings.min_clearance);
   }
@@ -96,6 +97,8 @@ StanceChecker::StanceChecker(const RobotModel& robot, const Staircase& stairs, c
   settings_.Validate();
   verdict_settings_ = settings_;
   verdict_settings_.stop_at_first_failure = true;
+  // Only "clear of the margin or not" matters there: pairs surely beyond it go unmeasured.
+  verdict_settings_.clearance.prune_above = settings_.min_clearance + 1e-6;
 }
 
 StanceResult StanceChecker::Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W) {

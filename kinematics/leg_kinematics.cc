@@ -25,6 +25,10 @@ Eigen::Isometry3d ToEigen(const KDL::Frame& f) {
   return t;
 }
 
+// How far outside the sampled reach a target must be to be called unreachable untried.
+constexpr double kReachSlack = 0.01;     // relative
+constexpr double kReachSlackAbs = 1e-3;  // [m]
+
 double SampleLo(double lo) { return std::max(lo, -kSampleRange); }
 double SampleHi(double hi) { return std::min(hi, kSampleRange); }
 
@@ -172,6 +176,13 @@ Eigen::Vector3d LegKinematics::RestartSeed(int k) const {
   return q;
 }
 
+bool LegKinematics::BeyondLimitedReach(const Eigen::Vector3d& foot_B) const {
+  // reach_ is sampled, so its ends are a little inside the true ones: only a target clearly
+  // outside them is beyond every configuration within the limits.
+  const double d = (foot_B - hip_B_).norm();
+  return d > reach_.hi * (1.0 + kReachSlack) + kReachSlackAbs || d < reach_.lo * (1.0 - kReachSlack) - kReachSlackAbs;
+}
+
 IkResult LegKinematics::SolveFootIk(const Eigen::Vector3d& foot_B, LegWorkspace& ws, const IkSettings& settings) const {
   return SolveFootIk(foot_B, nominal_, ws, settings);
 }
@@ -184,9 +195,17 @@ IkResult LegKinematics::SolveFootIk(const Eigen::Vector3d& foot_B, const Eigen::
   IkResult result;
   result.q = AimedSeed(foot_B, Clamp(seed), ws);
   result.error = Descend(foot_B, result.q, true, settings, ws, result.iterations);
+  if (result.error <= settings.tolerance) {
+    result.status = IkStatus::kSolved;
+    return result;
+  }
+  // The planners probe many unreachable targets: farther than the links laid end to end is out of
+  // reach for any joint angles, and beyond the reach within the limits no restart can help.
+  if ((foot_B - hip_B_).norm() > leg_.max_reach + 1e-9) return result;  // kOutOfReach
+  const int restarts = BeyondLimitedReach(foot_B) ? 0 : settings.max_restarts;
   // A descent that stalls against a joint limit often has a solution on another branch: restart
   // from spread-out seeds before giving up.
-  for (int k = 0; k < settings.max_restarts && result.error > settings.tolerance; ++k) {
+  for (int k = 0; k < restarts && result.error > settings.tolerance; ++k) {
     Eigen::Vector3d q = RestartSeed(k);
     const double error = Descend(foot_B, q, true, settings, ws, result.iterations);
     if (error < result.error) {

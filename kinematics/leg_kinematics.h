@@ -94,6 +94,9 @@ class LegKinematics {
   // target's (from a table, the branch nearest the seed), then cyclic-coordinate-descent turns of
   // the flexion and abduction joints that point the foot at the target.
   Eigen::Vector3d AimedSeed(const Eigen::Vector3d& target, const Eigen::Vector3d& seed, LegWorkspace& ws) const;
+  // True when the hip-to-foot distance is clearly outside reach(): no joint angles within the
+  // limits reach it, whatever the seed.
+  bool BeyondLimitedReach(const Eigen::Vector3d& foot_B) const;
   void BuildKneeTable(LegWorkspace& ws);
   void ComputeNominal(LegWorkspace& ws);
   void ComputeReach(LegWorkspace& ws);

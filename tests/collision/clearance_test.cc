@@ -1,6 +1,8 @@
 // Leg-versus-stairs and leg-versus-leg clearances on stairbot, against hand computations.
 #include <catch2/catch.hpp>
 
+#include <random>
+
 #include "collision/clearance.h"
 #include "kinematics/builtin_robot.h"
 
@@ -87,4 +89,38 @@ TEST_CASE("the body is clear of the stairs when standing on the landing", "[clea
   const Clearance c = BodyStairClearance(f.robot, f.stairs, body);
   CHECK(c.distance == Approx(0.45 - 0.06).margin(1e-6));  // box 0.12 high, landing at z = 0
   CHECK(c.leg == -1);
+}
+
+TEST_CASE("a pruned clearance agrees with the exact one about the margin, and is exact below it", "[clearance]") {
+  Fixture f;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> x(-0.1, 0.6), z(0.15, 0.45);
+  const LegKinematics& leg = f.kinematics.leg(f.lf);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  constexpr double kMargin = 0.01;
+  ClearanceOptions pruned;
+  pruned.prune_above = kMargin;
+  int below = 0, above = 0;
+  for (int i = 0; i < 400; ++i) {
+    Eigen::Vector3d q;
+    for (int j = 0; j < 3; ++j) q(j) = leg.lower()(j) + u(rng) * (leg.upper()(j) - leg.lower()(j));
+    const BodyPose body = f.BodyFor(q, {x(rng), 0.18, z(rng)});
+    const Clearance exact = LegStairClearance(f.kinematics, f.robot, f.stairs, f.lf, q, body, f.ws);
+    const Clearance cheap = LegStairClearance(f.kinematics, f.robot, f.stairs, f.lf, q, body, f.ws, pruned);
+    INFO("sample " << i << ": exact " << exact.distance << ", pruned " << cheap.distance);
+    REQUIRE((exact.distance > kMargin) == (cheap.distance > kMargin));
+    if (exact.distance < kMargin) {
+      CHECK(cheap.distance == exact.distance);
+      ++below;
+    } else {
+      CHECK(cheap.distance >= kMargin);
+      ++above;
+    }
+    const Clearance pair = LegLegClearance(f.kinematics, f.robot, 0, q, 1, q, f.ws, kMargin);
+    const Clearance pair_exact = LegLegClearance(f.kinematics, f.robot, 0, q, 1, q, f.ws);
+    REQUIRE((pair.distance > kMargin) == (pair_exact.distance > kMargin));
+  }
+  // Both sides of the margin were sampled, so the agreement means something.
+  CHECK(below > 20);
+  CHECK(above > 20);
 }

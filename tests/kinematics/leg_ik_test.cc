@@ -60,12 +60,17 @@ TEST_CASE("IK reports out of reach and joint limits, and keeps q within limits",
   CHECK(far.status == IkStatus::kOutOfReach);
   CHECK(far.error > 0.2);
   CHECK(leg.WithinLimits(far.q));
+  // Farther than the links laid end to end: one descent and the answer (planners probe many).
+  REQUIRE(0.9 > leg.model().max_reach);
+  CHECK(far.iterations <= stairplan::IkSettings{}.max_iterations);
   // A nearly straight knee (KFE = -0.05) is beyond stairbot's KFE upper limit of -0.35, and no
   // other configuration reaches that far.
   const Eigen::Vector3d straight = leg.FootPosition(Eigen::Vector3d(0.0, 0.3, -0.05), ws);
   const IkResult limits = leg.SolveFootIk(straight, ws);
   CHECK(limits.status == IkStatus::kJointLimits);
   CHECK(leg.WithinLimits(limits.q));
+  // Beyond the reach within the limits, so no restart is tried before the unlimited solve.
+  CHECK(limits.iterations <= stairplan::IkSettings{}.max_iterations);
   CHECK(std::string(stairplan::ToString(limits.status)) == "joint_limits");
   const IkResult ok = leg.SolveFootIk(leg.FootPosition(Eigen::Vector3d(0.1, 0.6, -1.2), ws), ws);
   CHECK(ok.status == IkStatus::kSolved);
