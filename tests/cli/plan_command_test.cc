@@ -61,6 +61,9 @@ std::vector<Tread> TreadsFromSpec(const json& stairs) {
 TEST_CASE("plan writes plan.json and plan.svg with every footstep inside its step region", "[cli][plan]") {
   for (const std::string direction : {"up", "down"}) {
     for (const std::string facing : {"forward", "backward"}) {
+      // Under the sanitizers the default climb and the backward descent: the other two take the
+      // same code paths.
+      if (stairplan::testing::kSanitized && (direction == "up") != (facing == "forward")) continue;
       const std::string dir = MakeTempDir("plan");
       // Under the sanitizers (planning ~20x slower) a 3-step flight, which still has every kind of tread.
       const std::string steps = stairplan::testing::FullOrSanitized<std::string>("", " --steps 3");
