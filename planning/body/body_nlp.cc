@@ -658,7 +658,7 @@ BodyNlpSolution ShiftBodyNlpSolution(const BodyNlpSolution& previous, double t0,
   for (int k = 0; k < n; ++k) {
     // Knot k of the new window is at previous knot k + shift: the point interpolated there, or
     // beyond the end extrapolated from the last two knots (holding the last knot instead made a
-    // velocity kink whose acceleration row Ipopt first had to leave: 4 iterations instead of 3.25
+    // velocity kink whose acceleration row Ipopt first had to leave: 3.75 iterations instead of 3.25
     // on average in the bench); the multipliers of the previous knot nearest to it.
     const double at = k + shift;
     const int segment = std::min(static_cast<int>(std::floor(at)), n - 2);
