@@ -10,6 +10,9 @@
 #include <ctime>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "planning/body/kinematic_body_bounds.h"
 #include "planning/optim/ipopt_solver.h"
@@ -165,6 +168,91 @@ int Screen(const WindowData& d, const Eigen::VectorXd& x, double margin, double 
   return added;
 }
 
+// The multipliers of a window's constraints by what they constrain (its stance rows' two sides,
+// the acceleration rows, the variables) rather than by program row, since each round selects
+// other rows and the next cycle's window, shifted in time, has other knots. Signs as in
+// optim::SolveResult; a constraint a round left out has 0 (it was inactive there).
+struct WindowDuals {
+  std::vector<std::array<double, 2>> sides;  // per stance row: lowest- and highest-hip side
+  std::vector<double> accel;                 // per acceleration row q * (n - 2) + k
+  Eigen::VectorXd bounds;                    // per variable
+};
+
+WindowDuals ZeroDuals(const WindowData& d) {
+  WindowDuals w;
+  w.sides.assign(d.rows.size(), {0.0, 0.0});
+  w.accel.assign(static_cast<std::size_t>(3 * (d.n - 2)), 0.0);
+  w.bounds = Eigen::VectorXd::Zero(3 * d.n);
+  return w;
+}
+
+// Where a round's program holds the selected constraints: the acceleration row of each linear
+// row and the (stance row, side) of each nonlinear row, in the program's order.
+struct RowMap {
+  std::vector<int> accel;
+  std::vector<std::pair<std::size_t, int>> sides;
+};
+
+optim::IpoptDualGuess ToProgram(const WindowDuals& w, const RowMap& map) {
+  optim::IpoptDualGuess g;
+  g.row_duals.resize(static_cast<Eigen::Index>(map.accel.size()));
+  for (std::size_t i = 0; i < map.accel.size(); ++i) {
+    g.row_duals[static_cast<Eigen::Index>(i)] = w.accel[static_cast<std::size_t>(map.accel[i])];
+  }
+  g.nonlinear_duals.resize(static_cast<Eigen::Index>(map.sides.size()));
+  for (std::size_t i = 0; i < map.sides.size(); ++i) {
+    const auto [row, side] = map.sides[i];
+    g.nonlinear_duals[static_cast<Eigen::Index>(i)] = w.sides[row][static_cast<std::size_t>(side)];
+  }
+  g.bound_duals = w.bounds;
+  return g;
+}
+
+// The multipliers of a round's solution into `w`; false (w unchanged) when the solver gave none.
+bool FromProgram(const WindowData& d, const optim::SolveResult& r, const RowMap& map, WindowDuals* w) {
+  if (r.row_duals.size() != static_cast<Eigen::Index>(map.accel.size()) ||
+      r.nonlinear_duals.size() != static_cast<Eigen::Index>(map.sides.size()) || r.bound_duals.size() != 3 * d.n ||
+      !r.row_duals.allFinite() || !r.nonlinear_duals.allFinite() || !r.bound_duals.allFinite()) {
+    return false;
+  }
+  *w = ZeroDuals(d);
+  for (std::size_t i = 0; i < map.accel.size(); ++i) {
+    w->accel[static_cast<std::size_t>(map.accel[i])] = r.row_duals[static_cast<Eigen::Index>(i)];
+  }
+  for (std::size_t i = 0; i < map.sides.size(); ++i) {
+    const auto [row, side] = map.sides[i];
+    w->sides[row][static_cast<std::size_t>(side)] = r.nonlinear_duals[static_cast<Eigen::Index>(i)];
+  }
+  w->bounds = r.bound_duals;
+  return true;
+}
+
+// A solution's multipliers (per knot and leg) onto this window's stance rows: a row finds its
+// knot and leg's when they belong to the same foothold, else 0.
+WindowDuals FromSolution(const WindowData& d, const BodyNlpSolution& s) {
+  WindowDuals w = ZeroDuals(d);
+  for (std::size_t i = 0; i < d.rows.size(); ++i) {
+    const std::size_t at = static_cast<std::size_t>(d.rows[i].knot * kBodyLegs + d.rows[i].leg);
+    if (s.stance_foothold[at] == d.rows[i].foothold) w.sides[i] = s.stance_duals[at];
+  }
+  w.accel = s.accel_duals;
+  w.bounds = Eigen::Map<const Eigen::VectorXd>(s.bound_duals.data(), static_cast<Eigen::Index>(s.bound_duals.size()));
+  return w;
+}
+
+void ToSolution(const WindowData& d, const WindowDuals& w, BodyNlpSolution* s) {
+  const std::size_t cells = static_cast<std::size_t>(d.n * kBodyLegs);
+  s->stance_foothold.assign(cells, -1);
+  s->stance_duals.assign(cells, {0.0, 0.0});
+  for (std::size_t i = 0; i < d.rows.size(); ++i) {
+    const std::size_t at = static_cast<std::size_t>(d.rows[i].knot * kBodyLegs + d.rows[i].leg);
+    s->stance_foothold[at] = d.rows[i].foothold;
+    s->stance_duals[at] = w.sides[i];
+  }
+  s->accel_duals = w.accel;
+  s->bound_duals.assign(w.bounds.data(), w.bounds.data() + w.bounds.size());
+}
+
 // The quadratic costs (pitch and shift references, smoothness) and the exact hip-height cost
 // with its Hessian.
 void AddCosts(const WindowData& d, const std::vector<optim::VariableBlock>& blocks, optim::Program* prog) {
@@ -246,11 +334,12 @@ struct KnotRow {
 
 // The selected acceleration rows (linear) and bound sides (one nonlinear constraint per knot,
 // on that knot's block, each side a margin >= 0).
-void AddConstraints(const WindowData& d, const Selection& sel, const std::vector<optim::VariableBlock>& blocks,
-                    optim::Program* prog) {
+RowMap AddConstraints(const WindowData& d, const Selection& sel, const std::vector<optim::VariableBlock>& blocks,
+                      optim::Program* prog) {
   const BodyPlannerSettings& set = d.planner->settings();
   const int n = d.n, rows_per = n - 2;
-  std::vector<int> accel_rows;
+  RowMap map;
+  std::vector<int>& accel_rows = map.accel;
   for (int r = 0; r < 3 * rows_per; ++r) {
     if (sel.accel[static_cast<std::size_t>(r)]) accel_rows.push_back(r);
   }
@@ -281,6 +370,9 @@ void AddConstraints(const WindowData& d, const Selection& sel, const std::vector
       if (!on[0] && !on[1]) continue;
       knot_rows.push_back({i, on, m});
       m += static_cast<int>(on[0]) + static_cast<int>(on[1]);
+      for (int side = 0; side < 2; ++side) {
+        if (on[static_cast<std::size_t>(side)]) map.sides.emplace_back(i, side);
+      }
     }
     const int k = d.rows[first].knot;
     first = last;
@@ -339,9 +431,13 @@ void AddConstraints(const WindowData& d, const Selection& sel, const std::vector
     };
     prog->AddNonlinearConstraint(limits);
   }
+  return map;
 }
 
-optim::SolveResult SolveProgram(const optim::Program& prog, const BodyNlpSettings& ns) {
+// One round's solve; `duals` (Ipopt only) are the multipliers to start from; `cold`: the window
+// has no previous solution to start from.
+optim::SolveResult SolveProgram(const optim::Program& prog, const BodyNlpSettings& ns,
+                                const optim::IpoptDualGuess* duals, bool cold) {
   optim::SolveResult result;
   if (ns.solver == "nlopt") {
     optim::NloptSettings s;
@@ -375,7 +471,29 @@ optim::SolveResult SolveProgram(const optim::Program& prog, const BodyNlpSetting
   s.numeric_options["acceptable_tol"] = 1e-2;
   s.numeric_options["acceptable_dual_inf_tol"] = 1e-1;
   s.numeric_options["acceptable_compl_inf_tol"] = 1e-3;
+  // MUMPS's per-call overhead is most of an iteration here: one back-solve per step unless its
+  // residual asks for refinement (Ipopt still refines then), and a workspace 5% above MUMPS's
+  // estimate instead of 1000% (Ipopt grows it when short); together ~10-15% less CPU per solve.
+  s.integer_options["min_refinement_steps"] = 0;
+  s.integer_options["mumps_mem_percent"] = 5;
+  // From the QP's plan, Mehrotra's predictor-corrector (Ipopt's option for convex problems, and
+  // these costs are convex, the bounds nearly linear in the height) reached the same solution in
+  // 19 iterations instead of 36 here; from a previous solution it took more (4.9 instead of
+  // 3.25), so warm windows keep the monotone barrier.
+  if (cold) s.string_options["mehrotra_algorithm"] = "yes";
+  if (duals != nullptr) {
+    // From a solution's multipliers: keep the point where it is (Ipopt's 1e-3 pushes would move
+    // it back into the interior). Multipliers below 1e-3 are raised to it: a constraint that is
+    // new or inactive has 0, and at a slack s the barrier wants mu / s (about 1e-3 for the
+    // 1e-2-sized slacks of the acceleration rows); at 1e-6 Ipopt's first step there was 1 m.
+    s.numeric_options["warm_start_bound_push"] = 1e-6;
+    s.numeric_options["warm_start_bound_frac"] = 1e-6;
+    s.numeric_options["warm_start_slack_bound_push"] = 1e-6;
+    s.numeric_options["warm_start_slack_bound_frac"] = 1e-6;
+    s.numeric_options["warm_start_mult_bound_push"] = 1e-3;
+  }
   optim::IpoptSolver solver(s);
+  if (duals != nullptr) solver.SetDualGuess(*duals);
   solver.Solve(prog, &result);
   return result;
 }
@@ -391,8 +509,12 @@ optim::SolveResult SolveProgram(const optim::Program& prog, const BodyNlpSetting
 // solved again from that solution, up to kMaxRounds times, the last with every constraint. A
 // solution that breaks none of the left-out constraints leaves them inactive, so it is a
 // solution of the whole NLP: the answer is the same as with every constraint from the start.
+//
+// Multipliers: Ipopt's first round starts from `warm`'s (the previous window's, already shifted
+// to t0) when given. `solution` gets the knots and the last round's multipliers.
 BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, double t0,
-                          const std::vector<BodyState>& guess, std::vector<BodyState>* out) {
+                          const std::vector<BodyState>& guess, const BodyNlpSolution* warm,
+                          BodyNlpSolution* solution) {
   const BodyPlannerSettings& set = planner.settings();
   const FootSchedule& schedule = planner.schedule();
   const int n = static_cast<int>(guess.size());
@@ -414,6 +536,8 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   Eigen::VectorXd x = x0;
+  WindowDuals duals = warm != nullptr ? FromSolution(d, *warm) : ZeroDuals(d);
+  bool have_duals = warm != nullptr && ns.solver == "ipopt";
   for (int round = 0; round < kMaxRounds; ++round) {
     if (round + 1 == kMaxRounds) sel.All();
     optim::Program prog;
@@ -425,10 +549,15 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
       prog.SetVariableBounds(blocks[static_cast<std::size_t>(k)], lo, hi);
     }
     AddCosts(d, blocks, &prog);
-    AddConstraints(d, sel, blocks, &prog);
+    const RowMap map = AddConstraints(d, sel, blocks, &prog);
     prog.MutableInitialGuess() = x;
     if (round == 0) window.qp_objective = prog.Objective(x0);
-    const optim::SolveResult result = SolveProgram(prog, ns);
+    const optim::IpoptDualGuess start_duals = have_duals ? ToProgram(duals, map) : optim::IpoptDualGuess{};
+    const optim::SolveResult result = SolveProgram(prog, ns, have_duals ? &start_duals : nullptr, warm == nullptr);
+    // The next round starts from this solution without its multipliers: with them (the rows it
+    // adds at 0) cold starts took 44 iterations instead of 36 here.
+    if (!FromProgram(d, result, map, &duals)) duals = ZeroDuals(d);  // NLopt has none
+    have_duals = false;
     window.status = result.status;
     window.iterations += result.info.iterations;
     if (result.x.size() == x.size() && result.x.allFinite()) x = result.x;
@@ -445,6 +574,8 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
   window.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   window.solve_cpu_ms = 1e3 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   window.nlp_bound_distance = d.BoundDistance(x);
+  solution->t0 = t0;
+  std::vector<BodyState>* out = &solution->knots;
   out->resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
     BodyState& b = (*out)[static_cast<std::size_t>(k)];
@@ -457,10 +588,109 @@ BodyNlpWindow SolveWindow(BodyPlanner& planner, const BodyNlpSettings& ns, doubl
     b.y = d.neutral_y[k] + d.heading * b.com_shift_y;
     b.yaw = schedule.yaw();
   }
+  ToSolution(d, duals, solution);
   return window;
 }
 
+BodyState Lerp(const BodyState& a, const BodyState& b, double f) {
+  const auto mix = [f](double u, double v) { return u + f * (v - u); };
+  BodyState s;
+  s.t = mix(a.t, b.t);
+  s.x = mix(a.x, b.x);
+  s.y = mix(a.y, b.y);
+  s.z = mix(a.z, b.z);
+  s.pitch = mix(a.pitch, b.pitch);
+  s.yaw = mix(a.yaw, b.yaw);
+  s.com_shift = mix(a.com_shift, b.com_shift);
+  s.com_shift_y = mix(a.com_shift_y, b.com_shift_y);
+  return s;
+}
+
+// Moves knot 0 of `knots` to `state` and fades the difference out over the next knots, (1 - k/m)^2
+// for k < m, with m long enough that the fade's acceleration 2 |delta| / m^2 is half the limit:
+// a guess whose knot 0 alone jumps breaks the acceleration limits at the start (the state a loop
+// measures is rarely where the previous plan put it), and Ipopt then crawls out of that corner
+// in short steps.
+void BlendInState(const BodyState& state, const Eigen::Vector3d& accel_limits, std::vector<BodyState>* knots) {
+  const int n = static_cast<int>(knots->size());
+  BodyState& first = knots->front();
+  const Eigen::Vector3d delta(state.z - first.z, state.pitch - first.pitch, state.com_shift - first.com_shift);
+  const double t0 = first.t;
+  first = state;
+  first.t = t0;
+  for (int q = 0; q < 3; ++q) {
+    const double m = std::clamp(std::ceil(std::sqrt(4.0 * std::abs(delta[q]) / accel_limits[q])), 1.0, n - 1.0);
+    for (int k = 1; k < m; ++k) {
+      const double w = (1.0 - k / m) * (1.0 - k / m);
+      BodyState& b = (*knots)[static_cast<std::size_t>(k)];
+      (q == 0 ? b.z : q == 1 ? b.pitch : b.com_shift) += w * delta[q];
+    }
+  }
+}
+
+void CheckSolution(const BodyNlpSolution& s) {
+  const std::size_t n = s.knots.size();
+  if (n < 3) throw std::invalid_argument("BodyNlpSolution::knots: needs at least 3 knots");
+  const auto sized = [](std::size_t got, std::size_t want, const char* field) {
+    if (got != want) {
+      throw std::invalid_argument(std::string("BodyNlpSolution::") + field + ": " + std::to_string(got) +
+                                  " entries, the knots need " + std::to_string(want));
+    }
+  };
+  sized(s.stance_foothold.size(), n * kBodyLegs, "stance_foothold");
+  sized(s.stance_duals.size(), n * kBodyLegs, "stance_duals");
+  sized(s.accel_duals.size(), 3 * (n - 2), "accel_duals");
+  sized(s.bound_duals.size(), 3 * n, "bound_duals");
+}
+
 }  // namespace
+
+BodyNlpSolution ShiftBodyNlpSolution(const BodyNlpSolution& previous, double t0, const BodyPlannerSettings& settings,
+                                     const BodyState& state) {
+  CheckSolution(previous);
+  const double knot_dt = settings.knot_dt;
+  const Eigen::Vector3d accel_limits(AccelLimit(settings, 0), AccelLimit(settings, 1), AccelLimit(settings, 2));
+  // Half a microsecond of slack: a loop adding its period to t0 rounds.
+  if (!(t0 >= previous.t0 - 5e-7)) throw std::invalid_argument("t0: before the previous solution's t0");
+  const int n = static_cast<int>(previous.knots.size());
+  const double shift = std::max(0.0, (t0 - previous.t0) / knot_dt);  // in previous knots
+  BodyNlpSolution s;
+  s.t0 = t0;
+  s.knots.resize(static_cast<std::size_t>(n));
+  s.stance_foothold.assign(static_cast<std::size_t>(n * kBodyLegs), -1);
+  s.stance_duals.assign(static_cast<std::size_t>(n * kBodyLegs), {0.0, 0.0});
+  s.accel_duals.assign(static_cast<std::size_t>(3 * (n - 2)), 0.0);
+  s.bound_duals.assign(static_cast<std::size_t>(3 * n), 0.0);
+  for (int k = 0; k < n; ++k) {
+    // Knot k of the new window is at previous knot k + shift: the point interpolated there, or
+    // beyond the end extrapolated from the last two knots (holding the last knot instead made a
+    // velocity kink whose acceleration row Ipopt first had to leave: 3.75 iterations instead of 3.25
+    // on average in the bench); the multipliers of the previous knot nearest to it.
+    const double at = k + shift;
+    const int segment = std::min(static_cast<int>(std::floor(at)), n - 2);
+    BodyState& knot = s.knots[static_cast<std::size_t>(k)];
+    knot = Lerp(previous.knots[static_cast<std::size_t>(segment)], previous.knots[static_cast<std::size_t>(segment + 1)],
+                at - segment);
+    knot.pitch = std::clamp(knot.pitch, -settings.max_pitch, settings.max_pitch);
+    knot.com_shift = std::clamp(knot.com_shift, -settings.max_shift, settings.max_shift);
+    knot.t = t0 + k * knot_dt;
+    const int nearest = static_cast<int>(std::lround(at));
+    if (nearest > n - 1) continue;  // a knot the previous window did not reach: multipliers 0
+    const auto at_index = [](int i) { return static_cast<std::size_t>(i); };
+    for (int l = 0; l < kBodyLegs; ++l) {
+      s.stance_foothold[at_index(k * kBodyLegs + l)] = previous.stance_foothold[at_index(nearest * kBodyLegs + l)];
+      s.stance_duals[at_index(k * kBodyLegs + l)] = previous.stance_duals[at_index(nearest * kBodyLegs + l)];
+    }
+    for (int i = 0; i < 3; ++i) s.bound_duals[at_index(3 * k + i)] = previous.bound_duals[at_index(3 * nearest + i)];
+    if (k + 2 < n && nearest + 2 < n) {
+      for (int q = 0; q < 3; ++q) {
+        s.accel_duals[at_index(q * (n - 2) + k)] = previous.accel_duals[at_index(q * (n - 2) + nearest)];
+      }
+    }
+  }
+  BlendInState(state, accel_limits, &s.knots);
+  return s;
+}
 
 void BodyNlpSettings::Validate() const {
   if (solver != "ipopt" && solver != "nlopt") {
@@ -472,15 +702,29 @@ void BodyNlpSettings::Validate() const {
 
 BodyNlpWindow SolveBodyNlp(BodyPlanner& planner, const BodyNlpSettings& settings, double now,
                            std::vector<BodyState>* knots) {
-  settings.Validate();
-  return SolveWindow(planner, settings, now, planner.output().knots, knots);
+  return SolveBodyNlpFrom(planner, settings, now, planner.output().knots, knots);
 }
 
 BodyNlpWindow SolveBodyNlpFrom(BodyPlanner& planner, const BodyNlpSettings& settings, double t0,
                                const std::vector<BodyState>& guess, std::vector<BodyState>* knots) {
+  BodyNlpSolution solution;
+  const BodyNlpWindow window = SolveBodyNlpFrom(planner, settings, t0, guess, &solution);
+  *knots = std::move(solution.knots);
+  return window;
+}
+
+BodyNlpWindow SolveBodyNlpFrom(BodyPlanner& planner, const BodyNlpSettings& settings, double t0,
+                               const std::vector<BodyState>& guess, BodyNlpSolution* solution) {
   settings.Validate();
   if (guess.size() < 3) throw std::invalid_argument("SolveBodyNlpFrom: guess needs at least 3 knots");
-  return SolveWindow(planner, settings, t0, guess, knots);
+  return SolveWindow(planner, settings, t0, guess, nullptr, solution);
+}
+
+BodyNlpWindow SolveBodyNlpWarm(BodyPlanner& planner, const BodyNlpSettings& settings, double t0,
+                               const BodyState& state, const BodyNlpSolution& previous, BodyNlpSolution* solution) {
+  settings.Validate();
+  const BodyNlpSolution start = ShiftBodyNlpSolution(previous, t0, planner.settings(), state);
+  return SolveWindow(planner, settings, t0, start.knots, &start, solution);
 }
 
 Plan RefineBodyNlp(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan plan,
@@ -496,12 +740,13 @@ Plan RefineBodyNlp(const RobotModel& robot, const Staircase& stairs, const Const
   worst.qp_bound_distance = worst.nlp_bound_distance = std::numeric_limits<double>::infinity();
   worst.status = optim::SolveStatus::kSolved;
   std::string failure;
-  std::vector<BodyState> guess, solution;
+  std::vector<BodyState> guess;
+  BodyNlpSolution solution;
   for (std::size_t i0 = 0; i0 + 1 < plan.body.size(); i0 += window - 1) {
     const std::size_t count = std::min(window, plan.body.size() - i0);
     if (count < 3) break;
     guess.assign(plan.body.begin() + static_cast<std::ptrdiff_t>(i0), plan.body.begin() + static_cast<std::ptrdiff_t>(i0 + count));
-    const BodyNlpWindow w = SolveWindow(planner, nlp, guess.front().t, guess, &solution);
+    const BodyNlpWindow w = SolveWindow(planner, nlp, guess.front().t, guess, nullptr, &solution);
     worst.qp_objective += w.qp_objective;
     worst.nlp_objective += w.nlp_objective;
     worst.qp_bound_distance = std::min(worst.qp_bound_distance, w.qp_bound_distance);
@@ -518,7 +763,7 @@ Plan RefineBodyNlp(const RobotModel& robot, const Staircase& stairs, const Const
                         (w.nlp_bound_distance >= -1e-6 && w.nlp_objective <= w.qp_objective);
     if (!usable) continue;
     ++worst.windows_refined;
-    for (std::size_t k = 0; k < count; ++k) plan.body[i0 + k] = solution[k];
+    for (std::size_t k = 0; k < count; ++k) plan.body[i0 + k] = solution.knots[k];
   }
   auto& bounds = static_cast<KinematicBodyBounds&>(planner.bounds());
   const BodyPlanCheck check = CheckBodyTrajectory(bounds, planner.schedule(), plan.body, settings.clearance_margin);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -27,8 +28,9 @@ double ToIpopt(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf : -k
 
 class ProgramNlp : public Ipopt::TNLP {
  public:
-  ProgramNlp(const Program& p, bool exact_hessian, std::chrono::steady_clock::time_point deadline, bool has_deadline)
-      : p_(p), exact_hessian_(exact_hessian), deadline_(deadline), has_deadline_(has_deadline) {
+  ProgramNlp(const Program& p, bool exact_hessian, std::chrono::steady_clock::time_point deadline, bool has_deadline,
+             const IpoptDualGuess* duals)
+      : p_(p), exact_hessian_(exact_hessian), deadline_(deadline), has_deadline_(has_deadline), duals_(duals) {
     n_ = p.num_variables();
     m_lin_ = p.num_rows();
     m_ = m_lin_ + p.num_nonlinear_rows();
@@ -86,8 +88,21 @@ class ProgramNlp : public Ipopt::TNLP {
     return true;
   }
 
-  bool get_starting_point(Index n, bool, Number* x, bool, Number*, Number*, Index, bool, Number*) override {
+  bool get_starting_point(Index n, bool, Number* x, bool init_z, Number* z_L, Number* z_U, Index m, bool init_lambda,
+                          Number* lambda) override {
     for (int j = 0; j < n; ++j) x[j] = p_.initial_guess()[j];
+    if ((init_z || init_lambda) && duals_ == nullptr) return false;  // warm start asked through an option alone
+    if (init_z) {
+      // Ipopt's z_L, z_U >= 0 from one signed dual per variable (SolveResult's convention).
+      for (int j = 0; j < n; ++j) {
+        z_L[j] = std::max(0.0, -duals_->bound_duals[j]);
+        z_U[j] = std::max(0.0, duals_->bound_duals[j]);
+      }
+    }
+    if (init_lambda) {
+      for (int i = 0; i < m_lin_; ++i) lambda[i] = duals_->row_duals[i];
+      for (int i = m_lin_; i < m; ++i) lambda[i] = duals_->nonlinear_duals[i - m_lin_];
+    }
     return true;
   }
 
@@ -196,6 +211,7 @@ class ProgramNlp : public Ipopt::TNLP {
     x_out_ = Eigen::Map<const Eigen::VectorXd>(x, n);
     bound_duals_ = Eigen::Map<const Eigen::VectorXd>(z_U, n) - Eigen::Map<const Eigen::VectorXd>(z_L, n);
     row_duals_ = Eigen::Map<const Eigen::VectorXd>(lambda, m).head(m_lin_);
+    nonlinear_duals_ = Eigen::Map<const Eigen::VectorXd>(lambda, m).tail(m - m_lin_);
     objective_ = obj_value;
     finalized_ = true;
   }
@@ -212,7 +228,7 @@ class ProgramNlp : public Ipopt::TNLP {
   bool finalized_ = false;
   bool deadline_hit_ = false;
   Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
-  Eigen::VectorXd x_out_, bound_duals_, row_duals_;
+  Eigen::VectorXd x_out_, bound_duals_, row_duals_, nonlinear_duals_;
   double objective_ = 0.0;
 
  private:
@@ -282,6 +298,7 @@ class ProgramNlp : public Ipopt::TNLP {
   bool exact_hessian_;
   std::chrono::steady_clock::time_point deadline_;
   bool has_deadline_;
+  const IpoptDualGuess* duals_;  // null: no dual warm start
   int n_ = 0, m_ = 0, m_lin_ = 0;
   std::vector<std::pair<int, int>> jac_entries_, hess_entries_;
   std::size_t quadratic_entries_ = 0;  // the first hess_entries_, from the program's H
@@ -312,14 +329,36 @@ void IpoptSettings::Validate() const {
   if (!(time_limit_s > 0)) throw std::invalid_argument("IpoptSettings::time_limit_s must be positive");
 }
 
+void IpoptSolver::SetDualGuess(IpoptDualGuess guess) {
+  dual_guess_ = std::move(guess);
+  has_dual_guess_ = true;
+}
+
+void IpoptSolver::CheckDualGuess(const Program& program) const {
+  const auto check = [](const Eigen::VectorXd& v, int size, const char* field, const char* what) {
+    if (v.size() != size) {
+      throw std::invalid_argument(std::string("IpoptDualGuess::") + field + ": " + std::to_string(v.size()) +
+                                  " entries for " + std::to_string(size) + " " + what);
+    }
+  };
+  check(dual_guess_.row_duals, program.num_rows(), "row_duals", "linear rows");
+  check(dual_guess_.nonlinear_duals, program.num_nonlinear_rows(), "nonlinear_duals", "nonlinear rows");
+  check(dual_guess_.bound_duals, program.num_variables(), "bound_duals", "variables");
+  const bool finite = dual_guess_.row_duals.allFinite() && dual_guess_.nonlinear_duals.allFinite() &&
+                      dual_guess_.bound_duals.allFinite();
+  if (!finite) throw std::invalid_argument("IpoptDualGuess: multipliers must be finite");
+}
+
 void IpoptSolver::DoSolve(const Program& program, SolveResult* result) {
+  if (has_dual_guess_) CheckDualGuess(program);
   const auto start = std::chrono::steady_clock::now();
   const bool has_deadline = std::isfinite(settings_.time_limit_s);
   const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                     std::chrono::duration<double>(has_deadline ? settings_.time_limit_s : 0.0));
   const bool exact = program.IsQuadratic() ? settings_.exact_hessian_for_qp
                                            : settings_.exact_hessian_for_nlp && program.HasHessians();
-  Ipopt::SmartPtr<ProgramNlp> nlp = new ProgramNlp(program, exact, deadline, has_deadline);
+  Ipopt::SmartPtr<ProgramNlp> nlp =
+      new ProgramNlp(program, exact, deadline, has_deadline, has_dual_guess_ ? &dual_guess_ : nullptr);
   // No console journal: the library never prints (Ipopt would report bad options on stdout).
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication(/*create_console_out=*/false);
   auto& options = *app->Options();
@@ -335,6 +374,7 @@ void IpoptSolver::DoSolve(const Program& program, SolveResult* result) {
   } else if (!exact) {
     options.SetStringValue("hessian_approximation", "limited-memory");
   }
+  if (has_dual_guess_) options.SetStringValue("warm_start_init_point", "yes");
   bool options_ok = true;
   for (const auto& [key, value] : settings_.string_options) options_ok &= options.SetStringValue(key, value);
   for (const auto& [key, value] : settings_.numeric_options) options_ok &= options.SetNumericValue(key, value);
@@ -342,18 +382,21 @@ void IpoptSolver::DoSolve(const Program& program, SolveResult* result) {
   if (!options_ok || app->Initialize() != Ipopt::Solve_Succeeded) {
     result->status = SolveStatus::kInvalidInput;  // an option Ipopt rejects
     result->x = program.initial_guess();
+    result->nonlinear_duals.resize(0);
     return;
   }
   app->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(nlp)));
   if (!nlp->finalized_) {
     result->status = SolveStatus::kNumericalError;
     result->x = program.initial_guess();
+    result->nonlinear_duals.resize(0);
     return;
   }
   result->status = ToStatus(nlp->status_, nlp->deadline_hit_);
   result->x = nlp->x_out_;
   result->bound_duals = nlp->bound_duals_;
   result->row_duals = nlp->row_duals_;
+  result->nonlinear_duals = nlp->nonlinear_duals_;
   result->objective = program.Objective(result->x);
   result->info.primal_residual = program.MaxViolation(result->x);
   Eigen::VectorXd residual = program.hessian() * result->x + program.linear_cost() + result->bound_duals;

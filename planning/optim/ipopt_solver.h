@@ -6,6 +6,12 @@
 // checked in Ipopt's per-iteration callback on every solve (and also passed as max_cpu_time), so
 // it holds for the second solve as for the first. A fresh IpoptApplication per solve keeps solves
 // independent; Ipopt allocates, so this is not the per-cycle solver.
+//
+// Warm starts: the program's initial guess is always the starting point; a dual guess (a previous
+// result's multipliers mapped onto this program) makes Ipopt start from those multipliers too
+// (warm_start_init_point), which is what cuts a re-solve of a shifted problem to a few iterations.
+// Ipopt then pushes the start into the interior by warm_start_bound_push / warm_start_mult_bound_push
+// (1e-3 by default, which undoes much of a warm start: set them small through numeric_options).
 #pragma once
 
 #include <map>
@@ -36,6 +42,14 @@ struct IpoptSettings {
   void Validate() const;
 };
 
+/// Multipliers to start from, with SolveResult's signs: a dual <= 0 on an active lower side, >= 0
+/// on an active upper side (an inactive one 0).
+struct IpoptDualGuess {
+  Eigen::VectorXd row_duals;        ///< one per linear row
+  Eigen::VectorXd nonlinear_duals;  ///< one per nonlinear constraint row
+  Eigen::VectorXd bound_duals;      ///< one per variable
+};
+
 class IpoptSolver final : public Solver {
  public:
   IpoptSolver() = default;
@@ -47,10 +61,20 @@ class IpoptSolver final : public Solver {
   IpoptSettings& settings() { return settings_; }
   const IpoptSettings& settings() const { return settings_; }
 
+  /// Starts the next solves from these multipliers (and the program's initial guess) until
+  /// ClearDualGuess(). Solve() throws std::invalid_argument naming the field whose size does not
+  /// match the program's rows or variables.
+  void SetDualGuess(IpoptDualGuess guess);
+  void ClearDualGuess() { has_dual_guess_ = false; }
+  bool has_dual_guess() const { return has_dual_guess_; }
+
  private:
   void DoSolve(const Program& program, SolveResult* result) override;
+  void CheckDualGuess(const Program& program) const;
 
   IpoptSettings settings_;
+  IpoptDualGuess dual_guess_;
+  bool has_dual_guess_ = false;
 };
 
 }  // namespace stairplan::optim

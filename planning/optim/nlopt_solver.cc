@@ -217,6 +217,7 @@ void NloptSolver::DoSolve(const Program& program, SolveResult* result) {
   result->status = status;
   result->row_duals.setZero();
   result->bound_duals.setZero();
+  result->nonlinear_duals.resize(0);  // none: NLopt returns no multipliers
   result->objective = program.Objective(result->x);
   result->info.iterations = context.evaluations;
   result->info.primal_residual = violation;

@@ -51,6 +51,10 @@ struct SolveResult {
   Eigen::VectorXd x;
   Eigen::VectorXd row_duals;
   Eigen::VectorXd bound_duals;
+  /// The nonlinear constraints' rows' multipliers, in the program's order and with the same signs
+  /// (the Lagrangian gains J' nonlinear_duals): Ipopt fills it, NLopt (no multipliers) empties it,
+  /// the QP-only active-set solver leaves it alone.
+  Eigen::VectorXd nonlinear_duals;
   double objective = 0.0;  ///< including the program's constant
   ActiveSet active_set;
   SolveInfo info;

@@ -3,6 +3,10 @@
 // re-checked exactly passes or is reported infeasible.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
 #include "kinematics/builtin_robot.h"
 #include "planning/body/body_nlp.h"
 #include "planning/body/kinematic_body_bounds.h"
@@ -117,4 +121,125 @@ TEST_CASE("NLopt's SLSQP solves the same horizon NLP to a point inside the exact
   bad.solver = "cplex";
   std::vector<BodyState> knots;
   CHECK_THROWS_WITH(SolveBodyNlp(planner, bad, now, &knots), Catch::Contains("solver"));
+}
+
+namespace {
+
+// The planner walked onto the default stairs' flight (every cycle solving) with the crawl's
+// default 0.6 s COM shifts, as the bench does: there the hip of a stance leg sits on its highest
+// valid height for whole windows, so the NLP has active bounds and multipliers to carry.
+struct OnFlight {
+  Staircase stairs{StairSpec{}};
+  ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
+  Plan footsteps = PlanCrawl(BuiltinRobot(), stairs, map);
+  std::unique_ptr<BodyPlanner> planner;
+  double now = 0.0;
+  OnFlight() {
+    REQUIRE(footsteps.status == PlanStatus::kOk);
+    BodyPlannerSettings loop;
+    loop.cycle_budget_s = 1.0;
+    planner = std::make_unique<BodyPlanner>(BuiltinRobot(), stairs, map, footsteps, loop);
+    BodyState state = planner->StartState();
+    for (; now < 3.0; now += 0.025) {
+      planner->Update(state, BodyCommand{}, now);
+      state = planner->Interpolate(now + 0.025);
+    }
+    planner->Update(state, BodyCommand{}, now);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a previous NLP solution shifted a knot: knots and multipliers move with their times", "[body][nlp]") {
+  OnFlight f;
+  BodyNlpSolution previous;
+  REQUIRE(SolveBodyNlpFrom(*f.planner, BodyNlpSettings{}, f.now, f.planner->output().knots, &previous).status ==
+          optim::SolveStatus::kSolved);
+  const BodyPlannerSettings& set = f.planner->settings();
+  const std::size_t n = previous.knots.size();
+  const double t0 = f.now + set.knot_dt;
+  // The state where the previous plan put it: no fade, every knot one later.
+  const BodyNlpSolution shifted = ShiftBodyNlpSolution(previous, t0, set, previous.knots[1]);
+  REQUIRE(shifted.knots.size() == n);
+  CHECK(shifted.t0 == t0);
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    INFO("knot " << k);
+    CHECK(shifted.knots[k].t == Approx(t0 + static_cast<double>(k) * set.knot_dt));
+    CHECK(shifted.knots[k].z == Approx(previous.knots[k + 1].z));
+    CHECK(shifted.knots[k].com_shift == Approx(previous.knots[k + 1].com_shift));
+    for (int l = 0; l < kBodyLegs; ++l) {
+      CHECK(shifted.stance_foothold[k * kBodyLegs + l] == previous.stance_foothold[(k + 1) * kBodyLegs + l]);
+      CHECK(shifted.stance_duals[k * kBodyLegs + l][1] == previous.stance_duals[(k + 1) * kBodyLegs + l][1]);
+    }
+  }
+  // Beyond the previous window: extrapolated, no multipliers yet.
+  CHECK(shifted.knots[n - 1].z == Approx(2.0 * previous.knots[n - 1].z - previous.knots[n - 2].z));
+  for (int l = 0; l < kBodyLegs; ++l) CHECK(shifted.stance_foothold[(n - 1) * kBodyLegs + l] == -1);
+  // Some stance bound is active on the flight, so there are multipliers to carry at all.
+  double largest = 0.0;
+  for (const auto& sides : previous.stance_duals) largest = std::max({largest, std::abs(sides[0]), std::abs(sides[1])});
+  CHECK(largest > 1.0);
+
+  // A state off the plan: knot 0 is the state and the difference fades out within the window,
+  // its acceleration within half the limit.
+  BodyState off = previous.knots[1];
+  off.com_shift += 0.01;
+  const BodyNlpSolution faded = ShiftBodyNlpSolution(previous, t0, set, off);
+  CHECK(faded.knots[0].com_shift == off.com_shift);
+  Eigen::VectorXd fade(static_cast<Eigen::Index>(n));
+  for (std::size_t k = 0; k < n; ++k) fade[static_cast<Eigen::Index>(k)] = faded.knots[k].com_shift - shifted.knots[k].com_shift;
+  CHECK(fade[0] == Approx(0.01));
+  CHECK(fade[static_cast<Eigen::Index>(n / 2)] == Approx(0.0).margin(1e-12));
+  for (Eigen::Index k = 0; k + 2 < fade.size(); ++k) {
+    CHECK(std::abs(fade[k] - 2.0 * fade[k + 1] + fade[k + 2]) <= 0.5 * set.max_shift_accel * set.knot_dt * set.knot_dt + 1e-12);
+  }
+
+  CHECK_THROWS_WITH(ShiftBodyNlpSolution(previous, f.now - set.knot_dt, set, off), Catch::Contains("t0"));
+  BodyNlpSolution broken = previous;
+  broken.accel_duals.pop_back();
+  CHECK_THROWS_WITH(ShiftBodyNlpSolution(broken, t0, set, off), Catch::Contains("accel_duals"));
+}
+
+TEST_CASE("the NLP in a loop: each window warm-started from the last reaches the same solution in fewer iterations",
+          "[body][nlp]") {
+  OnFlight f;
+  const BodyNlpSettings settings;
+  BodyNlpSolution solution;
+  const BodyNlpWindow cold = SolveBodyNlpFrom(*f.planner, settings, f.now, f.planner->output().knots, &solution);
+  REQUIRE(cold.status == optim::SolveStatus::kSolved);
+  const BodyPlannerSettings& set = f.planner->settings();
+  int warm_iterations = 0, primal_iterations = 0;
+  double now = f.now;
+  for (int cycle = 0; cycle < 3; ++cycle) {
+    const double next = now + set.knot_dt;
+    f.planner->Update(f.planner->Interpolate(next), BodyCommand{}, next);
+    const BodyState state = solution.knots[1];  // the loop follows the NLP's plan
+    // The same window from the shifted knots alone, without the multipliers.
+    std::vector<BodyState> reference;
+    const BodyNlpWindow primal =
+        SolveBodyNlpFrom(*f.planner, settings, next, ShiftBodyNlpSolution(solution, next, set, state).knots, &reference);
+    const BodyNlpWindow warm = SolveBodyNlpWarm(*f.planner, settings, next, state, solution, &solution);
+    INFO("cycle " << cycle << ": " << optim::ToString(warm.status) << ", iterations warm " << warm.iterations
+                  << " primal only " << primal.iterations << " cold " << cold.iterations << "; objective warm "
+                  << warm.nlp_objective << " primal only " << primal.nlp_objective << "; bound distance "
+                  << warm.nlp_bound_distance);
+    REQUIRE(warm.status == optim::SolveStatus::kSolved);
+    REQUIRE(primal.status == optim::SolveStatus::kSolved);
+    CHECK(warm.nlp_objective == Approx(primal.nlp_objective).epsilon(1e-5));
+    CHECK(warm.nlp_bound_distance >= -1e-5);
+    CHECK(warm.iterations < cold.iterations);
+    REQUIRE(solution.knots.size() == reference.size());
+    CHECK(solution.t0 == next);
+    CHECK(solution.knots[0].z == state.z);  // knot 0 is the state
+    for (std::size_t k = 0; k < reference.size(); ++k) CHECK(solution.knots[k].z == Approx(reference[k].z).margin(1e-4));
+    const BodyPlanCheck check = CheckBodyTrajectory(static_cast<KinematicBodyBounds&>(f.planner->bounds()),
+                                                    f.planner->schedule(), solution.knots, set.clearance_margin);
+    INFO(check.first_violation);
+    CHECK(check.ok());
+    warm_iterations += warm.iterations;
+    primal_iterations += primal.iterations;
+    now = next;
+  }
+  INFO("iterations over the loop: warm " << warm_iterations << ", from the knots alone " << primal_iterations);
+  CHECK(warm_iterations < primal_iterations);
 }

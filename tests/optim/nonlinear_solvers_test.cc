@@ -12,8 +12,9 @@ using namespace stairplan::optim;
 
 namespace {
 
-// HS71: min x1 x4 (x1 + x2 + x3) + x3 s.t. x1 x2 x3 x4 >= 25, |x|^2 = 40, 1 <= x <= 5.
-Program Hs71() {
+// HS71: min x1 x4 (x1 + x2 + x3) + x3 s.t. x1 x2 x3 x4 >= 25, |x|^2 = 40, 1 <= x <= 5
+// (`product` instead of 25 for a nearby problem).
+Program Hs71(double product = 25) {
   Program p;
   const VariableBlock x = p.AddVariables("x", 4);
   p.SetVariableBounds(x, Eigen::Vector4d::Constant(1), Eigen::Vector4d::Constant(5));
@@ -29,7 +30,7 @@ Program Hs71() {
   NonlinearConstraint c;
   c.name = "product_and_sphere";
   c.blocks = {x};
-  c.lower = Eigen::Vector2d(25, 40);
+  c.lower = Eigen::Vector2d(product, 40);
   c.upper = Eigen::Vector2d(kInf, 40);
   c.value = [](const Eigen::VectorXd& v, Eigen::Ref<Eigen::VectorXd> out) {
     out[0] = v.prod();
@@ -145,6 +146,72 @@ TEST_CASE("Ipopt's QP duals follow the documented convention", "[nonlinear]") {
   CHECK(r.row_duals[0] == Approx(-1.5).margin(1e-6));
   CHECK(r.bound_duals[0] == Approx(1.0).margin(1e-6));
   CHECK(r.info.dual_residual < 1e-6);
+}
+
+TEST_CASE("Ipopt's nonlinear multipliers satisfy the KKT conditions with the documented signs", "[nonlinear]") {
+  const Program p = Hs71();
+  const SolveResult r = IpoptSolver().Solve(p);
+  REQUIRE(r.status == SolveStatus::kSolved);
+  REQUIRE(r.nonlinear_duals.size() == 2);
+  // grad f + J' nonlinear_duals + bound_duals = 0 (no linear rows here).
+  Eigen::VectorXd residual(4);
+  p.nonlinear_costs()[0].gradient(r.x, 0, residual);
+  Eigen::MatrixXd jac(2, 4);
+  p.nonlinear_constraints()[0].jacobian(r.x, 0, jac);
+  residual += jac.transpose() * r.nonlinear_duals + r.bound_duals;
+  CHECK(residual.lpNorm<Eigen::Infinity>() < 1e-6);
+  CHECK(r.nonlinear_duals[0] < -0.1);   // the product sits on its lower bound 25
+  CHECK(r.bound_duals[0] < -0.1);       // x1 sits on its lower bound 1
+  // NLopt has no multipliers: it empties them rather than leave another solver's behind.
+  SolveResult reused = r;
+  NloptSolver().Solve(p, &reused);
+  CHECK(reused.nonlinear_duals.size() == 0);
+}
+
+TEST_CASE("Ipopt warm-started from a solution's multipliers re-solves a nearby problem in fewer iterations",
+          "[nonlinear]") {
+  // The same options for both starts: a small barrier and pushes, as a re-solve from a solution uses.
+  IpoptSettings s;
+  s.numeric_options["mu_init"] = 1e-6;
+  s.numeric_options["bound_push"] = 1e-8;
+  s.numeric_options["bound_frac"] = 1e-8;
+  s.numeric_options["warm_start_bound_push"] = 1e-8;
+  s.numeric_options["warm_start_bound_frac"] = 1e-8;
+  s.numeric_options["warm_start_slack_bound_push"] = 1e-8;
+  s.numeric_options["warm_start_slack_bound_frac"] = 1e-8;
+  s.numeric_options["warm_start_mult_bound_push"] = 1e-8;
+  const SolveResult first = IpoptSolver(s).Solve(Hs71());
+  REQUIRE(first.status == SolveStatus::kSolved);
+  // The next problem: the product's bound moved from 25 to 25.5, started at the old solution.
+  Program next = Hs71(25.5);
+  next.MutableInitialGuess() = first.x;
+  const SolveResult reference = IpoptSolver().Solve(next);
+  IpoptSolver primal(s);
+  const SolveResult from_x = primal.Solve(next);
+  IpoptSolver warm(s);
+  warm.SetDualGuess({first.row_duals, first.nonlinear_duals, first.bound_duals});
+  REQUIRE(warm.has_dual_guess());
+  const SolveResult from_duals = warm.Solve(next);
+  REQUIRE(reference.status == SolveStatus::kSolved);
+  REQUIRE(from_x.status == SolveStatus::kSolved);
+  REQUIRE(from_duals.status == SolveStatus::kSolved);
+  INFO("iterations: from x alone " << from_x.info.iterations << ", with multipliers " << from_duals.info.iterations);
+  CHECK(from_duals.objective == Approx(reference.objective).epsilon(1e-7));
+  CHECK(from_duals.info.iterations < from_x.info.iterations);
+  // Cleared, the solver starts from x alone again.
+  warm.ClearDualGuess();
+  CHECK(warm.Solve(next).info.iterations == from_x.info.iterations);
+}
+
+TEST_CASE("an Ipopt dual guess not sized to the program names its field", "[nonlinear]") {
+  const Program p = Hs71();
+  IpoptSolver ipopt;
+  ipopt.SetDualGuess({Eigen::VectorXd(), Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(4)});
+  CHECK_THROWS_WITH(ipopt.Solve(p), Catch::Contains("nonlinear_duals"));
+  ipopt.SetDualGuess({Eigen::VectorXd(), Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(3)});
+  CHECK_THROWS_WITH(ipopt.Solve(p), Catch::Contains("bound_duals"));
+  ipopt.SetDualGuess({Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(4)});
+  CHECK_THROWS_WITH(ipopt.Solve(p), Catch::Contains("row_duals"));
 }
 
 TEST_CASE("Ipopt's time limit holds on every solve, not only the first", "[nonlinear]") {
