@@ -1,7 +1,9 @@
 // The robot's collision shapes: grouped by leg and body, posed with the leg's frames.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <set>
+#include <string>
 
 #include "collision/robot_collision_model.h"
 #include "kinematics/builtin_robot.h"
@@ -71,4 +73,31 @@ TEST_CASE("real robots: fixed sub-links ride with their leg, sensors with the bo
     }
     if (file.label == "unitree_go2") CHECK(links_of(1).count("FR_calflower1") == 1);
   }
+}
+
+TEST_CASE("shapes past the last movable joint are rigid with the foot; the foot sphere is named", "[robot_collision_model]") {
+  const RobotKinematics stairbot(stairplan::BuiltinRobot());
+  const RobotCollisionModel model(stairbot);
+  for (int l = 0; l < 4; ++l) {
+    const auto& shapes = model.leg_shapes(l);
+    REQUIRE(model.foot_shape(l) >= 0);
+    CHECK(shapes.at(static_cast<std::size_t>(model.foot_shape(l))).foot_contact);
+    for (const auto& s : shapes) {
+      // stairbot: hip and thigh move with the hip joints, the shank (knee joint) and the foot
+      // (fixed to the shank) with the foot.
+      const bool expected = s.link.find("shank") != std::string::npos || s.link.find("foot") != std::string::npos;
+      INFO(s.link);
+      CHECK(s.foot_rigid == expected);
+    }
+  }
+  const auto robots = stairplan::testing::TestRobots(false);
+  const auto b = std::find_if(robots.begin(), robots.end(), [](const auto& r) { return r.label == "anymal_b"; });
+  if (b == robots.end()) return;
+  // ANYmal B: SHANK -> ADAPTER -> FOOT by fixed joints, all rigid with the foot; HIP and THIGH not.
+  const RobotKinematics anymal(RobotModel::FromUrdfFile(b->path));
+  const RobotCollisionModel anymal_model(anymal);
+  std::set<std::string> rigid, moving;
+  for (const auto& s : anymal_model.leg_shapes(anymal.LegIndex("LH"))) (s.foot_rigid ? rigid : moving).insert(s.link);
+  CHECK(rigid == std::set<std::string>{"LH_SHANK", "LH_ADAPTER", "LH_FOOT"});
+  CHECK(moving == std::set<std::string>{"LH_HIP", "LH_THIGH"});
 }
