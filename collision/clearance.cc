@@ -9,20 +9,20 @@
 namespace stairplan {
 namespace {
 
-// A rigid shape this far below the foot's own contact point would be inside the surface the foot
+// A foot part this far below the foot's own contact point would be inside the surface the foot
 // rests on: only round-off is forgiven [m].
 constexpr double kBelowContactTolerance = 1e-6;
 
-// The height of the surface leg shape `shape` may ignore, or NaN. A foot sphere resting on a surface
-// touches every solid whose top lies in that plane (the tread and the nosing lip in front of it);
-// from above it cannot enter them, so they are not obstacles. Nor are they for a shape rigid with
-// the foot whose lowest point is no lower than the sphere's contact: with the foot down on the
-// plane it stays above the plane, outside every solid whose top that plane is (ANYmal B's adapter
-// tube ends 7.75 mm above the contact and at any tilt stays 3 mm above it). Dipping below the
-// contact, it is measured against that surface like any other; risers, nosings and other treads
-// always are.
+// The height of the surface leg shape `shape` may ignore, or NaN. A foot sphere resting on a
+// surface touches every solid whose top lies in that plane (the tread and the nosing lip in front
+// of it); from above it cannot enter them, so they are not obstacles. Nor are they for another
+// part of the foot (rigid with it) whose lowest point is no lower than the sphere's contact: with
+// the foot down on the plane it stays above the plane, outside every solid whose top that plane
+// is (ANYmal B's adapter tube ends 7.75 mm above the contact and at any tilt stays 3.3 mm above
+// it). Dipping below the contact, it is measured against that surface like any other; risers,
+// nosings and other treads always are.
 double IgnorableSupportZ(const CollisionShape& shape, const Eigen::Isometry3d& pose_W, double foot_contact_z) {
-  if (!shape.foot_rigid || !(LowestZ(shape, pose_W) >= foot_contact_z - kBelowContactTolerance)) {
+  if (!shape.foot_part || !(LowestZ(shape, pose_W) >= foot_contact_z - kBelowContactTolerance)) {
     return std::numeric_limits<double>::quiet_NaN();
   }
   return foot_contact_z;

@@ -26,9 +26,10 @@ struct CollisionShape {
   std::string link;           ///< the URDF link it belongs to
   int segment = -1;           ///< leg chain segment whose tip frame carries it; -1: the base frame
   bool foot_contact = false;  ///< the foot's contact sphere (touches the ground by design)
-  /// Moves rigidly with the foot: on the foot link or on a link joined to it by fixed joints only
-  /// (the foot sphere itself, ANYmal B's adapter tube, a shank past the last movable joint).
-  bool foot_rigid = false;
+  /// Part of the foot: on the foot link or on a link fixed between the knee's link and the foot
+  /// (the foot sphere, ANYmal B's adapter tube, ANYmal C's shank tube on its FOOT link). The knee's
+  /// own link (stairbot's shank, a Unitree calf) is not, though it too is rigid with the foot.
+  bool foot_part = false;
   double bounding_radius = 0.0;  ///< radius of a sphere about the shape's centre enclosing it [m]
 };
 

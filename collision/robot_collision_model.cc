@@ -64,8 +64,11 @@ RobotCollisionModel::RobotCollisionModel(const RobotKinematics& kinematics) {
       }
       const LegKinematics& leg = kinematics.leg(a.leg);
       shape.foot_contact = name == leg.model().foot_link && shape.type == ShapeType::kSphere;
-      // The knee segment's link is the last one a joint moves: from it on, all rides with the foot.
-      shape.foot_rigid = a.segment >= leg.knee_segment();
+      // The chain's segments after the knee's are the fixed links down to the foot. The knee's own
+      // link is left out: its shapes are the shank itself, and robots that model the lower leg as
+      // one link (stairbot, Unitree) keep the full margin to the tread under it, as their
+      // planners are tuned on.
+      shape.foot_part = a.segment > leg.knee_segment();
       auto& shapes = legs_[static_cast<std::size_t>(a.leg)];
       if (shape.foot_contact && foot_shapes_[static_cast<std::size_t>(a.leg)] < 0) {
         foot_shapes_[static_cast<std::size_t>(a.leg)] = static_cast<int>(shapes.size());

@@ -1,7 +1,7 @@
 // The robot's collision primitives grouped by leg and body. Every link hanging from a leg chain
 // link by fixed joints (Go1's rotors, Go2's lower calf, A1's shoulder) moves with that chain link;
-// links fixed to the base (trunk, head, sensors) form the body. Shapes past a leg's last movable
-// joint move rigidly with its foot and are flagged so (CollisionShape::foot_rigid).
+// links fixed to the base (trunk, head, sensors) form the body. Shapes on the links fixed below
+// the knee's link, down to the foot, are the foot's parts (CollisionShape::foot_part).
 #pragma once
 
 #include <vector>

@@ -1,5 +1,5 @@
 // Leg-versus-stairs and leg-versus-leg clearances on stairbot, against hand computations; the
-// foot-support rule for shapes rigid with the foot on a collared stairbot and on ANYmal B.
+// foot-support rule for the foot's parts on a collared stairbot and on ANYmal B.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -47,16 +47,16 @@ TEST_CASE("a foot hovering 3 cm over a tread is 3 cm clear", "[clearance]") {
   CHECK(f.robot.leg_shapes(f.lf)[static_cast<std::size_t>(c.shape)].foot_contact);
 }
 
-TEST_CASE("standing on a tread, the shank sees the nosing above, not the tread it stands on", "[clearance]") {
+TEST_CASE("standing on a tread, the shank's end is the closest part", "[clearance]") {
   Fixture f;
   const Eigen::Vector3d q(0.0, 0.5, -0.5);
   const BodyPose body = f.BodyFor(q, {0.10, 0.18, 0.17 + 0.025});
-  // The shank is rigid with the foot and above its contact: like the sphere, it ignores tread 1.
-  // Its cylinder (radius 0.018, 0.02 to 0.24 below the knee) then meets the nosing lip of step 2,
-  // whose front is at x = 0.25.
   const Clearance c = LegStairClearance(f.kinematics, f.robot, f.stairs, f.lf, q, body, f.ws);
-  CHECK(c.distance == Approx(0.25 - (0.10 + 0.018)).margin(1e-6));
-  CHECK(c.part == StairPart::kNosing);
+  // Shank cylinder: 0.02 to 0.24 below the knee, the foot 0.30 below: its end is 6 cm above the
+  // foot centre, i.e. 0.025 + 0.06 above the tread. The shank is the knee's link, not a part of
+  // the foot: it keeps seeing the tread it stands on.
+  CHECK(c.distance == Approx(0.085).margin(1e-6));
+  CHECK(c.part == StairPart::kTread);
   CHECK(f.robot.leg_shapes(f.lf)[static_cast<std::size_t>(c.shape)].link == "LF_shank");
 }
 
@@ -132,7 +132,7 @@ TEST_CASE("a pruned clearance agrees with the exact one about the margin, and is
 
 namespace {
 
-// stairbot with a collar fixed to LF's foot: a disk of radius 0.04 (wider than the 0.025 sphere)
+// stairbot with a collar on LF's foot link: a disk of radius 0.04 (wider than the 0.025 sphere)
 // and 1 cm thick whose bottom is 5 mm above the sphere's lowest point while the shank is upright.
 // Tilting the leg by p lowers the collar's rim to 0.025 - 0.020 cos p - 0.04 sin p above the
 // sphere's contact, below it beyond 7.6 degrees.
@@ -178,18 +178,19 @@ struct CollarFixture {
 
 }  // namespace
 
-TEST_CASE("a collar rigid with the foot, above the tread the foot stands on, ignores that tread", "[clearance]") {
+TEST_CASE("a collar on the foot, above the tread the foot stands on, ignores that tread", "[clearance]") {
   CollarFixture f;
-  // Upright, 5 mm above tread 1: its nearest obstacle is riser 2, 0.27 - (0.10 + 0.04) away (the
-  // shank's to the nosing lip is 0.132).
+  // Upright, 5 mm above tread 1: the nearest obstacle is the shank's end, 0.085 above the same
+  // tread (the knee's link, not a foot part); the collar's own nearest is riser 2, 0.13 away.
   const Clearance upright = f.At(0.10, 0.0);
-  CHECK(upright.distance == Approx(0.13).margin(1e-6));
-  CHECK(upright.part == StairPart::kRiser);
-  CHECK(f.IsCollar(upright));
-  // Tilted until its rim is 1 mm above the contact: still no obstacle there, at any margin.
+  CHECK(upright.distance == Approx(0.085).margin(1e-6));
+  CHECK(upright.part == StairPart::kTread);
+  CHECK_FALSE(f.IsCollar(upright));
+  // Tilted until its rim is 1 mm above the contact: still no obstacle there, at any margin (the
+  // shank's end, tilted too, comes no nearer than 7 cm).
   const Clearance tilted = f.At(0.10, CollarFixture::TiltFor(-0.001));
-  CHECK(tilted.distance > 0.1);
-  CHECK(tilted.part != StairPart::kTread);
+  CHECK(tilted.distance > 0.07);
+  CHECK_FALSE(f.IsCollar(tilted));
 }
 
 TEST_CASE("the same collar tilted 1 mm into the tread the foot stands on collides with it", "[clearance]") {
@@ -206,7 +207,7 @@ TEST_CASE("the same collar tilted 1 mm into the tread the foot stands on collide
   CHECK(mirrored.distance == Approx(-0.001).margin(1e-6));
 }
 
-TEST_CASE("a collar rigid with the foot still meets the riser ahead of its tread", "[clearance]") {
+TEST_CASE("a collar on the foot still meets the riser ahead of its tread", "[clearance]") {
   CollarFixture f;
   // Foot 0.22 along tread 1: the collar's edge is 1 cm from riser 2 (x = 0.27), the sphere's 2.5
   // cm, the shank's 1.2 cm from the nosing lip's front (x = 0.25).
@@ -237,7 +238,7 @@ TEST_CASE("ANYmal B's adapter tube never dips below its foot's contact, so stand
   const auto& shapes = robot.leg_shapes(lf);
   const auto adapter = std::find_if(shapes.begin(), shapes.end(), [](const CollisionShape& s) { return s.link == "LF_ADAPTER"; });
   REQUIRE(adapter != shapes.end());
-  REQUIRE(adapter->foot_rigid);
+  REQUIRE(adapter->foot_part);
   const Eigen::Vector3d q = leg.nominal();
   const Eigen::Isometry3d foot_B = leg.FootPose(q, ws.leg(lf));
   const Eigen::Vector3d axis_B = foot_B.linear().col(2);  // the tube's axis

@@ -75,7 +75,7 @@ TEST_CASE("real robots: fixed sub-links ride with their leg, sensors with the bo
   }
 }
 
-TEST_CASE("shapes past the last movable joint are rigid with the foot; the foot sphere is named", "[robot_collision_model]") {
+TEST_CASE("shapes fixed below the knee's link are the foot's parts; the foot sphere is named", "[robot_collision_model]") {
   const RobotKinematics stairbot(stairplan::BuiltinRobot());
   const RobotCollisionModel model(stairbot);
   for (int l = 0; l < 4; ++l) {
@@ -83,21 +83,19 @@ TEST_CASE("shapes past the last movable joint are rigid with the foot; the foot 
     REQUIRE(model.foot_shape(l) >= 0);
     CHECK(shapes.at(static_cast<std::size_t>(model.foot_shape(l))).foot_contact);
     for (const auto& s : shapes) {
-      // stairbot: hip and thigh move with the hip joints, the shank (knee joint) and the foot
-      // (fixed to the shank) with the foot.
-      const bool expected = s.link.find("shank") != std::string::npos || s.link.find("foot") != std::string::npos;
+      // stairbot: only the foot link (fixed to the shank, the knee's link) is a foot part.
       INFO(s.link);
-      CHECK(s.foot_rigid == expected);
+      CHECK(s.foot_part == (s.link.find("foot") != std::string::npos));
     }
   }
   const auto robots = stairplan::testing::TestRobots(false);
   const auto b = std::find_if(robots.begin(), robots.end(), [](const auto& r) { return r.label == "anymal_b"; });
   if (b == robots.end()) return;
-  // ANYmal B: SHANK -> ADAPTER -> FOOT by fixed joints, all rigid with the foot; HIP and THIGH not.
+  // ANYmal B: SHANK (the knee's link) -> ADAPTER -> FOOT by fixed joints; the last two are the foot.
   const RobotKinematics anymal(RobotModel::FromUrdfFile(b->path));
   const RobotCollisionModel anymal_model(anymal);
-  std::set<std::string> rigid, moving;
-  for (const auto& s : anymal_model.leg_shapes(anymal.LegIndex("LH"))) (s.foot_rigid ? rigid : moving).insert(s.link);
-  CHECK(rigid == std::set<std::string>{"LH_SHANK", "LH_ADAPTER", "LH_FOOT"});
-  CHECK(moving == std::set<std::string>{"LH_HIP", "LH_THIGH"});
+  std::set<std::string> foot, rest;
+  for (const auto& s : anymal_model.leg_shapes(anymal.LegIndex("LH"))) (s.foot_part ? foot : rest).insert(s.link);
+  CHECK(foot == std::set<std::string>{"LH_ADAPTER", "LH_FOOT"});
+  CHECK(rest == std::set<std::string>{"LH_HIP", "LH_THIGH", "LH_SHANK"});
 }
