@@ -31,7 +31,9 @@ struct Clearance {
 struct ClearanceOptions {
   /// The foot's contact sphere touches the surface it stands on by design: skip the solids whose
   /// top is within support_tolerance of the sphere's bottom (that surface and the nosing lip in
-  /// its plane); it still sees the risers and nosings above it.
+  /// its plane) for the sphere and for the foot's other parts (CollisionShape::foot_part) whose
+  /// lowest point is not below the sphere's; they still see the risers and nosings above, the
+  /// other treads, and the support itself when they dip below the contact.
   bool skip_foot_support = true;
   double support_tolerance = 2e-3;  ///< [m]
   /// Shape pairs that are surely farther apart than this are not measured: a result at or above

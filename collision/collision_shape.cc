@@ -1,5 +1,7 @@
 #include "collision/collision_shape.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include <fcl/geometry/shape/box.h>
@@ -14,6 +16,22 @@ std::shared_ptr<const fcl::CollisionGeometryd> MakeFclBox(const Eigen::Vector3d&
   auto box = std::make_shared<fcl::Boxd>(size);
   box->computeLocalAABB();
   return box;
+}
+
+double LowestZ(const CollisionShape& shape, const Eigen::Isometry3d& pose_W) {
+  const double centre_z = pose_W.translation().z();
+  const Eigen::Matrix3d& R = pose_W.linear();
+  switch (shape.type) {
+    case ShapeType::kBox:  // the corner whose every half-side points down
+      return centre_z - 0.5 * (R.row(2).cwiseAbs().dot(shape.size));
+    case ShapeType::kCylinder: {  // the lower cap's rim, on the side the axis tilts away from
+      const double axis_z = std::abs(R(2, 2));
+      return centre_z - 0.5 * shape.size.z() * axis_z - shape.size.x() * std::sqrt(std::max(0.0, 1.0 - axis_z * axis_z));
+    }
+    case ShapeType::kSphere:
+      return centre_z - shape.size.x();
+  }
+  return centre_z;
 }
 
 std::vector<CollisionShape> LinkCollisionShapes(const urdf::Link& link, const std::string& source) {

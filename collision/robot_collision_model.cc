@@ -23,6 +23,7 @@ RobotCollisionModel::RobotCollisionModel(const RobotKinematics& kinematics) {
   const RobotModel& robot = kinematics.robot();
   const urdf::ModelInterface& urdf = robot.urdf();
   legs_.resize(static_cast<std::size_t>(kinematics.leg_count()));
+  foot_shapes_.assign(static_cast<std::size_t>(kinematics.leg_count()), -1);
 
   // Which frame carries each chain link.
   std::map<std::string, Attachment> frames;
@@ -61,9 +62,18 @@ RobotCollisionModel::RobotCollisionModel(const RobotKinematics& kinematics) {
         body_.push_back(std::move(shape));
         continue;
       }
-      const LegModel& leg = kinematics.leg(a.leg).model();
-      shape.foot_contact = name == leg.foot_link && shape.type == ShapeType::kSphere;
-      legs_[static_cast<std::size_t>(a.leg)].push_back(std::move(shape));
+      const LegKinematics& leg = kinematics.leg(a.leg);
+      shape.foot_contact = name == leg.model().foot_link && shape.type == ShapeType::kSphere;
+      // The chain's segments after the knee's are the fixed links down to the foot. The knee's own
+      // link is left out: its shapes are the shank itself, and robots that model the lower leg as
+      // one link (stairbot, Unitree) keep the full margin to the tread under it, as their
+      // planners are tuned on.
+      shape.foot_part = a.segment > leg.knee_segment();
+      auto& shapes = legs_[static_cast<std::size_t>(a.leg)];
+      if (shape.foot_contact && foot_shapes_[static_cast<std::size_t>(a.leg)] < 0) {
+        foot_shapes_[static_cast<std::size_t>(a.leg)] = static_cast<int>(shapes.size());
+      }
+      shapes.push_back(std::move(shape));
     }
   }
   for (int l = 0; l < kinematics.leg_count(); ++l) {

@@ -1,7 +1,9 @@
 // The robot's collision shapes: grouped by leg and body, posed with the leg's frames.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <set>
+#include <string>
 
 #include "collision/robot_collision_model.h"
 #include "kinematics/builtin_robot.h"
@@ -71,4 +73,29 @@ TEST_CASE("real robots: fixed sub-links ride with their leg, sensors with the bo
     }
     if (file.label == "unitree_go2") CHECK(links_of(1).count("FR_calflower1") == 1);
   }
+}
+
+TEST_CASE("shapes fixed below the knee's link are the foot's parts; the foot sphere is named", "[robot_collision_model]") {
+  const RobotKinematics stairbot(stairplan::BuiltinRobot());
+  const RobotCollisionModel model(stairbot);
+  for (int l = 0; l < 4; ++l) {
+    const auto& shapes = model.leg_shapes(l);
+    REQUIRE(model.foot_shape(l) >= 0);
+    CHECK(shapes.at(static_cast<std::size_t>(model.foot_shape(l))).foot_contact);
+    for (const auto& s : shapes) {
+      // stairbot: only the foot link (fixed to the shank, the knee's link) is a foot part.
+      INFO(s.link);
+      CHECK(s.foot_part == (s.link.find("foot") != std::string::npos));
+    }
+  }
+  const auto robots = stairplan::testing::TestRobots(false);
+  const auto b = std::find_if(robots.begin(), robots.end(), [](const auto& r) { return r.label == "anymal_b"; });
+  if (b == robots.end()) return;
+  // ANYmal B: SHANK (the knee's link) -> ADAPTER -> FOOT by fixed joints; the last two are the foot.
+  const RobotKinematics anymal(RobotModel::FromUrdfFile(b->path));
+  const RobotCollisionModel anymal_model(anymal);
+  std::set<std::string> foot, rest;
+  for (const auto& s : anymal_model.leg_shapes(anymal.LegIndex("LH"))) (s.foot_part ? foot : rest).insert(s.link);
+  CHECK(foot == std::set<std::string>{"LH_ADAPTER", "LH_FOOT"});
+  CHECK(rest == std::set<std::string>{"LH_HIP", "LH_THIGH", "LH_SHANK"});
 }
