@@ -159,7 +159,15 @@ int RunSweepMerge(const std::vector<std::string>& args) {
       buffer << in.rdbuf();
       texts.emplace_back(path, buffer.str());
     }
-    WriteFileAtomically(out, MergeSweepCsv(texts));
+    const std::string merged = MergeSweepCsv(texts);
+    std::vector<SweepRow> rows;
+    try {
+      rows = SweepRowsFromCsv(merged, out);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(e.what());
+    }
+    WriteFileAtomically(out, merged);
+    std::cout << SweepRegionsToText(AnalyseSweepRegions(rows));  // the whole sweep's success region
     return kExitOk;
   });
 }

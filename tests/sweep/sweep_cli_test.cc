@@ -76,6 +76,7 @@ TEST_CASE("sweep shards merged equal the unsharded sweep", "[sweep][cli]") {
   REQUIRE(Run(grid + " --shard 0/2 --csv " + dir + "/a.csv", dir) == 0);
   REQUIRE(Run(grid + " --shard 1/2 --csv " + dir + "/b.csv", dir) == 0);
   REQUIRE(Run("sweep-merge --csv " + dir + "/merged.csv " + dir + "/b.csv " + dir + "/a.csv", dir) == 0);
+  CHECK_THAT(ReadFile(dir + "/out.txt"), Catch::Contains("/" + std::to_string(n * n) + " valid; "));  // the whole sweep's summary
   CHECK(Rows(ReadFile(dir + "/all.csv")).size() == n * n);
   CHECK(ReadFile(dir + "/merged.csv") == ReadFile(dir + "/all.csv"));
   CHECK(Run("sweep --rise 0.1:0.2:x --csv " + dir + "/bad.csv", dir) == 2);
