@@ -142,6 +142,12 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
     if (attempt > 0) {
       tried.crawl.body.hip_height_fraction = options.posture_retries[attempt - 1].hip_height_fraction;
       tried.crawl.body.pitch_fraction = options.posture_retries[attempt - 1].pitch_fraction;
+      // The body QP's reach bounds do not hold on those footholds (CrawlSettings).
+      const bool keep = options.posture_retries[attempt - 1].keep_stance_length;
+      if (keep && options.body != BodySource::kQuasiStaticPath) continue;
+      tried.crawl.keep_stance_length = options.crawl.keep_stance_length || keep;
+      const double period = options.posture_retries[attempt - 1].height_key_period;
+      if (period > 0.0) tried.crawl.body.height_key_period = period;
     }
     const auto t_map = std::chrono::steady_clock::now();
     ConstrainedMap map = BuildPipelineMap(robot, stairs, tried);

@@ -39,10 +39,14 @@ FootstepSource ParseFootstepSource(const std::string& text);
 /// Step planner settings with the crawl gaits only.
 StepPlannerSettings CrawlControllers();
 
-/// A stance posture for the quasi-static body path (see BodyPathSettings).
+/// A stance posture for the quasi-static body path (see BodyPathSettings), the crawl's
+/// footholds under it (CrawlSettings::keep_stance_length) and how often the posture fit checks
+/// a swing (BodyPathSettings::height_key_period; 0: crawl.body's).
 struct BodyPosture {
   double hip_height_fraction = 0.6;
   double pitch_fraction = 0.75;
+  bool keep_stance_length = false;
+  double height_key_period = 0.0;
 };
 
 struct PipelineOptions {
@@ -69,8 +73,16 @@ struct PipelineOptions {
   /// Postures RunPipeline tries, in order, after crawl.body's when the validator rejects a plan:
   /// descending, the legs need to stand taller and the body to pitch with the whole flight to
   /// keep the shanks off the nosings behind the feet (the built-in robot's default descents pass
-  /// with the second and third). Empty: one attempt.
-  std::vector<BodyPosture> posture_retries = {{0.8, 1.0}, {0.8, 0.75}};
+  /// with the second and third). Climbing steep stairs (rise + run about 0.425 m for the built-in
+  /// robot), the posture fit finds no height that suits a whole swing and the body would jump:
+  /// trailing feet one stance length behind the leading ones, or a lower body, let it ride
+  /// smoothly. On long steep steps the legs work at their limits and the fit's windows narrow:
+  /// checked every 0.1 s, a leg passes its limit between the instants checked; every 0.05 s
+  /// (twice the fit's work) it does not. Empty: one attempt. keep_stance_length applies to the
+  /// quasi-static path only.
+  std::vector<BodyPosture> posture_retries = {{0.8, 1.0},        {0.8, 0.75},
+                                              {0.6, 0.75, true}, {0.5, 0.75},
+                                              {0.8, 0.75, false, 0.05}, {0.6, 0.75, false, 0.05}};
   ValidationSettings validation;
 };
 

@@ -13,6 +13,7 @@
 #include "planning/cli/cli_common.h"
 #include "planning/plan_pipeline.h"
 #include "planning/simulation/sweep_physics.h"
+#include "planning/sweep/sweep_region.h"
 #include "planning/sweep/sweep_runner.h"
 
 namespace stairplan::cli {
@@ -129,6 +130,8 @@ int RunSweepCommand(const std::vector<std::string>& args) {
     std::cout << "stairplan sweep: " << rows.size() << " points, " << valid << " valid; " << seconds << " s on "
               << o.threads << " thread(s), " << (seconds > 0 ? rows.size() / seconds / o.threads : 0.0)
               << " points/s per thread\n";
+    // The shape of the success region; a shard sees only its own points, so it says nothing.
+    if (shard.count == 1) std::cout << SweepRegionsToText(AnalyseSweepRegions(rows));
     if (physics) {
       WriteFileAtomically(o.csv + ".physics.csv", physics->Csv());
       std::cout << "physics passes: got there, feet in their regions, no other link on the stairs\n"
@@ -156,7 +159,15 @@ int RunSweepMerge(const std::vector<std::string>& args) {
       buffer << in.rdbuf();
       texts.emplace_back(path, buffer.str());
     }
-    WriteFileAtomically(out, MergeSweepCsv(texts));
+    const std::string merged = MergeSweepCsv(texts);
+    std::vector<SweepRow> rows;
+    try {
+      rows = SweepRowsFromCsv(merged, out);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(e.what());
+    }
+    WriteFileAtomically(out, merged);
+    std::cout << SweepRegionsToText(AnalyseSweepRegions(rows));  // the whole sweep's success region
     return kExitOk;
   });
 }

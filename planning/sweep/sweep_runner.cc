@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -45,7 +46,73 @@ int RowIndex(const std::string& line, const std::string& file, int line_number) 
   return index;
 }
 
+// The fields of one CSV line, quotes (with "" inside) removed.
+std::vector<std::string> CsvFields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+double CsvNumber(const std::string& field) {
+  if (field.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::size_t used = 0;
+  const double v = std::stod(field, &used);
+  if (used != field.size()) throw std::invalid_argument("not a number");
+  return v;
+}
+
+SweepRow RowFromFields(const std::vector<std::string>& f) {
+  SweepRow r;
+  r.point.index = std::stoi(f[0]);
+  if (f[1] != "up" && f[1] != "down") throw std::invalid_argument("bad direction");
+  r.point.direction = f[1] == "up" ? TravelDirection::kUp : TravelDirection::kDown;
+  r.point.steps = std::stoi(f[2]);
+  r.point.rise = CsvNumber(f[3]);
+  r.point.run = CsvNumber(f[4]);
+  r.point.nosing = CsvNumber(f[5]);
+  r.status = f[6];
+  r.cadence_s = CsvNumber(f[7]);
+  r.footsteps = std::stoi(f[8]);
+  r.min_clearance_m = CsvNumber(f[9]);
+  r.min_stability_margin_m = CsvNumber(f[10]);
+  r.reason = f[11];
+  return r;
+}
+
 }  // namespace
+
+std::vector<SweepRow> SweepRowsFromCsv(const std::string& text, const std::string& file) {
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line) || line.rfind(SweepCsvHeader(false), 0) != 0) {
+    throw std::invalid_argument(file + ":1: not a sweep CSV (no header)");
+  }
+  std::vector<SweepRow> rows;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    const std::vector<std::string> fields = CsvFields(line);
+    try {
+      if (fields.size() < 12) throw std::invalid_argument("too few fields");
+      rows.push_back(RowFromFields(fields));
+    } catch (const std::exception&) {
+      throw std::invalid_argument(file + ":" + std::to_string(number) + ": not a sweep row");
+    }
+  }
+  return rows;
+}
 
 std::vector<SweepRow> RunSweep(const std::vector<SweepPoint>& points, const PointEvaluator& evaluate, int threads,
                                const Shard& shard, const SweepProgress& progress) {

@@ -43,6 +43,10 @@ std::string SweepToCsv(const std::vector<SweepRow>& rows, bool with_times);
 /// file when headers differ, a row is malformed, or a point index appears twice.
 std::string MergeSweepCsv(const std::vector<std::pair<std::string, std::string>>& files_and_texts);
 
+/// The rows of a sweep CSV (SweepToCsv's or a merge's; times ignored), so a merged sweep can be
+/// summarised. Throws std::invalid_argument naming `file` and the line when a row is malformed.
+std::vector<SweepRow> SweepRowsFromCsv(const std::string& text, const std::string& file);
+
 /// A rise x run heatmap per direction with the building-code boxes drawn.
 std::string SweepHeatmapSvg(const std::vector<SweepRow>& rows, const SweepGrid& grid);
 

@@ -1,5 +1,6 @@
 // `stairplan sweep` end to end: the CSV does not depend on the thread count, shards merge into the
-// unsharded CSV, and points it calls valid are valid when planned and validated again alone.
+// unsharded CSV, points it calls valid are valid when planned and validated again alone, and it
+// summarises the success region.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -42,6 +43,10 @@ TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-vali
   const int wanted = FullOrSanitized(20, 1);
   const std::string grid = "sweep --rise 0.12:0.20:" + std::to_string(n) + " --run 0.25:0.33:" + std::to_string(n) + " --steps 4";
   REQUIRE(Run(grid + " --threads 1 --csv " + dir + "/one.csv --svg " + dir + "/map.svg", dir) == 0);
+  // Its summary of the success region (these gentle stairs: all valid, so both properties hold).
+  const std::string summary = ReadFile(dir + "/out.txt");
+  CHECK_THAT(summary, Catch::Contains("one connected area"));
+  CHECK_THAT(summary, Catch::Contains("steeper stairs fail first: yes"));
   REQUIRE(Run(grid + " --threads 2 --csv " + dir + "/two.csv", dir) == 0);
   const std::string one = ReadFile(dir + "/one.csv");
   CHECK(one == ReadFile(dir + "/two.csv"));
@@ -71,6 +76,7 @@ TEST_CASE("sweep shards merged equal the unsharded sweep", "[sweep][cli]") {
   REQUIRE(Run(grid + " --shard 0/2 --csv " + dir + "/a.csv", dir) == 0);
   REQUIRE(Run(grid + " --shard 1/2 --csv " + dir + "/b.csv", dir) == 0);
   REQUIRE(Run("sweep-merge --csv " + dir + "/merged.csv " + dir + "/b.csv " + dir + "/a.csv", dir) == 0);
+  CHECK_THAT(ReadFile(dir + "/out.txt"), Catch::Contains("/" + std::to_string(n * n) + " valid; "));  // the whole sweep's summary
   CHECK(Rows(ReadFile(dir + "/all.csv")).size() == n * n);
   CHECK(ReadFile(dir + "/merged.csv") == ReadFile(dir + "/all.csv"));
   CHECK(Run("sweep --rise 0.1:0.2:x --csv " + dir + "/bad.csv", dir) == 2);

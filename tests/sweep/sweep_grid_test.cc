@@ -32,6 +32,7 @@ TEST_CASE("shards partition the points and a merge restores the order", "[sweep]
     row.point = p;
     row.status = p.rise / p.run < 0.6 ? "valid" : "invalid";
     row.min_clearance_m = p.run - p.rise;
+    if (row.status != "valid") row.reason = "joint_limits RF, \"quoted\"";  // commas and quotes survive the CSV
     return row;
   };
   const std::string whole = SweepToCsv(RunSweep(points, fake, 1), false);
@@ -45,6 +46,10 @@ TEST_CASE("shards partition the points and a merge restores the order", "[sweep]
   }
   CHECK(seen.size() == points.size());
   CHECK(MergeSweepCsv(parts) == whole);
+  // The merged CSV reads back into the same rows (what sweep-merge summarises).
+  const std::vector<SweepRow> back = SweepRowsFromCsv(MergeSweepCsv(parts), "merged.csv");
+  CHECK(SweepToCsv(back, false) == whole);
+  CHECK_THROWS_WITH(SweepRowsFromCsv(SweepCsvHeader(false) + "\n3,up,x\n", "bad.csv"), Catch::Contains("bad.csv:2"));
   parts.push_back(parts.front());
   CHECK_THROWS_WITH(MergeSweepCsv(parts), Catch::Contains("appears twice"));
   CHECK_THROWS_WITH(Shard::Parse("3/3", "--shard"), Catch::Contains("--shard"));
