@@ -7,7 +7,7 @@
 // Hessian of the costs (and finite-difference curvature of the bounds), SLSQP variables scaled by
 // that curvature; both first see only the constraints near active at the initial point, and the
 // solution is checked against all of them and re-solved with the broken ones until none is (see
-// body_nlp.cc), so the answer is the whole NLP's.
+// body_nlp_solve.cc), so the answer is the whole NLP's.
 //
 // In a loop (one window per cycle), SolveBodyNlpWarm starts each window from the previous one's
 // solution shifted in time, multipliers included, so Ipopt needs a few iterations, not a dozen:
