@@ -137,9 +137,11 @@ PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs
 
 PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
   PipelineResult first;
+  bool near_miss = true;
   for (std::size_t attempt = 0; attempt <= options.posture_retries.size(); ++attempt) {
     PipelineOptions tried = options;
     if (attempt > 0) {
+      if (options.posture_retries[attempt - 1].near_miss_only && !near_miss) continue;
       tried.crawl.body.hip_height_fraction = options.posture_retries[attempt - 1].hip_height_fraction;
       tried.crawl.body.pitch_fraction = options.posture_retries[attempt - 1].pitch_fraction;
       // The body QP's reach bounds do not hold on those footholds (CrawlSettings).
@@ -159,7 +161,13 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
     // stands when none passes (its violations are the ones the default posture explains).
     const bool rejected = result.validated && !result.validation.ok && result.plan.status == PlanStatus::kOk;
     if (!rejected) return result;
-    if (attempt == 0) first = std::move(result);
+    if (attempt == 0) {
+      near_miss = std::all_of(result.validation.violations.begin(), result.validation.violations.end(), [](const Violation& v) {
+        return v.kind == ViolationKind::kBodyAcceleration || v.kind == ViolationKind::kJointLimits ||
+               v.kind == ViolationKind::kStairCollision;
+      });
+      first = std::move(result);
+    }
   }
   return first;
 }

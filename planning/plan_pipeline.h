@@ -47,6 +47,11 @@ struct BodyPosture {
   double pitch_fraction = 0.75;
   bool keep_stance_length = false;
   double height_key_period = 0.0;
+  /// Tried only when the first attempt was a near miss: rejected for body jumps, joint limits or a
+  /// leg on the stairs alone, what the postures for steep steps address. They do nothing for a
+  /// plan that tips, a foot out of reach or the body on the stairs, and a robot whose plans fail
+  /// that way everywhere would pay for each of them.
+  bool near_miss_only = false;
 };
 
 struct PipelineOptions {
@@ -80,9 +85,12 @@ struct PipelineOptions {
   /// checked every 0.1 s, a leg passes its limit between the instants checked; every 0.05 s
   /// (twice the fit's work) it does not. Empty: one attempt. keep_stance_length applies to the
   /// quasi-static path only.
-  std::vector<BodyPosture> posture_retries = {{0.8, 1.0},        {0.8, 0.75},
-                                              {0.6, 0.75, true}, {0.5, 0.75},
-                                              {0.8, 0.75, false, 0.05}, {0.6, 0.75, false, 0.05}};
+  std::vector<BodyPosture> posture_retries = {{0.8, 1.0},
+                                              {0.8, 0.75},
+                                              {0.6, 0.75, true, 0.0, true},
+                                              {0.5, 0.75, false, 0.0, true},
+                                              {0.8, 0.75, false, 0.05, true},
+                                              {0.6, 0.75, false, 0.05, true}};
   ValidationSettings validation;
 };
 
