@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "planning/body/body_nlp_internal.h"
+#include "planning/body/difference_matrices.h"
 
 namespace stairplan {
 namespace body_nlp_detail {
@@ -19,18 +20,6 @@ namespace {
 // continuous and a solution sitting on an edge converges instead of cycling across it (with
 // 1e-5 Ipopt cycled there until its iteration limit). The values stay exact.
 constexpr double kFiniteStep = 2e-3;
-
-Eigen::MatrixXd FirstDifferences(int n) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n - 1, n);
-  for (int k = 0; k + 1 < n; ++k) d(k, k) = -1.0, d(k, k + 1) = 1.0;
-  return d;
-}
-
-Eigen::MatrixXd SecondDifferences(int n) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n - 2, n);
-  for (int k = 0; k + 2 < n; ++k) d(k, k) = 1.0, d(k, k + 1) = -2.0, d(k, k + 2) = 1.0;
-  return d;
-}
 
 // A stance row in a knot's constraint: which of its sides are there and where the first goes.
 struct KnotRow {

@@ -2,23 +2,9 @@
 
 #include <cmath>
 
+#include "planning/body/difference_matrices.h"
+
 namespace stairplan {
-namespace {
-
-// D1: (n-1) x n first differences; D2: (n-2) x n second differences.
-Eigen::MatrixXd FirstDifferences(int n) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n - 1, n);
-  for (int k = 0; k + 1 < n; ++k) d(k, k) = -1.0, d(k, k + 1) = 1.0;
-  return d;
-}
-
-Eigen::MatrixXd SecondDifferences(int n) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n - 2, n);
-  for (int k = 0; k + 2 < n; ++k) d(k, k) = 1.0, d(k, k + 1) = -2.0, d(k, k + 2) = 1.0;
-  return d;
-}
-
-}  // namespace
 
 BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients)
     : knots_(settings.knots), settings_(settings), c_(row_coefficients), lateral_apart_(settings.stability_margin < 0.0) {

@@ -79,6 +79,8 @@ TEST_CASE("the built-in robot descends the default stairs in MuJoCo at the plan'
   spec.steps = testing::FullOrSanitized(spec.steps, 3);  // a shorter flight under the sanitizers
   const Staircase stairs(spec);
   for (const Facing facing : {Facing::kForward, Facing::kBackward}) {
+    // Under the sanitizers the backward descent alone (the harder one; the same code runs).
+    if (testing::kSanitized && facing == Facing::kForward) continue;
     PipelineOptions options;
     options.facing = facing;
     const PipelineResult planned = RunPipeline(robot, stairs, options);
