@@ -114,6 +114,7 @@ void BodyPathSettings::Validate() const {
   RequireInRange("max_shift", max_shift, 0.0, 0.5);
   RequireInRange("shift_step", shift_step, 0.005, 0.5);
   RequireInRange("shift_margin", shift_margin, 0.0, 0.5);
+  RequireInRange("max_height_acceleration", max_height_acceleration, 0.1, 100.0);
   swing.Validate();
   if (com_passes < 0 || com_passes > 10) throw FieldError("com_passes", "must be from 0 to 10");
 }

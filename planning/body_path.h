@@ -48,6 +48,10 @@ struct BodyPathSettings {
   double max_shift = 0.09;
   double shift_step = 0.03;
   double shift_margin = 0.04;
+  /// When no one eased height suits a whole swing, its height eases through a chain of its
+  /// checked instants, no ease faster than this at its peak [m/s^2]: a quarter of the
+  /// validator's 2 g, as the stance feet carry the body (a downward 1 g would unload them).
+  double max_height_acceleration = 4.9;
   /// The swings the footsteps follow (as the validator replays them).
   SwingSettings swing;
 

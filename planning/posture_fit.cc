@@ -46,28 +46,46 @@ class PostureFitter {
       : checker_(robot, stairs, CheckSettings(settings)), stairs_(stairs), legs_(legs), initial_(initial),
         footsteps_(footsteps), com_target_(com_target), settings_(settings), body_(body) {}
 
-  // The correction for the instants of `segment`, trying `prefer_dx` first so the body keeps its
-  // shift when it can. The height may change through the segment, eased (SmoothStep) from `key`
-  // to `end`, when no one height suits every instant. False when no correction suits them all.
-  bool Fit(const Segment& segment, double prefer_dx, PostureKey& key, PostureKey& end) {
+  // The corrections for the instants of `segment`, appended to `keys`, trying `prefer_dx` first
+  // so the body keeps its shift when it can: one height, or one eased (SmoothStep) from the
+  // segment's start to its end; when none suits every instant at any shift, a chain of eases
+  // through some of its instants (FitChain). False when nothing suits them all.
+  bool Fit(const Segment& segment, double prefer_dx, std::vector<PostureKey>& keys) {
+    const std::vector<double> times = KeyTimes(segment);
     std::vector<Instant> instants;
     std::vector<double> phase;  // eased progress through the segment at each instant
-    for (double t : KeyTimes(segment)) {
+    for (double t : times) {
       instants.push_back(InstantAt(t));
       phase.push_back(segment.t1 > segment.t0 ? SmoothStep((t - segment.t0) / (segment.t1 - segment.t0)) : 0.0);
     }
+    std::vector<std::pair<double, std::vector<Interval1>>> standable;  // shifts with a window at every instant
     double best = -1.0;
+    PostureKey key, end;
     for (const double dx : Candidates(prefer_dx)) {
       std::vector<Interval1> windows;
       if (!Windows(instants, dx, windows)) continue;
       double dz0 = 0.0, dz1 = 0.0;
       const double slack = FitHeights(windows, phase, dz0, dz1);
+      standable.emplace_back(dx, std::move(windows));
       if (slack <= best) continue;
       best = slack;
       key = {segment.t0, dx, dz0};
       end = {segment.t1, dx, dz1};
       if (2.0 * best >= settings_.wide_height_range) break;
     }
+    if (best >= 0.0) {
+      keys.push_back(key);
+      if (segment.t1 > segment.t0) keys.push_back(end);
+      return true;
+    }
+    std::vector<PostureKey> chain, best_chain;
+    for (const auto& [dx, windows] : standable) {
+      const double slack = FitChain(times, windows, dx, chain);
+      if (slack <= best) continue;
+      best = slack;
+      best_chain = chain;
+    }
+    keys.insert(keys.end(), best_chain.begin(), best_chain.end());
     return best >= 0.0;
   }
 
@@ -176,6 +194,80 @@ class PostureFitter {
     return most;
   }
 
+  // Heights for the instants `times` (windows `windows` at shift dx) as a chain of eases between
+  // knots, a knot being one of the instants with the body at rest in z there (as at every key):
+  // every instant inside its window, and no ease of dz over T faster than
+  // max_height_acceleration at its peak (6 dz / T^2), so the body need not jump where the
+  // feasible heights move during a swing. Knots take heights on each window's grid; the chain
+  // with the largest least slack s* is found first, then among those with slack at least
+  // Keep(2 s*) the one that moves the body least, as FitHeights does for one ease. Returns s*
+  // (negative: no chain) and the knots' keys in `chain`.
+  double FitChain(const std::vector<double>& times, const std::vector<Interval1>& windows, double dx,
+                  std::vector<PostureKey>& chain) const {
+    const std::size_t n = times.size();
+    std::vector<std::vector<double>> heights(n);
+    for (std::size_t k = 0; k < n; ++k) heights[k] = Grid(windows[k]);
+    const double none = -std::numeric_limits<double>::infinity();
+    // The least slack of the ease from (k, a) to (m, b) over the instants k..m (none: too fast).
+    const auto ease_slack = [&](std::size_t k, double a, std::size_t m, double b) {
+      const double span = times[m] - times[k];
+      if (6.0 * std::abs(b - a) > settings_.max_height_acceleration * span * span) return none;
+      double least = std::numeric_limits<double>::infinity();
+      for (std::size_t i = k; i <= m; ++i) {
+        const double z = a + SmoothStep((times[i] - times[k]) / span) * (b - a);
+        least = std::min({least, z - windows[i].lo, windows[i].hi - z});
+      }
+      return least;
+    };
+    // Pass 1: the best least slack of a chain ending at each knot.
+    std::vector<std::vector<double>> slack(n);
+    for (std::size_t m = 0; m < n; ++m) {
+      for (const double b : heights[m]) {
+        double most = m == 0 ? std::min(b - windows[0].lo, windows[0].hi - b) : none;
+        for (std::size_t k = 0; k < m; ++k) {
+          for (std::size_t g = 0; g < heights[k].size(); ++g) {
+            if (slack[k][g] <= most) continue;
+            most = std::max(most, std::min(slack[k][g], ease_slack(k, heights[k][g], m, b)));
+          }
+        }
+        slack[m].push_back(most);
+      }
+    }
+    const double best = *std::max_element(slack[n - 1].begin(), slack[n - 1].end());
+    if (!(best >= 0.0)) return best;
+    // Pass 2: the least motion (sum of |dz| at the knots and of their changes) of a chain whose
+    // every ease keeps the wanted slack, with each knot's predecessor for the way back.
+    const double wanted = Keep(2.0 * best) - 1e-12;
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<std::vector<double>> motion(n);
+    std::vector<std::vector<std::pair<std::size_t, std::size_t>>> from(n);
+    for (std::size_t m = 0; m < n; ++m) {
+      for (const double b : heights[m]) {
+        double least = m == 0 && std::min(b - windows[0].lo, windows[0].hi - b) >= wanted ? std::abs(b) : inf;
+        std::pair<std::size_t, std::size_t> previous{n, 0};
+        for (std::size_t k = 0; k < m; ++k) {
+          for (std::size_t g = 0; g < heights[k].size(); ++g) {
+            const double a = heights[k][g];
+            const double cost = motion[k][g] + std::abs(b - a) + std::abs(b);
+            if (cost >= least || ease_slack(k, a, m, b) < wanted) continue;
+            least = cost;
+            previous = {k, g};
+          }
+        }
+        motion[m].push_back(least);
+        from[m].push_back(previous);
+      }
+    }
+    const auto last = std::min_element(motion[n - 1].begin(), motion[n - 1].end());
+    chain.clear();
+    for (std::pair<std::size_t, std::size_t> at{n - 1, static_cast<std::size_t>(last - motion[n - 1].begin())}; at.first < n;
+         at = from[at.first][at.second]) {
+      chain.push_back({times[at.first], dx, heights[at.first][at.second]});
+    }
+    std::reverse(chain.begin(), chain.end());
+    return best;
+  }
+
   // How far from the ends of a feasible range of this width the height is kept.
   double Keep(double width) const {
     return std::min(0.5 * width, std::max(settings_.height_margin, settings_.height_centering * width));
@@ -252,19 +344,14 @@ void FitPosturesToStances(const RobotModel& robot, const Staircase& stairs, cons
   if (body.empty()) return;
   PostureFitter fitter(robot, stairs, legs, initial, footsteps, com_target, settings, body);
   std::vector<PostureKey> keys;
-  const auto add = [&](const Segment& segment) {
-    PostureKey key, end;
-    if (!fitter.Fit(segment, keys.empty() ? 0.0 : keys.back().dx, key, end)) return false;
-    keys.push_back(key);
-    if (segment.t1 > segment.t0) keys.push_back(end);
-    return true;
-  };
+  const auto add = [&](const Segment& segment) { return fitter.Fit(segment, keys.empty() ? 0.0 : keys.back().dx, keys); };
   add({0.0, 0.0});
   std::vector<Segment> eases;  // from one swing's correction to the next one's, four feet down
   for (const Segment& swing : SwingSegments(footsteps)) {
     if (!keys.empty()) eases.push_back({keys.back().t, swing.t0});
     if (add(swing)) continue;
-    // No correction suits the whole swing: each instant of it gets its own.
+    // Nothing at one shift suits the whole swing: each instant of it gets its own. The body may
+    // jump between them; the validator's body_acceleration check then rejects the plan.
     for (double t : fitter.KeyTimes(swing)) add({t, t});
   }
   // The instants of each ease are checked as well; where one leaves its feasible heights, a key
