@@ -164,7 +164,7 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
     if (attempt == 0) {
       near_miss = std::all_of(result.validation.violations.begin(), result.validation.violations.end(), [](const Violation& v) {
         return v.kind == ViolationKind::kBodyAcceleration || v.kind == ViolationKind::kJointLimits ||
-               v.kind == ViolationKind::kStairCollision;
+               v.kind == ViolationKind::kOutOfReach || v.kind == ViolationKind::kStairCollision;
       });
       first = std::move(result);
     }
