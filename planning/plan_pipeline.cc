@@ -141,15 +141,14 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
   for (std::size_t attempt = 0; attempt <= options.posture_retries.size(); ++attempt) {
     PipelineOptions tried = options;
     if (attempt > 0) {
-      if (options.posture_retries[attempt - 1].near_miss_only && !near_miss) continue;
-      tried.crawl.body.hip_height_fraction = options.posture_retries[attempt - 1].hip_height_fraction;
-      tried.crawl.body.pitch_fraction = options.posture_retries[attempt - 1].pitch_fraction;
-      // The body QP's reach bounds do not hold on those footholds (CrawlSettings).
-      const bool keep = options.posture_retries[attempt - 1].keep_stance_length;
-      if (keep && options.body != BodySource::kQuasiStaticPath) continue;
-      tried.crawl.keep_stance_length = options.crawl.keep_stance_length || keep;
-      const double period = options.posture_retries[attempt - 1].height_key_period;
-      if (period > 0.0) tried.crawl.body.height_key_period = period;
+      const BodyPosture& posture = options.posture_retries[attempt - 1];
+      if (posture.near_miss_only && !near_miss) continue;
+      // The body QP's reach bounds do not hold on keep_stance_length's footholds (CrawlSettings).
+      if (posture.keep_stance_length && options.body != BodySource::kQuasiStaticPath) continue;
+      tried.crawl.body.hip_height_fraction = posture.hip_height_fraction;
+      tried.crawl.body.pitch_fraction = posture.pitch_fraction;
+      tried.crawl.keep_stance_length = options.crawl.keep_stance_length || posture.keep_stance_length;
+      if (posture.height_key_period > 0.0) tried.crawl.body.height_key_period = posture.height_key_period;
     }
     const auto t_map = std::chrono::steady_clock::now();
     ConstrainedMap map = BuildPipelineMap(robot, stairs, tried);
