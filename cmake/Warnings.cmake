@@ -18,14 +18,21 @@ function(stairplan_add_module name)
   set_property(GLOBAL APPEND PROPERTY STAIRPLAN_MODULES stairplan_${name})
 endfunction()
 
-# A Catch2 test program registered with ctest, one test per TEST_CASE.
+# A Catch2 test program registered with ctest, one test per TEST_CASE:
+#   stairplan_add_test(name [COST n] sources...)
+# COST (default 0) orders ctest's parallel run, highest first: a fresh clone has no timings of
+# its own, and a minutes-long test started last leaves the other cores idle till it ends.
 function(stairplan_add_test name)
-  add_executable(${name} ${ARGN})
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "COST" "")
+  if(NOT arg_COST)
+    set(arg_COST 0)
+  endif()
+  add_executable(${name} ${arg_UNPARSED_ARGUMENTS})
   target_link_libraries(${name} PRIVATE stairplan_test_main)
   stairplan_set_warnings(${name})
   target_compile_definitions(${name} PRIVATE
     STAIRPLAN_SHARED_DIR="${STAIRPLAN_SHARED_DIR}" STAIRPLAN_SOURCE_DIR="${STAIRPLAN_SOURCE_DIR}"
     STAIRPLAN_BIN_DIR="${PROJECT_BINARY_DIR}/bin")
   stairplan_quick_test_build(${name})
-  catch_discover_tests(${name} PROPERTIES TIMEOUT 600)
+  catch_discover_tests(${name} PROPERTIES TIMEOUT 600 COST ${arg_COST})
 endfunction()
