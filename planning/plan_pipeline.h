@@ -55,6 +55,7 @@ struct BodyPosture {
   /// that way everywhere would pay for each of them.
   bool near_miss_only = false;
   double stability_shift = 0.0;
+  bool check_swing_corners = false;  ///< BodyPathSettings::check_swing_corners
 };
 
 struct PipelineOptions {
@@ -98,7 +99,7 @@ struct PipelineOptions {
                                               {0.5, 0.75, false, 0.0, true},
                                               {0.8, 0.75, false, 0.05, true},
                                               {0.6, 0.75, false, 0.05, true},
-                                              {0.6, 0.75, false, 0.0, true, 0.6}};
+                                              {0.6, 0.75, false, 0.0, true, 0.6, true}};
   ValidationSettings validation;
 };
 
