@@ -159,6 +159,7 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
       if (posture.height_key_period > 0.0) tried.crawl.body.height_key_period = posture.height_key_period;
       if (posture.stability_shift > 0.0) tried.crawl.body.stability_shift = posture.stability_shift;
       tried.crawl.body.check_swing_corners = options.crawl.body.check_swing_corners || posture.check_swing_corners;
+      if (posture.refit_body_jumps) tried.crawl.refit_body_acceleration = options.validation.max_body_acceleration;
     }
     const auto t_map = std::chrono::steady_clock::now();
     ConstrainedMap map = BuildPipelineMap(robot, stairs, tried);

@@ -56,6 +56,9 @@ struct BodyPosture {
   bool near_miss_only = false;
   double stability_shift = 0.0;
   bool check_swing_corners = false;  ///< BodyPathSettings::check_swing_corners
+  /// The crawl's foothold search also runs for a body that jumps beyond the validator's bound
+  /// (CrawlSettings::refit_body_acceleration).
+  bool refit_body_jumps = false;
 };
 
 struct PipelineOptions {
@@ -99,7 +102,7 @@ struct PipelineOptions {
                                               {0.5, 0.75, false, 0.0, true},
                                               {0.8, 0.75, false, 0.05, true},
                                               {0.6, 0.75, false, 0.05, true},
-                                              {0.6, 0.75, false, 0.0, true, 0.6, true}};
+                                              {0.6, 0.75, false, 0.0, true, 0.6, true, true}};
   ValidationSettings validation;
 };
 
