@@ -172,8 +172,8 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
     const bool rejected = result.validated && !result.validation.ok && result.plan.status == PlanStatus::kOk;
     if (!rejected) return result;
     // A near miss of any posture tried so far opens the near-miss ones: the first attempt at
-    // (rise 0.218, run 0.208) also grazes a nosing with the body, the taller postures do not,
-    // and the lower body (hip 0.5) then validates.
+    // (rise 0.218, run 0.208) also grazes a nosing with the body, the tall pitched one (hip 0.8,
+    // pitch 1.0) only jumps, and the low body (hip 0.5) then validates.
     near_miss = near_miss || IsNearMiss(result.validation);
     if (attempt == 0) first = std::move(result);
   }
