@@ -41,6 +41,10 @@ struct BodyPathSettings {
   double height_centering = 0.3;
   /// Through a swing, the posture is checked this often besides its liftoff and touchdown [s].
   double height_key_period = 0.1;
+  /// Also check each swing where its foot ends its rise and starts to lower (SwingSettings'
+  /// lift_fraction and lower_fraction), the instants that fold and stretch the leg most. Off by
+  /// default: the fit then refuses some swings the default plans are valid with.
+  bool check_swing_corners = false;
   /// A feasible height range narrower than this with the body where the previous swing had it
   /// makes the fit try other shifts along the flight, in shift_step up to max_shift either way, as
   /// long as the COM target stays shift_margin inside the support polygon [m].

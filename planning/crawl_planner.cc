@@ -88,6 +88,7 @@ void CrawlSettings::Validate() const {
   RequireInRange("trail_first_stride", trail_first_stride, 0.1, 1.0);
   RequireInRange("lead_offset", lead_offset, -0.5, 0.5);
   RequireInRange("trail_offset", trail_offset, -0.5, 0.5);
+  RequireInRange("refit_body_acceleration", refit_body_acceleration, 0.0, 1e4);
   body.Validate();
   swing.Validate();
 }
@@ -279,10 +280,12 @@ class TouchdownChecker {
   TouchdownChecker(const RobotModel& robot, const Staircase& stairs, const BodyPathSettings& body)
       : checker_(robot, stairs), body_(body) {}
 
-  // Touchdowns whose stance, with the plan's own body pose, fails the stance check.
-  int Failed(const Plan& plan) {
+  // Touchdowns whose stance, with the plan's own body pose, fails the stance check, plus one when
+  // the body jumps (accelerates faster than `max_acceleration` between samples; 0: not checked).
+  int Failed(const Plan& plan, double max_acceleration) {
     const int all = static_cast<int>(plan.footsteps.size());
-    return Count(plan, all, [this](const BodyPose& pose, const Contacts& feet) { return checker_.Check(pose, feet).ok(); });
+    const int failed = Count(plan, all, [this](const BodyPose& pose, const Contacts& feet) { return checker_.Check(pose, feet).ok(); });
+    return failed + (max_acceleration > 0.0 && Jumps(plan.body, max_acceleration) ? 1 : 0);
   }
 
   // Touchdowns at which no body pose passes among the plan's own shifted along x by up to the
@@ -304,6 +307,13 @@ class TouchdownChecker {
 
  private:
   using Contacts = std::array<Eigen::Vector3d, 4>;
+
+  static bool Jumps(const std::vector<BodyState>& body, double max_acceleration) {
+    for (std::size_t i = 1; i + 1 < body.size(); ++i) {
+      if (BodyAccelerationAt(body, i).cwiseAbs().maxCoeff() > max_acceleration) return true;
+    }
+    return false;
+  }
 
   template <typename Passes>
   int Count(const Plan& plan, int limit, Passes passes) {
@@ -330,7 +340,8 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   Plan best = PlanCrawlLayout(robot, stairs, map, settings, &stairs);
   if (settings.fit_footholds <= 0 || best.status != PlanStatus::kOk) return best;
   TouchdownChecker checker(robot, stairs, settings.body);
-  int failed = checker.Failed(best);
+  const double jump = settings.refit_body_acceleration;
+  int failed = checker.Failed(best, jump);
   if (failed == 0) return best;
   // Other layouts, in CandidateLayouts' order: each is sketched (no posture fit) and screened, and
   // one whose every touchdown some posture can stand on is planned in full at once; when none
@@ -343,7 +354,7 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   const auto passes_in_full = [&](const CrawlSettings& layout) {
     ++full;
     Plan plan = PlanCrawlLayout(robot, stairs, map, layout, &stairs);
-    if (checker.Failed(plan) > 0) return false;
+    if (checker.Failed(plan, jump) > 0) return false;
     best = std::move(plan);
     return true;
   };

@@ -40,6 +40,10 @@ struct CrawlSettings {
   /// (stance checks at their touchdowns) and up to this many of them planned in full; the first
   /// whose every touchdown passes is returned, else the layout given. 0: no search.
   int fit_footholds = 1;
+  /// When positive, a plan whose body accelerates faster than this between its samples [m/s^2]
+  /// also fails (the posture fit found no smooth correction for some swing: it jumps there), so
+  /// the layout search runs for it and a layout replacing it must not jump either. 0: off.
+  double refit_body_acceleration = 0.0;
   BodyPathSettings body;              ///< how the body follows the feet
   SwingSettings swing;                ///< how high the feet swing over the stairs
 

@@ -40,18 +40,25 @@ FootstepSource ParseFootstepSource(const std::string& text);
 StepPlannerSettings CrawlControllers();
 
 /// A stance posture for the quasi-static body path (see BodyPathSettings), the crawl's
-/// footholds under it (CrawlSettings::keep_stance_length) and how often the posture fit checks
-/// a swing (BodyPathSettings::height_key_period; 0: crawl.body's).
+/// footholds under it (CrawlSettings::keep_stance_length), how often the posture fit checks
+/// a swing (BodyPathSettings::height_key_period; 0: crawl.body's) and how far the COM leans
+/// over the support triangle while a leg swings (BodyPathSettings::stability_shift; 0:
+/// crawl.body's).
 struct BodyPosture {
   double hip_height_fraction = 0.6;
   double pitch_fraction = 0.75;
   bool keep_stance_length = false;
   double height_key_period = 0.0;
-  /// Tried only when the first attempt was a near miss: rejected for body jumps, legs at their
+  /// Tried only when an earlier attempt was a near miss: rejected for body jumps, legs at their
   /// reach or limits or on the stairs alone, what the postures for steep steps address. They do
   /// nothing for a plan that tips or puts the body on the stairs, and a robot whose plans fail
   /// that way everywhere would pay for each of them.
   bool near_miss_only = false;
+  double stability_shift = 0.0;
+  bool check_swing_corners = false;  ///< BodyPathSettings::check_swing_corners
+  /// The crawl's foothold search also runs for a body that jumps beyond the validator's bound
+  /// (CrawlSettings::refit_body_acceleration).
+  bool refit_body_jumps = false;
 };
 
 struct PipelineOptions {
@@ -83,14 +90,22 @@ struct PipelineOptions {
   /// trailing feet one stance length behind the leading ones, or a lower body, let it ride
   /// smoothly. On long steep steps the legs work at their limits and the fit's windows narrow:
   /// checked every 0.1 s, a leg passes its limit between the instants checked; every 0.05 s
-  /// (twice the fit's work) it does not. Empty: one attempt. keep_stance_length applies to the
-  /// quasi-static path only.
+  /// (twice the fit's work) it does not. On the steepest long steps (rise 0.23-0.25 m, run
+  /// 0.31-0.35 m) a swing foot lifted straight up from its tread comes so near its hip that the
+  /// hip's abduction runs into its limit at the top of the lift when the body leans sideways over
+  /// the support triangle (the swing leg's hip moves away from its foot): leaning 60 % of the way
+  /// keeps it in range (COM margins 12-47 mm on the sweep's steep corner, 10 required), with the
+  /// fit checking the top of each lift (a 0.25 s swing's checks every 0.1 s miss it) and, where
+  /// the front feet still reach too far for any posture and the body would jump, the crawl's
+  /// foothold search (rise 0.25, runs 0.342 and 0.35). Empty: one attempt.
+  /// keep_stance_length applies to the quasi-static path only.
   std::vector<BodyPosture> posture_retries = {{0.8, 1.0},
                                               {0.8, 0.75},
                                               {0.6, 0.75, true, 0.0, true},
                                               {0.5, 0.75, false, 0.0, true},
                                               {0.8, 0.75, false, 0.05, true},
-                                              {0.6, 0.75, false, 0.05, true}};
+                                              {0.6, 0.75, false, 0.05, true},
+                                              {0.6, 0.75, false, 0.0, true, 0.6, true, true}};
   ValidationSettings validation;
 };
 

@@ -102,16 +102,33 @@ class PostureFitter {
     return true;
   }
 
-  // The instants checked in a segment: its ends and every height_key_period between them.
+  // The instants checked in a segment: its ends, every height_key_period between them and, when
+  // asked, the corners of the swings inside it (SwingCorners).
   std::vector<double> KeyTimes(const Segment& segment) const {
     std::vector<double> times = {segment.t0};
     const double period = settings_.height_key_period;
     for (double t = segment.t0 + period; t < segment.t1 - 0.25 * period; t += period) times.push_back(t);
     if (segment.t1 > segment.t0) times.push_back(segment.t1);
+    if (!settings_.check_swing_corners) return times;
+    for (const Footstep& f : footsteps_) {
+      for (const double t : SwingCorners(f)) {
+        if (t > segment.t0 && t < segment.t1) times.push_back(t);
+      }
+    }
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end(), [](double a, double b) { return b - a < 1e-6; }), times.end());
     return times;
   }
 
  private:
+  // Where a swing's foot turns (SwingTrajectory): done rising, still above its liftoff, and
+  // about to lower, above its touchdown. The rise's end folds the leg most: on the steepest steps
+  // the hip's abduction reaches its limit there, and a 0.25 s swing checked every 0.1 s misses it.
+  std::array<double, 2> SwingCorners(const Footstep& f) const {
+    const double duration = f.t_touchdown - f.t_liftoff;
+    return {f.t_liftoff + settings_.swing.lift_fraction * duration, f.t_touchdown - settings_.swing.lower_fraction * duration};
+  }
+
   static StanceSettings CheckSettings(const BodyPathSettings& settings) {
     StanceSettings s;
     s.min_clearance = settings.touchdown_clearance;
