@@ -19,11 +19,13 @@ function(stairplan_add_module name)
 endfunction()
 
 # A Catch2 test program registered with ctest, one test per TEST_CASE:
-#   stairplan_add_test(name [COST n] sources...)
+#   stairplan_add_test(name [END_TO_END] [COST n] sources...)
 # COST (default 0) orders ctest's parallel run, highest first: a fresh clone has no timings of
 # its own, and a minutes-long test started last leaves the other cores idle till it ends.
+# END_TO_END: the program plans and replays whole flights through code the unit programs test
+# (see stairplan_sanitized_test_env).
 function(stairplan_add_test name)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "" "COST" "")
+  cmake_parse_arguments(PARSE_ARGV 1 arg "END_TO_END" "COST" "")
   if(NOT arg_COST)
     set(arg_COST 0)
   endif()
@@ -34,5 +36,6 @@ function(stairplan_add_test name)
     STAIRPLAN_SHARED_DIR="${STAIRPLAN_SHARED_DIR}" STAIRPLAN_SOURCE_DIR="${STAIRPLAN_SOURCE_DIR}"
     STAIRPLAN_BIN_DIR="${PROJECT_BINARY_DIR}/bin")
   stairplan_quick_test_build(${name})
-  catch_discover_tests(${name} PROPERTIES TIMEOUT 600 COST ${arg_COST})
+  stairplan_sanitized_test_env(env ${arg_END_TO_END})
+  catch_discover_tests(${name} PROPERTIES TIMEOUT 600 COST ${arg_COST} ${env})
 endfunction()

@@ -37,11 +37,12 @@ std::vector<std::vector<std::string>> Rows(const std::string& csv) {
 
 TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-validate", "[sweep][cli]") {
   const std::string dir = MakeTempDir("sweep-threads");
-  // A 5 x 5 grid and 20 of its valid rows re-validated; under the sanitizers, where every point
-  // plans ~20x slower, a 2 x 2 grid and one re-validation.
+  // A 5 x 5 grid of 4-step flights and 20 of its valid rows re-validated; under the sanitizers,
+  // where every point plans ~20x slower, a 2 x 2 grid of 3-step flights and one re-validation.
   const std::size_t n = FullOrSanitized<std::size_t>(5, 2);
   const int wanted = FullOrSanitized(20, 1);
-  const std::string grid = "sweep --rise 0.12:0.20:" + std::to_string(n) + " --run 0.25:0.33:" + std::to_string(n) + " --steps 4";
+  const std::string steps = FullOrSanitized<std::string>("4", "3");
+  const std::string grid = "sweep --rise 0.12:0.20:" + std::to_string(n) + " --run 0.25:0.33:" + std::to_string(n) + " --steps " + steps;
   REQUIRE(Run(grid + " --threads 1 --csv " + dir + "/one.csv --svg " + dir + "/map.svg", dir) == 0);
   // Its summary of the success region (these gentle stairs: all valid, so both properties hold).
   const std::string summary = ReadFile(dir + "/out.txt");
