@@ -49,8 +49,9 @@ struct BodyPosture {
   double pitch_fraction = 0.75;
   bool keep_stance_length = false;
   double height_key_period = 0.0;
-  /// Tried only when an earlier attempt was a near miss: rejected for body jumps, legs at their
-  /// reach or limits or on the stairs alone, what the postures for steep steps address. They do
+  /// Tried only after a near miss: the first attempt rejected for body jumps, legs at their reach
+  /// or limits or on the stairs alone (or a later one that also jumps, every leg reaching), what
+  /// the postures for steep steps address. They do
   /// nothing for a plan that tips or puts the body on the stairs, and a robot whose plans fail
   /// that way everywhere would pay for each of them.
   bool near_miss_only = false;
