@@ -68,6 +68,15 @@ int FailedLiftEnds(const RobotModel& robot, const Staircase& stairs, const Plan&
   return failed;
 }
 
+// The crawl the lean posture plans on the steep long steps, at the cadence the step planner
+// selects there.
+CrawlSettings LeanCrawl(const CrawlSettings& defaults) {
+  CrawlSettings crawl = defaults;
+  crawl.swing_duration = 0.25;
+  crawl.body.stability_shift = Lean().stability_shift;
+  return crawl;
+}
+
 }  // namespace
 
 TEST_CASE("the lean posture validates a steep long staircase the default posture does not", "[planning][steep]") {
@@ -93,9 +102,7 @@ TEST_CASE("the posture fit checks the swings' corners when asked: every lift end
   const Staircase stairs = SweepStairs(18, 18, testing::FullOrSanitized(7, 3));
   const PipelineOptions options;
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
-  CrawlSettings crawl = options.crawl;
-  crawl.swing_duration = 0.25;  // the cadence the step planner selects here
-  crawl.body.stability_shift = Lean().stability_shift;
+  CrawlSettings crawl = LeanCrawl(options.crawl);
   crawl.body.check_swing_corners = false;
   const Plan unchecked = PlanCrawl(robot, stairs, map, crawl);
   crawl.body.check_swing_corners = true;
@@ -123,9 +130,7 @@ TEST_CASE("a body that jumps sends the crawl to its foothold search, which finds
   const Staircase stairs = SweepStairs(19, 19, 7);
   const PipelineOptions options;
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
-  CrawlSettings crawl = options.crawl;
-  crawl.swing_duration = 0.25;  // the cadence the step planner selects here
-  crawl.body.stability_shift = Lean().stability_shift;
+  CrawlSettings crawl = LeanCrawl(options.crawl);
   crawl.body.check_swing_corners = true;
   const double limit = options.validation.max_body_acceleration;
   const Plan centred = PlanCrawl(robot, stairs, map, crawl);
