@@ -3,7 +3,7 @@
 // reaches its limit at the top of the lift while the body leans over the support triangle. The
 // pipeline's lean posture (COM 60 % of the way over the triangle, the swings' corners checked by
 // the posture fit, the foothold search run for a body that jumps) validates them; the near-miss
-// postures open after any near miss.
+// postures also open after a later attempt whose body jumps while every leg reaches.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -146,9 +146,9 @@ TEST_CASE("a body that jumps sends the crawl to its foothold search, which finds
 
 TEST_CASE("near-miss postures open after a later attempt's near miss", "[planning][steep]") {
   // (rise 0.218, run 0.208), 4 steps (7 in the sweep, the same attempts fail the same ways): the
-  // first attempt also grazes a nosing with the body (no near miss), the taller pitched one is
-  // only a body jump (a near miss), and the low body then validates. Three plans of control
-  // flow the other cases run under the sanitizers already: skipped there.
+  // first attempt also grazes a nosing with the body (no near miss), the taller pitched one
+  // jumps with the RH leg at its limits (a near miss), and the low body then validates. Three
+  // plans of control flow the other cases run under the sanitizers already: skipped there.
   if (testing::kSanitized) return;
   const Staircase stairs = SweepStairs(15, 1, 4);
   const BodyPosture tall{0.8, 1.0};
