@@ -101,6 +101,12 @@ Eigen::Vector3d BodyAccelerationAt(const std::vector<BodyState>& body, std::size
   return ((p2 - p1) / dt1 - (p1 - p0) / dt0) / (0.5 * (dt0 + dt1));
 }
 
+double PeakBodyAcceleration(const std::vector<BodyState>& body) {
+  double peak = 0.0;
+  for (std::size_t i = 1; i + 1 < body.size(); ++i) peak = std::max(peak, BodyAccelerationAt(body, i).cwiseAbs().maxCoeff());
+  return peak;
+}
+
 void BodyPathSettings::Validate() const {
   RequireInRange("hip_height_fraction", hip_height_fraction, 0.05, 1.0);
   RequireInRange("sample_period", sample_period, 1e-3, 1.0);

@@ -77,6 +77,10 @@ BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t);
 /// over its neighbours [m/s^2]; zero where two samples share a time.
 Eigen::Vector3d BodyAccelerationAt(const std::vector<BodyState>& body, std::size_t i);
 
+/// The largest component of BodyAccelerationAt over all samples [m/s^2]: what a robot executing
+/// the plan must produce; 0 for fewer than three samples.
+double PeakBodyAcceleration(const std::vector<BodyState>& body);
+
 /// The body states for `footsteps` (sorted by touchdown) starting from `initial_feet`, facing `yaw`.
 std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::vector<std::string>& legs,
                                             const std::vector<Eigen::Vector3d>& initial_feet,

@@ -285,7 +285,7 @@ class TouchdownChecker {
   int Failed(const Plan& plan, double max_acceleration) {
     const int all = static_cast<int>(plan.footsteps.size());
     const int failed = Count(plan, all, [this](const BodyPose& pose, const Contacts& feet) { return checker_.Check(pose, feet).ok(); });
-    return failed + (max_acceleration > 0.0 && Jumps(plan.body, max_acceleration) ? 1 : 0);
+    return failed + (max_acceleration > 0.0 && PeakBodyAcceleration(plan.body) > max_acceleration ? 1 : 0);
   }
 
   // Touchdowns at which no body pose passes among the plan's own shifted along x by up to the
@@ -307,13 +307,6 @@ class TouchdownChecker {
 
  private:
   using Contacts = std::array<Eigen::Vector3d, 4>;
-
-  static bool Jumps(const std::vector<BodyState>& body, double max_acceleration) {
-    for (std::size_t i = 1; i + 1 < body.size(); ++i) {
-      if (BodyAccelerationAt(body, i).cwiseAbs().maxCoeff() > max_acceleration) return true;
-    }
-    return false;
-  }
 
   template <typename Passes>
   int Count(const Plan& plan, int limit, Passes passes) {

@@ -113,13 +113,6 @@ TEST_CASE("the posture fit checks the swings' corners when asked: every lift end
   CHECK(FailedLiftEnds(robot, stairs, checked, crawl.swing) == 0);
 }
 
-// The largest acceleration of the body's position between its samples [m/s^2].
-double PeakAcceleration(const std::vector<BodyState>& body) {
-  double peak = 0.0;
-  for (std::size_t i = 1; i + 1 < body.size(); ++i) peak = std::max(peak, BodyAccelerationAt(body, i).cwiseAbs().maxCoeff());
-  return peak;
-}
-
 TEST_CASE("a body that jumps sends the crawl to its foothold search, which finds a smooth layout", "[planning][steep]") {
   // (rise 0.25, run 0.35), the lean posture: on the step-region centres no posture suits the front
   // legs' second swing (the foot reaches too far at touchdown), the fit falls back to one height
@@ -138,8 +131,8 @@ TEST_CASE("a body that jumps sends the crawl to its foothold search, which finds
   const Plan refitted = PlanCrawl(robot, stairs, map, crawl);
   REQUIRE(centred.status == PlanStatus::kOk);
   REQUIRE(refitted.status == PlanStatus::kOk);
-  CHECK(PeakAcceleration(centred.body) > limit);
-  CHECK(PeakAcceleration(refitted.body) <= limit);
+  CHECK(PeakBodyAcceleration(centred.body) > limit);
+  CHECK(PeakBodyAcceleration(refitted.body) <= limit);
   for (const Footstep& step : refitted.footsteps) CHECK(step.in_step_region);
   CHECK(FailedLiftEnds(robot, stairs, refitted, crawl.swing) == 0);
 }

@@ -25,14 +25,6 @@ PipelineResult PlanDescent(Facing facing, bool posture_retries) {
   return RunPipeline(BuiltinRobot(), stairs, options);
 }
 
-// The largest acceleration of the body's position between its samples [m/s^2]: what a robot
-// executing the plan must produce (the posture fit once made 24 m/s^2 here, and MuJoCo fell).
-double PeakAcceleration(const std::vector<BodyState>& body) {
-  double peak = 0.0;
-  for (std::size_t i = 1; i + 1 < body.size(); ++i) peak = std::max(peak, BodyAccelerationAt(body, i).cwiseAbs().maxCoeff());
-  return peak;
-}
-
 std::string FirstViolation(const ValidationReport& r) {
   if (r.violations.empty()) return "none";
   const Violation& v = r.violations.front();
@@ -59,7 +51,7 @@ TEST_CASE("the built-in robot's default descents validate, facing forward and ba
     // The posture fit's corrections are eased, not jumps between nearby instants, and a repair
     // between two swings does not halt the shift along the flight (backward: 8.4 m/s^2 between
     // samples when it did, 4.5 since; forward 2.7; the climb 2.8).
-    CHECK(PeakAcceleration(r.plan.body) < 5.5);
+    CHECK(PeakBodyAcceleration(r.plan.body) < 5.5);
     // The map it was planned on is recorded, for validate and simulate to rebuild.
     CHECK(std::isfinite(r.plan.hip_height_fraction));
   }
