@@ -10,6 +10,8 @@ foreach(dir geometry kinematics collision planning)
   install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stairplan/${dir}
     FILES_MATCHING PATTERN "*.h" PATTERN "cli" EXCLUDE)
 endforeach()
+install(FILES ${PROJECT_BINARY_DIR}/generated/stairplan/version.h
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stairplan/stairplan)
 install(DIRECTORY data/ DESTINATION ${CMAKE_INSTALL_DATADIR}/stairplan)
 install(EXPORT stairplanTargets NAMESPACE stairplan::
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/stairplan)
