@@ -18,6 +18,38 @@ struct PaperLeg {
   double y = 0.0;       // foot's lateral position [m]
 };
 
+// The paper's roles (HR, HL, FR, FL) by leg name.
+constexpr const char* kPaperLegNames[4] = {"RH", "LH", "RF", "LF"};
+
+int LegIndex(const RobotModel& robot, const char* name) {
+  for (std::size_t i = 0; i < robot.legs().size(); ++i) {
+    if (robot.legs()[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// The design's input from the robot's hips and feet and the stairs' nominal rise and run.
+GaitDesignInput PaperDesignInput(const RobotModel& robot, const std::array<PaperLeg, 4>& legs, double W, double H,
+                                 const PaperCrawlSettings& settings) {
+  const auto leg = [&](std::size_t r) -> const LegModel& { return robot.legs()[static_cast<std::size_t>(legs[r].robot_index)]; };
+  GaitDesignInput input;
+  input.rise = H;
+  input.run = W;
+  input.max_leg_length = settings.max_leg_length;
+  input.body_length = 0.5 * (leg(2).hip_B.x() + leg(3).hip_B.x() - leg(0).hip_B.x() - leg(1).hip_B.x());
+  input.body_width = std::abs(leg(1).foot_zero_B.y() - leg(0).foot_zero_B.y());
+  input.buffer = settings.buffer;
+  if (settings.hip_clearance >= 0.0) {
+    input.hip_clearance = settings.hip_clearance;
+    return input;
+  }
+  // a_min + a_max = W with eqs. (3) and (4): 2 d csc(phi) = l_min + sqrt(l_max^2 - CL^2/4) csc(phi) - W.
+  const double cl = std::hypot(W, H), sin_phi = H / cl;
+  const double arm2 = settings.max_leg_length * settings.max_leg_length - 0.25 * cl * cl;
+  if (arm2 > 0.0) input.hip_clearance = std::max(0.0, 0.5 * ((MinLegLength(W, H) - W) * sin_phi + std::sqrt(arm2)));
+  return input;
+}
+
 Plan PaperInfeasible(Plan plan, const std::string& reason) {
   plan.status = PlanStatus::kInfeasible;
   plan.status_reason = reason;
@@ -56,31 +88,12 @@ Plan PlanPaperCrawl(const RobotModel& robot, const Staircase& stairs, const Cons
   const int steps = stairs.steps();
   const double W = stairs.spec().run, H = stairs.spec().rise;
 
-  // The robot's corners: the paper's roles by leg name.
   std::array<PaperLeg, 4> legs;  // HR, HL, FR, FL as in CrawlStability
-  const char* names[4] = {"RH", "LH", "RF", "LF"};
   for (std::size_t r = 0; r < 4; ++r) {
-    for (std::size_t i = 0; i < robot.legs().size(); ++i) {
-      if (robot.legs()[i].name == names[r]) legs[r].robot_index = static_cast<int>(i);
-    }
-    if (legs[r].robot_index < 0) return PaperInfeasible(plan, std::string("the robot has no leg named ") + names[r]);
+    legs[r].robot_index = LegIndex(robot, kPaperLegNames[r]);
+    if (legs[r].robot_index < 0) return PaperInfeasible(plan, std::string("the robot has no leg named ") + kPaperLegNames[r]);
   }
-  const auto leg_model = [&](std::size_t r) -> const LegModel& { return robot.legs()[static_cast<std::size_t>(legs[r].robot_index)]; };
-  GaitDesignInput input;
-  input.rise = H;
-  input.run = W;
-  input.max_leg_length = settings.max_leg_length;
-  input.body_length = 0.5 * (leg_model(2).hip_B.x() + leg_model(3).hip_B.x() - leg_model(0).hip_B.x() - leg_model(1).hip_B.x());
-  input.body_width = std::abs(leg_model(1).foot_zero_B.y() - leg_model(0).foot_zero_B.y());
-  input.buffer = settings.buffer;
-  if (settings.hip_clearance >= 0.0) {
-    input.hip_clearance = settings.hip_clearance;
-  } else {
-    // a_min + a_max = W with eqs. (3) and (4): 2 d csc(phi) = l_min + sqrt(l_max^2 - CL^2/4) csc(phi) - W.
-    const double cl = std::hypot(W, H), sin_phi = H / cl;
-    const double arm2 = settings.max_leg_length * settings.max_leg_length - 0.25 * cl * cl;
-    if (arm2 > 0.0) input.hip_clearance = std::max(0.0, 0.5 * ((MinLegLength(W, H) - W) * sin_phi + std::sqrt(arm2)));
-  }
+  const GaitDesignInput input = PaperDesignInput(robot, legs, W, H, settings);
   GaitDesign g;
   try {
     g = DesignGait(input);
@@ -93,7 +106,7 @@ Plan PlanPaperCrawl(const RobotModel& robot, const Staircase& stairs, const Cons
     const bool right = r == 0 || r == 2, front = r >= 2;
     legs[r].hip_x = front ? input.body_length * cos_phi : 0.0;
     legs[r].offset = (right != (front && switched)) ? g.a_min : g.a_max;
-    legs[r].y = leg_model(r).foot_zero_B.y();
+    legs[r].y = robot.legs()[static_cast<std::size_t>(legs[r].robot_index)].foot_zero_B.y();
   }
 
   // Noses: the flight's edges, continued one run apart over both landings (virtual steps).
@@ -122,7 +135,7 @@ Plan PlanPaperCrawl(const RobotModel& robot, const Staircase& stairs, const Cons
     while (lift_time(r, j - 1) >= 0.0) --j;
     while (lift_time(r, j) < 0.0) ++j;
     start[r] = j;
-    if (!std::isfinite(foothold(r, j).z())) return PaperInfeasible(plan, "landing_before is too short for the robot's " + std::string(names[r]) + " foot");
+    if (!std::isfinite(foothold(r, j).z())) return PaperInfeasible(plan, "landing_before is too short for the robot's " + std::string(kPaperLegNames[r]) + " foot");
   }
   plan.initial_feet_W.resize(4);
   for (std::size_t r = 0; r < 4; ++r) plan.initial_feet_W[static_cast<std::size_t>(legs[r].robot_index)] = foothold(r, start[r]);
@@ -131,7 +144,7 @@ Plan PlanPaperCrawl(const RobotModel& robot, const Staircase& stairs, const Cons
   for (std::size_t r = 0; r < 4; ++r) {
     for (int j = start[r]; lift_time(r, j) <= end; ++j) {
       Footstep step;
-      step.leg = names[r];
+      step.leg = kPaperLegNames[r];
       step.t_liftoff = lift_time(r, j);
       step.t_touchdown = step.t_liftoff + settings.swing_duration;
       step.from_W = foothold(r, j);
