@@ -147,6 +147,7 @@ TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[
   expect_bad("--robot /nonexistent.urdf", "/nonexistent.urdf");
   expect_bad("--stairs /nonexistent.yaml", "/nonexistent.yaml");
   expect_bad("--no-such-flag", "--no-such-flag");
+  expect_bad("--planner paper --cloud " + dir + "/any.ply", "--cloud");  // the paper's crawl needs known stairs
   {
     std::ofstream(dir + "/negative.yaml") << "steps: 5\nrun: -0.27\n";
     expect_bad("--stairs " + dir + "/negative.yaml", "'run'");
