@@ -138,7 +138,7 @@ TEST_CASE("paper stability: the hip clearance d shifts the whole crawl and chang
   }
 }
 
-TEST_CASE("paper D_o: eq. (7) gives 28.4 % of CL; the paper's 25.4 % is (1 + p) D_s", "[gait][paper]") {
+TEST_CASE("paper D_o: eq. (7) gives 28.4 % of CL, the paper's 25.4 % is (1 + p) D_s", "[gait][paper]") {
   const GaitDesignInput in = Paper();
   const GaitDesign g = DesignGait(in);
   CHECK(g.d_o / g.cl == Approx(0.284).margin(0.001));
