@@ -32,6 +32,14 @@ bool IsRightLeg(const std::string& leg) { return leg[0] == 'R'; }
 TEST_CASE("paper crawl: footholds at a_min / a_max, the paper's order and timing", "[step][paper]") {
   const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
   REQUIRE(robot.legs().size() == 4);
+  // The paper's dimensions: BL 44.4 cm between hips, BW 36 cm between feet, two-link legs that
+  // reach l_max = 21 cm.
+  for (const LegModel& leg : robot.legs()) {
+    CHECK(std::abs(leg.hip_B.x()) == Approx(0.222).margin(1e-9));
+    CHECK(std::abs(leg.foot_zero_B.y()) == Approx(0.18).margin(1e-9));
+    CHECK(leg.joint_names.size() == 3);  // hip abduction, then the thigh and shank joints
+    CHECK((leg.foot_zero_B - leg.hip_B).norm() > 0.21);
+  }
   const Staircase stairs = PaperFlight();
   const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
   // Under the sanitizers case 1 only: each plan runs the body path.
