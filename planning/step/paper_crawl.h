@@ -33,7 +33,7 @@ struct PaperCrawlSettings {
   /// d [m]. Negative (the default): the d that centres the two contact offsets on the tread,
   /// a_min + a_max = W (4.7 cm on 27 x 17 cm stairs: feet 10.1 and 16.9 cm behind the nose). The
   /// paper's simulation's d = H / 2 would put the right feet 2.9 cm from the nose, in the band the
-  /// map keeps free; its error analysis's 2.8 cm the left feet 20.4 cm back, against the riser.
+  /// map keeps free; its error analysis's 2.8 cm the left feet 20.4 cm back, past the step region.
   double hip_clearance = -1.0;
   CrawlCase arrangement = CrawlCase::kRightFirst;
   /// How long a swing takes [s]; it sets the hip speed, D_i / swing_duration.
