@@ -1,6 +1,7 @@
 // `stairplan gait-design`: the 2012 paper's stair-climbing gait design (seed 003) for given stairs
 // and robot sizes: l_min, contact offsets, swing separations, the interference conditions with the
 // binding one, the swing sequence, quasi-static stability and the tread-depth error tolerance.
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -12,6 +13,7 @@
 #include "geometry/field_error.h"
 #include "planning/cli/cli_common.h"
 #include "planning/gait/crawl_stability.h"
+#include "planning/gait/feasibility_figure.h"
 #include "planning/gait/gait_design.h"
 #include "planning/gait/tread_error.h"
 
@@ -27,7 +29,8 @@ nlohmann::json StabilityJson(const CrawlStability& s) {
   for (std::size_t i = 0; i < 4; ++i) by_leg[names[i]] = s.fraction_outside_by_leg[i];
   nlohmann::json sequence = nlohmann::json::array();
   for (const char* leg : s.swing_sequence) sequence.push_back(leg);
-  return {{"swing_sequence", sequence}, {"fraction_outside", s.fraction_outside}, {"fraction_outside_by_leg", by_leg},
+  return {{"swing_sequence", sequence}, {"fraction_outside", s.fraction_outside},
+          {"fraction_of_swing_time", s.fraction_of_swing_time}, {"fraction_outside_by_leg", by_leg},
           {"min_margin", Number(s.min_margin)}};
 }
 
@@ -37,6 +40,7 @@ int RunGaitDesign(const std::vector<std::string>& args) {
   std::optional<double> hip_clearance;
   std::vector<double> tread_errors;
   bool json = false;
+  std::string figure;
   app.add_option("--rise", in.rise, "Stair rise H [m]")->required();
   app.add_option("--run", in.run, "Tread depth W [m]")->required();
   app.add_option("--lmax", in.max_leg_length, "Maximum leg length l_max, hip to foot [m]")->required();
@@ -48,6 +52,8 @@ int RunGaitDesign(const std::vector<std::string>& args) {
                  "Per-step tread depth errors dW_i [m], comma separated: checks the cumulative error (eq. (19))")
       ->delimiter(',');
   app.add_flag("--json", json, "Print one JSON object instead of the summary");
+  app.add_option("--figure", figure,
+                 "Write the paper's Figure 4(b), the feasible W/BL and H/BL at this l_max/BL and p, as SVG to this file");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("gait-design", [&] {
     in.hip_clearance = hip_clearance;
@@ -70,7 +76,7 @@ int RunGaitDesign(const std::vector<std::string>& args) {
         {"rise", in.rise}, {"run", in.run}, {"l_max", in.max_leg_length}, {"body_length", in.body_length},
         {"body_width", in.body_width}, {"buffer", in.buffer}, {"hip_clearance", g.d},
         {"CL", g.cl}, {"phi", g.phi}, {"l_min", g.l_min}, {"a_min", Number(g.a_min)}, {"a_max", Number(g.a_max)},
-        {"D_s", Number(g.d_s)}, {"D_i", Number(g.d_i)}, {"D_o", Number(g.d_o)}, {"rem", g.rem},
+        {"D_s", Number(g.d_s)}, {"D_i", Number(g.d_i)}, {"D_o", Number(g.d_o)}, {"D_o_share", Number(g.d_o / g.cl)}, {"rem", g.rem},
         {"conditions", conditions}, {"feasible", g.feasible}, {"binding", g.binding},
         {"error_tolerance", {{"dW_min", Number(tolerance.lower)}, {"dW_max", Number(tolerance.upper)}}}};
     out["cumulative_error"] = nullptr;
@@ -91,7 +97,16 @@ int RunGaitDesign(const std::vector<std::string>& args) {
       const CrawlStability case1 = EvaluateCrawlStability(in, g, CrawlCase::kRightFirst);
       const CrawlStability case2 = EvaluateCrawlStability(in, g, CrawlCase::kFrontSwitched);
       out["swing_sequence"] = StabilityJson(case1)["swing_sequence"];
-      out["stability"] = {{"case1", StabilityJson(case1)}, {"case2", StabilityJson(case2)}};
+      out["stability"] = {{"case1", StabilityJson(case1)}, {"case2", StabilityJson(case2)},
+                          {"hind_swing_share", HindSwingShare(g)}};
+    }
+    if (!figure.empty()) {
+      std::vector<MarkedStair> stairs = PaperStairs();
+      const bool listed = std::any_of(stairs.begin(), stairs.end(), [&](const MarkedStair& s) {
+        return std::abs(s.run - in.run) < 1e-9 && std::abs(s.rise - in.rise) < 1e-9;
+      });
+      if (!listed) stairs.push_back({in.run, in.rise, "this stair"});
+      WriteFileAtomically(figure, FeasibilityFigureSvg(in.max_leg_length, in.body_length, in.buffer, stairs));
     }
     if (json) {
       std::cout << out.dump(2) << "\n";
@@ -115,7 +130,8 @@ int RunGaitDesign(const std::vector<std::string>& args) {
       }
       if (!out["stability"].is_null()) {
         std::cout << "  COM outside the support triangle: case 1 " << out["stability"]["case1"]["fraction_outside"].get<double>() * 100
-                  << " %, case 2 " << out["stability"]["case2"]["fraction_outside"].get<double>() * 100 << " %\n";
+                  << " %, case 2 " << out["stability"]["case2"]["fraction_outside"].get<double>() * 100
+                  << " % of a cycle (a hind leg is in the air " << HindSwingShare(g) * 100 << " %)\n";
       }
     }
     return g.feasible ? kExitOk : kExitInfeasible;

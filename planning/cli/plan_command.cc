@@ -11,6 +11,7 @@
 #include "planning/plan_pipeline.h"
 #include "planning/plan_json.h"
 #include "planning/plan_svg.h"
+#include "planning/step/paper_crawl.h"
 
 namespace stairplan::cli {
 namespace {
@@ -41,7 +42,8 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
                  "Plan on the stairs perceived in this point cloud (PLY or XYZ; the stairs flags are ignored)");
   app.add_option("--planner", o.planner,
                  "crawl: the step planner picks the cadence, feet at step-region centres (default); "
-                 "step: the step planner's own footsteps");
+                 "step: the step planner's own footsteps; "
+                 "paper, paper-alt: the 2012 paper's crawl, cases 1 and 2 (seed 003; climbing only)");
   app.add_option("--out", o.out, "Output directory for plan.json and plan.svg (default ./stairplan-out)");
   app.add_flag("--json", o.json, "Print the plan JSON on stdout instead of the summary");
   app.add_option("--set", o.set, "Override a body planner setting, body.NAME=VALUE (e.g. body.stability_margin=0.03)");
@@ -141,6 +143,22 @@ void PrintValidation(const PipelineResult& result) {
   }
 }
 
+// The paper's crawl on the pipeline's map, validated as the pipeline validates.
+PipelineResult PaperCrawlResult(const RobotModel& robot, const Staircase& stairs, PipelineOptions options, bool alternate) {
+  PaperCrawlSettings settings;
+  settings.arrangement = alternate ? CrawlCase::kFrontSwitched : CrawlCase::kRightFirst;
+  options.crawl.body.hip_height_fraction = settings.body.hip_height_fraction;
+  PipelineResult result;
+  result.map = BuildPipelineMap(robot, stairs, options);
+  result.plan = PlanPaperCrawl(robot, stairs, result.map, settings);
+  if (result.plan.status == PlanStatus::kOk && options.validate) {
+    TraversalValidator validator(robot, stairs, result.map, options.validation);
+    result.validation = validator.Validate(result.plan);
+    result.validated = true;
+  }
+  return result;
+}
+
 int RunPlan(const std::vector<std::string>& args) {
   CLI::App app("Plan a traversal of a staircase; writes plan.json and plan.svg", "plan");
   PlanOptions o;
@@ -150,8 +168,10 @@ int RunPlan(const std::vector<std::string>& args) {
     const auto t0 = std::chrono::steady_clock::now();
     PipelineOptions options;
     options.facing = ParseFacing(o.facing);
+    const bool paper = o.planner == "paper" || o.planner == "paper-alt";
+    if (paper && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     try {
-      options.footsteps = ParseFootstepSource(o.planner);
+      if (!paper) options.footsteps = ParseFootstepSource(o.planner);
     } catch (const std::invalid_argument& e) {
       throw BadInput(std::string("--") + e.what());
     }
@@ -163,8 +183,9 @@ int RunPlan(const std::vector<std::string>& args) {
     const Staircase stairs = perceived ? perceived->stairs : ResolveStairs(o.stairs);
     const double load_us = MicrosSince(t0);
     if (perceived) AddPipelineRobotRegions(robot, stairs, options, perceived->map);
-    PipelineResult result = perceived ? RunPipelineOnMap(robot, stairs, perceived->map, options)
-                                      : RunPipeline(robot, stairs, options);
+    PipelineResult result = paper ? PaperCrawlResult(robot, stairs, options, o.planner == "paper-alt")
+                            : perceived ? RunPipelineOnMap(robot, stairs, perceived->map, options)
+                                        : RunPipeline(robot, stairs, options);
     Plan& plan = result.plan;
     plan.timing_us.insert(plan.timing_us.begin(), {perceived ? "perceive" : "load", load_us});
     nlohmann::json json = PlanToJson(plan, stairs, result.map);

@@ -90,7 +90,7 @@ CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDe
   std::stable_sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (std::size_t i = 0; i < 4; ++i) result.swing_sequence[i] = starts[i].second;
 
-  int outside = 0;
+  int outside = 0, airborne = 0;
   std::array<int, 4> by_leg{};
   for (int k = 0; k < samples; ++k) {
     const double s = g.cl * (static_cast<double>(k) + 0.5) / samples;  // hind hip along the slope
@@ -106,6 +106,7 @@ CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDe
       }
       feet[static_cast<std::size_t>(stance++)] = {(j + 1.0) * input.run + legs[i].a, legs[i].side * 0.5 * input.body_width};
     }
+    if (swinging > 0) ++airborne;
     const Eigen::Vector2d com((s + 0.5 * input.body_length) * cos_phi - g.d * sin_phi, 0.0);
     const double margin = swinging > 1 ? -std::numeric_limits<double>::infinity() : HullMargin(feet, stance, com);
     result.min_margin = k == 0 ? margin : std::min(result.min_margin, margin);
@@ -115,8 +116,11 @@ CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDe
     }
   }
   result.fraction_outside = static_cast<double>(outside) / samples;
+  result.fraction_of_swing_time = airborne > 0 ? static_cast<double>(outside) / airborne : 0.0;
   for (std::size_t i = 0; i < 4; ++i) result.fraction_outside_by_leg[i] = static_cast<double>(by_leg[i]) / samples;
   return result;
 }
+
+double HindSwingShare(const GaitDesign& design) { return 2.0 * design.d_i / design.cl; }
 
 }  // namespace stairplan

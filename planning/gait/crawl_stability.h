@@ -26,6 +26,8 @@ struct CrawlStability {
   /// Fraction of a cycle with the COM outside the support polygon (two legs in the air counts
   /// as outside) [0, 1].
   double fraction_outside = 0.0;
+  /// The same as a share of the time some leg is in the air (4 D_i of each CL) [0, 1].
+  double fraction_of_swing_time = 0.0;
   /// The same split by the swinging leg, in the order HR, HL, FR, FL.
   std::array<double, 4> fraction_outside_by_leg{};
   /// The smallest stability margin over the cycle: the COM's distance to the nearest edge line of
@@ -38,5 +40,11 @@ struct CrawlStability {
 /// design with D_s > 0 (condition (10)); throws std::invalid_argument otherwise.
 CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDesign& design, CrawlCase arrangement,
                                       int samples = 7200);
+
+/// The share of a cycle that a hind leg is in the air, 2 D_i / CL: the most time the COM can
+/// spend outside the support triangle when, as the paper finds for both cases, the front swings
+/// keep it inside. The paper's 27.3 % and 30 % exceed it for its own parameters (20.9 %):
+/// third_party_notes/chen2012_stair_climbing.md.
+double HindSwingShare(const GaitDesign& design);
 
 }  // namespace stairplan

@@ -33,6 +33,25 @@ TEST_CASE("gait-design --json: the paper's robot on its stairs", "[gait][cli]") 
   CHECK(j["swing_sequence"] == nlohmann::json({"HR", "HL", "FR", "FL"}));
   CHECK(j["error_tolerance"]["dW_max"].get<double>() == Approx(0.029).margin(0.0005));
   CHECK(j["stability"]["case1"]["fraction_outside"].get<double>() > 0.0);
+  // Ours, not the paper's 27.3 % and 30 %: third_party_notes/chen2012_stair_climbing.md.
+  CHECK(j["stability"]["case1"]["fraction_outside"].get<double>() == Approx(0.293).margin(0.002));
+  CHECK(j["stability"]["case2"]["fraction_outside"].get<double>() == Approx(0.2086).margin(0.002));
+  CHECK(j["stability"]["hind_swing_share"].get<double>() == Approx(0.2086).margin(0.0005));
+  CHECK(j["D_o_share"].get<double>() == Approx(0.284).margin(0.001));
+}
+
+TEST_CASE("gait-design --figure writes the paper's Figure 4(b)", "[gait][cli]") {
+  const std::string dir = MakeTempDir("gait-figure");
+  std::string out, err;
+  const int code = Run("--rise 0.16 --run 0.28 --lmax 0.21 --body-length 0.444 --figure " + dir + "/fig.svg", &out, &err);
+  INFO(err);
+  CHECK(code == 0);
+  const std::string svg = ReadFile(dir + "/fig.svg");
+  CHECK(svg.rfind("<svg", 0) == 0);
+  CHECK(svg.find("28 x 16") != std::string::npos);
+  CHECK(svg.find("this stair") == std::string::npos);  // 28 x 16 is one of the paper's
+  CHECK(Run("--rise 0.17 --run 0.27 --lmax 0.21 --body-length 0.444 --figure /nonexistent/dir/fig.svg", &out, &err) == 2);
+  CHECK(err.find("/nonexistent/dir/fig.svg") != std::string::npos);
 }
 
 TEST_CASE("gait-design: a short leg is infeasible (exit 3) naming (10)", "[gait][cli]") {

@@ -1,0 +1,114 @@
+// The 2012 paper's crawl as a footstep source (planning/step/paper_crawl.h): footholds at the
+// paper's contact offsets, its swing order and its timing (5)-(7), on the robot of its dimensions.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "planning/step/paper_crawl.h"
+#include "sanitized.h"
+#include "test_paths.h"
+
+using namespace stairplan;
+
+namespace {
+
+// Three steps: two treads carry the periodic pattern; the plan's cost grows with the flight.
+Staircase PaperFlight() {
+  StairSpec spec;
+  spec.steps = 3;
+  spec.rise = 0.17;
+  spec.run = 0.27;
+  spec.nosing = 0.0;
+  return Staircase(spec);
+}
+
+bool IsRightLeg(const std::string& leg) { return leg[0] == 'R'; }
+
+}  // namespace
+
+TEST_CASE("paper crawl: footholds at a_min / a_max, the paper's order and timing", "[step][paper]") {
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
+  REQUIRE(robot.legs().size() == 4);
+  // The paper's dimensions: BL 44.4 cm between hips, BW 36 cm between feet, two-link legs that
+  // reach l_max = 21 cm.
+  for (const LegModel& leg : robot.legs()) {
+    CHECK(std::abs(leg.hip_B.x()) == Approx(0.222).margin(1e-9));
+    CHECK(std::abs(leg.foot_zero_B.y()) == Approx(0.18).margin(1e-9));
+    CHECK(leg.joint_names.size() == 3);  // hip abduction, then the thigh and shank joints
+    CHECK((leg.foot_zero_B - leg.hip_B).norm() > 0.21);
+  }
+  const Staircase stairs = PaperFlight();
+  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
+  // Under the sanitizers case 1 only: each plan runs the body path.
+  std::vector<CrawlCase> cases = {CrawlCase::kRightFirst};
+  if (!testing::kSanitized) cases.push_back(CrawlCase::kFrontSwitched);
+  for (CrawlCase arrangement : cases) {
+    PaperCrawlSettings settings;
+    settings.arrangement = arrangement;
+    const bool switched = arrangement == CrawlCase::kFrontSwitched;
+    INFO("case " << static_cast<int>(arrangement));
+    const Plan plan = PlanPaperCrawl(robot, stairs, map, settings);
+    REQUIRE(plan.status == PlanStatus::kOk);
+
+    // The design it lays out: BL 0.444 from the URDF, the default d centring both offsets.
+    GaitDesignInput in;
+    in.body_length = 0.444;
+    const double cl = std::hypot(0.27, 0.17), sin_phi = 0.17 / cl;
+    in.hip_clearance = 0.5 * ((MinLegLength(0.27, 0.17) - 0.27) * sin_phi + std::sqrt(0.21 * 0.21 - 0.25 * cl * cl));
+    const GaitDesign g = DesignGait(in);
+    CHECK(g.a_min + g.a_max == Approx(0.27).margin(1e-9));
+
+    int on_treads = 0;
+    for (const Footstep& f : plan.footsteps) {
+      CHECK(f.in_step_region);
+      CHECK(f.t_touchdown - f.t_liftoff == Approx(settings.swing_duration).margin(1e-9));
+      if (f.stair_index < 1 || f.stair_index >= stairs.steps()) continue;
+      ++on_treads;
+      const bool at_min = IsRightLeg(f.leg) != (switched && f.leg[1] == 'F');
+      const double nose = stairs.edges()[static_cast<std::size_t>(f.stair_index - 1)].x_nose;
+      CHECK(f.position_W.x() - nose == Approx(at_min ? g.a_min : g.a_max).margin(1e-9));
+    }
+    CHECK(on_treads >= 4 * (stairs.steps() - 1));
+
+    std::vector<Footstep> by_liftoff = plan.footsteps;
+    std::sort(by_liftoff.begin(), by_liftoff.end(), [](const Footstep& a, const Footstep& b) { return a.t_liftoff < b.t_liftoff; });
+    // One leg in the air at a time (conditions (8) and (9) hold for this design).
+    for (std::size_t i = 1; i < by_liftoff.size(); ++i) CHECK(by_liftoff[i].t_liftoff >= by_liftoff[i - 1].t_touchdown - 1e-9);
+    // The swing sequence: HR, HL, FR, FL (case 1) or HR, HL, FL, FR (case 2), repeating.
+    const std::string order = switched ? "RHLHLFRF" : "RHLHRFLF";
+    const std::size_t first = order.find(by_liftoff.front().leg);
+    REQUIRE(first != std::string::npos);
+    for (std::size_t i = 0; i < by_liftoff.size(); ++i) {
+      CHECK(by_liftoff[i].leg == order.substr((first + 2 * i) % 8, 2));
+    }
+    // Within a pair the second leg lifts D_s of hip travel after the first: D_s / D_i swings (eq.
+    // (6): D_i = (1 - p) D_s), leaving the buffer p D_s; each leg lifts once per CL of hip travel.
+    const double swing = settings.swing_duration;
+    for (std::size_t i = 0; i + 1 < by_liftoff.size(); ++i) {
+      const Footstep& a = by_liftoff[i];
+      const Footstep& b = by_liftoff[i + 1];
+      if (a.leg[1] != b.leg[1]) continue;  // not a pair
+      CHECK(b.t_liftoff - a.t_liftoff == Approx(swing / (1.0 - 0.42)).epsilon(1e-9));
+    }
+    for (std::size_t i = 0; i + 4 < by_liftoff.size(); ++i) {
+      CHECK(by_liftoff[i + 4].t_liftoff - by_liftoff[i].t_liftoff == Approx(swing * g.cl / g.d_i).epsilon(1e-9));
+    }
+    CHECK(plan.body.size() > 10);
+  }
+}
+
+TEST_CASE("paper crawl: a design that fails on the stairs is a status, not a plan", "[step][paper]") {
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
+  const Staircase stairs = PaperFlight();
+  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
+  PaperCrawlSettings settings;
+  settings.max_leg_length = 0.18;  // below l_min = 18.85 cm
+  const Plan plan = PlanPaperCrawl(robot, stairs, map, settings);
+  CHECK(plan.status == PlanStatus::kInfeasible);
+  CHECK(plan.status_reason.find("(10)") != std::string::npos);
+  settings.max_leg_length = -1.0;
+  CHECK_THROWS_AS(PlanPaperCrawl(robot, stairs, map, settings), std::invalid_argument);
+}
