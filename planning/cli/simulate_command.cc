@@ -36,7 +36,9 @@ int RunSimulate(const std::vector<std::string>& args) {
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
   app.add_option("--video-frames", frames_dir, "Write an SVG side view every --frame-ms into this directory");
-  app.add_option("--frame-ms", frame_ms, "Interval between frames [ms] (default 100)")->check(CLI::Range(1.0, 10000.0));
+  const CLI::Option* frame_option =
+      app.add_option("--frame-ms", frame_ms, "Interval between frames [ms] (default 100); given, --out also holds the frames (for `stairplan view --sim`)")
+          ->check(CLI::Range(1.0, 10000.0));
   app.add_option("--friction", friction, "Sliding friction of every contact (default 0.8)")->check(CLI::Range(0.0, 10.0));
   app.add_option("--out", out, "Also write the JSON result to this file");
   app.add_option("--set", overrides,
@@ -50,7 +52,8 @@ int RunSimulate(const std::vector<std::string>& args) {
     if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--video-frames");
     SimSettings settings;
     settings.world.friction = friction;
-    settings.frame_interval = frames_dir.empty() && trace.empty() ? 0.0 : frame_ms / 1000.0;
+    const bool record = !frames_dir.empty() || !trace.empty() || frame_option->count() > 0;
+    settings.frame_interval = record ? frame_ms / 1000.0 : 0.0;
     for (const std::string& o : overrides) {
       const std::size_t eq = o.find('=');
       double value = 0.0;
@@ -80,7 +83,13 @@ int RunSimulate(const std::vector<std::string>& args) {
     }
     if (!frames_dir.empty()) json["frames"] = outcome.frames.size();
     const std::string text = json.dump(2) + "\n";
-    if (!out.empty()) WriteFileAtomically(out, text);
+    if (!out.empty() && frame_option->count() > 0) {
+      nlohmann::json with_frames = json;
+      with_frames["frames"] = SimFramesToJson(outcome.frames);
+      WriteFileAtomically(out, with_frames.dump() + "\n");
+    } else if (!out.empty()) {
+      WriteFileAtomically(out, text);
+    }
     std::cout << text;
     std::cerr << "stairplan simulate: " << path << ": " << ToString(outcome.status)
               << (outcome.Passed() ? "" : " (" + outcome.FirstCause() + ")") << "; " << outcome.landings.size()

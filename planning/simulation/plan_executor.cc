@@ -431,7 +431,11 @@ void PlanExecutor::RecordFrame(double tp) {
   frame.base_rpy = {measured.roll, measured.pitch, measured.yaw};
   frame.planned_W = planned.position_W;
   frame.planned_pitch = planned.pitch;
-  for (const LegState& leg : legs_) frame.stance.push_back(leg.stance);
+  for (const LegState& leg : legs_) {
+    frame.stance.push_back(leg.stance);
+    frame.legs.push_back(leg.name);
+    frame.joint_q.emplace_back(d->qpos[leg.qpos[0]], d->qpos[leg.qpos[1]], d->qpos[leg.qpos[2]]);
+  }
   for (int b = 1; b < m->nbody; ++b) {
     frame.bodies.emplace_back(d->xpos[3 * b], d->xpos[3 * b + 1], d->xpos[3 * b + 2]);
     frame.parents.push_back(m->body_parentid[b] - 1);
