@@ -1,5 +1,6 @@
 #include "planning/viewer/viewer_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -132,13 +133,14 @@ json PlanFrames(PlanReplay& replay, const Plan& plan, double period) {
 
 // Where a violation happened: the offending link when the validator names it, the footstep for a
 // touchdown outside its region, the leg's foot, both legs of a pair, or the body.
-Eigen::Vector3d ViolationPlace(PlanReplay& replay, const ViewerRobot& robot, const Plan& plan, double t,
+Eigen::Vector3d ViolationPlace(PlanReplay& replay, const ViewerRobot& robot, const Plan& plan, double when,
                                const std::string& leg, const std::string& kind, const std::string& detail) {
   if (kind == "foot_outside_step_region") {
     for (const Footstep& f : plan.footsteps) {
-      if (f.leg == leg && std::abs(f.t_touchdown - t) < 1e-6) return f.position_W;
+      if (f.leg == leg && std::abs(f.t_touchdown - when) < 1e-6) return f.position_W;
     }
   }
+  const double t = std::clamp(when, 0.0, plan.duration());
   const std::vector<Eigen::Isometry3d>& poses = replay.Poses(t);
   const std::vector<ViewerShape>& shapes = robot.shapes();
   const std::string link = detail.substr(0, detail.find(" against "));
@@ -175,13 +177,12 @@ json Violations(const JsonFieldReader& r, const json& report, const std::string&
     const std::string kind = r.Text(list[i], "kind", p);
     const std::string detail = list[i].contains("detail") ? r.Text(list[i], "detail", p) : "";
     const double value = r.Number(list[i], "value", p);
-    const double t_clamped = std::clamp(t, 0.0, plan.duration());
     out.push_back({{"t", Rounded(t)},
                    {"leg", leg},
                    {"kind", kind},
                    {"value", value},
                    {"detail", detail},
-                   {"p", Vec(ViolationPlace(replay, robot, plan, t_clamped, leg, kind, detail))}});
+                   {"p", Vec(ViolationPlace(replay, robot, plan, t, leg, kind, detail))}});
   }
   return out;
 }

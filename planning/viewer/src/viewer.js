@@ -96,8 +96,8 @@ function buildFootsteps(scene) {
 }
 
 function buildViolations(scene) {
-  const ball = new THREE.SphereGeometry(0.035, 16, 12);
-  const ring = new THREE.TorusGeometry(0.07, 0.01, 8, 32);
+  const ball = new THREE.SphereGeometry(0.04, 16, 12);
+  const ring = new THREE.TorusGeometry(0.08, 0.012, 8, 32);
   return data.violations.map((v) => {
     const material = new THREE.MeshBasicMaterial({ color: COLORS.violation, depthTest: false });
     const group = new THREE.Group();
@@ -121,7 +121,7 @@ function setupCamera(renderer) {
   const extent = Math.max(hi.x - lo.x, hi.z - lo.z, 1.0);
   const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
   camera.up.set(0, 0, 1);
-  camera.position.set(center.x - 0.25 * extent, center.y - 1.5 * extent, center.z + 0.55 * extent);
+  camera.position.set(center.x - 0.1 * extent, center.y - 0.95 * extent, center.z + 0.45 * extent);
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(center);
   controls.update();
