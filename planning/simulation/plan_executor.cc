@@ -476,7 +476,7 @@ void PlanExecutor::Judge(double tp) {
   }
 }
 
-SimulationOutcome PlanExecutor::Run() {
+SimulationOutcome PlanExecutor::Run(const FrameCallback& on_frame) {
   const auto start = std::chrono::steady_clock::now();
   outcome_ = SimulationOutcome{};
   outcome_.min_link_clearance_m = settings_.world.detect_margin;
@@ -493,6 +493,7 @@ SimulationOutcome PlanExecutor::Run() {
     if (tp > t_final) break;
     if (settings_.frame_interval > 0.0 && tp >= next_frame - 1e-9) {
       RecordFrame(tp);
+      if (on_frame) on_frame(*world_, tp);
       next_frame += settings_.frame_interval;
     }
     if (tp >= 0.0) UpdatePhases(tp, touching);
@@ -545,10 +546,11 @@ SimulationOutcome PlanExecutor::Run() {
   return outcome_;
 }
 
-SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan, const SimSettings& settings) {
+SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan, const SimSettings& settings,
+                           const FrameCallback& on_frame) {
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, OptionsForPlan(plan));
   PlanExecutor executor(robot, stairs, map, plan, settings);
-  return executor.Run();
+  return executor.Run(on_frame);
 }
 
 }  // namespace stairplan
