@@ -160,8 +160,10 @@ Eigen::Vector3d ViolationPlace(PlanReplay& replay, const ViewerRobot& robot, con
     add_if([&](const ViewerShape& s) { return s.group == leg.substr(0, slash) || s.group == leg.substr(slash + 1); });
   }
   if (n > 0) return sum / n;
-  const int l = robot.kinematics().LegIndex(leg);
-  if (l >= 0 && l < 4) return replay.Contacts(t)[static_cast<std::size_t>(l)];
+  const std::array<Eigen::Vector3d, 4> contacts = replay.Contacts(t);
+  for (int l = 0; l < robot.kinematics().leg_count() && l < 4; ++l) {
+    if (robot.kinematics().leg(l).name() == leg) return contacts[static_cast<std::size_t>(l)];
+  }
   return BodyPoseAt(plan.body, t).position_W;
 }
 

@@ -94,7 +94,8 @@ TEST_CASE("viewer scene: a pose per shape and frame, violations at their footste
   const stairplan::Footstep& step = file.plan.footsteps.front();
   const json report = {{"ok", false},
                        {"violations", {{{"t", step.t_touchdown}, {"leg", step.leg}, {"kind", "foot_outside_step_region"},
-                                        {"value", 0.04}, {"detail", "stair 0"}}}}};
+                                        {"value", 0.04}, {"detail", "stair 0"}},
+                                       {{"t", file.plan.body[2].t}, {"leg", "body"}, {"kind", "stability"}, {"value", -0.01}}}}};
   stairplan::ViewerSceneSettings settings;
   settings.frame_period = 0.05;
   const json scene = stairplan::BuildViewerScene(robot, file, {&plan_json, "short_plan.json"},
@@ -104,10 +105,13 @@ TEST_CASE("viewer scene: a pose per shape and frame, violations at their footste
   CHECK(scene["frames"]["poses"].size() == frames * scene["robot"]["shapes"].size() * 7);
   CHECK_FALSE(scene["valid"].get<bool>());
   CHECK(scene["title"].get<std::string>().find("INVALID: foot_outside_step_region") != std::string::npos);
-  REQUIRE(scene["violations"].size() == 1);
+  REQUIRE(scene["violations"].size() == 2);
   const json& p = scene["violations"][0]["p"];
   CHECK(std::abs(p[0].get<double>() - step.position_W.x()) < 1e-3);
   CHECK(std::abs(p[1].get<double>() - step.position_W.y()) < 1e-3);
+  const json& body = scene["violations"][1]["p"];  // the body's, at its sample
+  CHECK(std::abs(body[0].get<double>() - file.plan.body[2].x) < 1e-3);
+  CHECK(std::abs(body[2].get<double>() - file.plan.body[2].z) < 1e-3);
   CHECK(scene["regions"].size() == plan_json["map"]["stairs"].size());
 
   // A simulated run: one frame, and one with a base of two numbers.
