@@ -3,8 +3,6 @@
 #include <csignal>
 #include <cstdio>
 #include <memory>
-#include <optional>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -101,7 +99,7 @@ int RunSimulate(const std::vector<std::string>& args) {
     if (rendering && frame_option->count() == 0) frame_ms = 40.0;
     SimSettings settings;
     settings.world.friction = friction;
-    const bool record = !frames_dir.empty() || !trace.empty() || frame_option->count() > 0;
+    const bool record = rendering || !trace.empty() || frame_option->count() > 0;
     settings.frame_interval = record ? frame_ms / 1000.0 : 0.0;
     for (const std::string& o : overrides) {
       const std::size_t eq = o.find('=');
