@@ -9,48 +9,14 @@
 
 #include "geometry/field_error.h"
 #include "geometry/stair_spec_yaml.h"
+#include "planning/json_field_reader.h"
 
 namespace stairplan {
 namespace {
 
 using nlohmann::json;
 
-// Field access that names the path of what is missing or wrong.
-class Reader {
- public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
-
-  [[noreturn]] void Fail(const std::string& path, const std::string& problem) const {
-    throw std::invalid_argument(source_ + ": field '" + path + "': " + problem);
-  }
-  const json& At(const json& node, const std::string& key, const std::string& path) const {
-    if (!node.is_object() || !node.contains(key)) Fail(path + key, "missing");
-    return node.at(key);
-  }
-  double Number(const json& node, const std::string& key, const std::string& path) const {
-    const json& v = At(node, key, path);
-    if (!v.is_number()) Fail(path + key, "must be a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) Fail(path + key, "must be finite");
-    return d;
-  }
-  std::string Text(const json& node, const std::string& key, const std::string& path) const {
-    const json& v = At(node, key, path);
-    if (!v.is_string()) Fail(path + key, "must be a string");
-    return v.get<std::string>();
-  }
-  const json& Array(const json& node, const std::string& key, const std::string& path) const {
-    const json& v = At(node, key, path);
-    if (!v.is_array()) Fail(path + key, "must be an array");
-    return v;
-  }
-  Eigen::Vector3d Point(const json& node, const std::string& path) const {
-    return {Number(node, "x", path), Number(node, "y", path), Number(node, "z", path)};
-  }
-
- private:
-  std::string source_;
-};
+using Reader = JsonFieldReader;
 
 std::vector<double> Numbers(const Reader& r, const json& node, const std::string& key, const std::string& path) {
   std::vector<double> values;

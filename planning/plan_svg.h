@@ -1,5 +1,7 @@
-// plan.svg: a side view of a plan that anyone can read: the stairs, step regions in green,
-// collision regions in red, the footholds of each leg, the body path, axes in metres.
+// plan.svg: a plan that anyone can read: a side view (stairs, step and collision regions, the
+// footholds on their treads, the body path) over a top view (the regions and footholds in x-y, the
+// body's sideways shift), axes in metres, violations marked where and when they happened, and a
+// title that says INVALID with the first violation when the plan failed validation.
 #pragma once
 
 #include <string>
@@ -7,9 +9,12 @@
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
 #include "planning/plan.h"
+#include "planning/validation/traversal_validator.h"
 
 namespace stairplan {
 
-std::string PlanToSvg(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map);
+/// The SVG text; `validation` (null: not validated) decides the title and the marks.
+std::string PlanToSvg(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map,
+                      const ValidationReport* validation = nullptr);
 
 }  // namespace stairplan

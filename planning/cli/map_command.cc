@@ -1,6 +1,8 @@
 // `stairplan map --cloud FILE`: perception on a point cloud: the height map with its gaps filled,
 // the stairs the tracker fits, and the constrained map built from them (seed 000 [0038]-[0048]).
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -45,9 +47,12 @@ nlohmann::json MapJson(const PerceivedStairs& seen, const StairModel& model, con
           {"data_bands", seen.data_bands}, {"stairs", stairs}};
 }
 
+// map.svg: the height map from above with the fitted edges and step regions, inside a frame of
+// axes in metres under a title and a legend.
 std::string Svg(const StairPerception& p, const MapFromHeightMapSettings& s) {
   const HeightMap& m = p.height_map;
   constexpr double kScale = 200.0;  // px per m
+  constexpr double kLeft = 60.0, kTop = 70.0, kBottom = 50.0, kRight = 20.0;
   const double w = m.nx() * m.resolution() * kScale, h = m.ny() * m.resolution() * kScale;
   float lo = 1e9f, hi = -1e9f;
   for (int iy = 0; iy < m.ny(); ++iy) {
@@ -58,12 +63,52 @@ std::string Svg(const StairPerception& p, const MapFromHeightMapSettings& s) {
     }
   }
   const auto px = [&](const Eigen::Vector2d& p_W) {
-    return Eigen::Vector2d((p_W.x() - m.origin().x()) * kScale, h - (p_W.y() - m.origin().y()) * kScale);
+    return Eigen::Vector2d(kLeft + (p_W.x() - m.origin().x()) * kScale, kTop + h - (p_W.y() - m.origin().y()) * kScale);
   };
+  std::ostringstream title;
+  title << std::setprecision(3) << "stairplan map: " << m.nx() << " x " << m.ny() << " cells of " << m.resolution() * 100
+        << " cm, heights " << lo << " to " << hi << " m (dark to light); ";
+  if (p.fit.found) {
+    title << p.fit.model.steps << " steps fitted, rise " << p.fit.model.rise << " m, run " << p.fit.model.run << " m";
+  } else {
+    title << "no stairs (" << p.fit.reason << ")";
+  }
   std::ostringstream out;
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w << "\" height=\"" << h << "\">\n"
-      << "<!-- stairplan map: height map (grey: measured, blue: filled flat behind an occlusion, green: filled smoothly,"
-         " red: poor), fitted edges (black), step regions (green outlines) -->\n";
+  const double width = std::max({kLeft + w + kRight, 720.0, kLeft + 7.5 * static_cast<double>(title.str().size())});
+  const double height = kTop + h + kBottom;
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<g font-family=\"sans-serif\" font-size=\"12\">\n";
+  out << "<text x=\"" << kLeft << "\" y=\"18\" font-size=\"13\" font-weight=\"bold\">" << title.str() << "</text>\n";
+  double x = kLeft;
+  const auto item = [&](const std::string& style, const std::string& label) {
+    out << "<rect x=\"" << x << "\" y=\"30\" width=\"12\" height=\"12\" " << style << "/><text x=\"" << x + 16
+        << "\" y=\"41\">" << label << "</text>\n";
+    x += 34 + 6.5 * static_cast<double>(label.size());
+  };
+  item("fill=\"rgb(140,140,140)\"", "measured");
+  item("fill=\"rgb(140,140,200)\"", "filled flat (occluded)");
+  item("fill=\"rgb(140,180,140)\"", "filled smoothly");
+  item("fill=\"rgb(255,140,140)\"", "poor");
+  item("fill=\"black\"", "fitted edges");
+  item("fill=\"none\" stroke=\"rgb(0,160,0)\" stroke-width=\"2\"", "step regions");
+  // Axes in world metres, ticks every half metre.
+  const double x0 = m.origin().x(), x1 = x0 + m.nx() * m.resolution();
+  const double y0 = m.origin().y(), y1 = y0 + m.ny() * m.resolution();
+  const double base = kTop + h + 6, left = kLeft - 6;
+  out << "<line x1=\"" << kLeft << "\" y1=\"" << base << "\" x2=\"" << kLeft + w << "\" y2=\"" << base << "\" stroke=\"#222\"/>\n";
+  for (double t = std::ceil(x0 * 2) / 2; t <= x1 + 1e-9; t += 0.5) {
+    const double u = px({t, y0}).x();
+    out << "<line x1=\"" << u << "\" y1=\"" << base << "\" x2=\"" << u << "\" y2=\"" << base + 5 << "\" stroke=\"#222\"/><text x=\""
+        << u - 10 << "\" y=\"" << base + 18 << "\">" << (std::abs(t) < 1e-9 ? 0.0 : t) << "</text>\n";
+  }
+  out << "<text x=\"" << kLeft + w - 40 << "\" y=\"" << base + 34 << "\">x [m]</text>\n";
+  out << "<line x1=\"" << left << "\" y1=\"" << kTop << "\" x2=\"" << left << "\" y2=\"" << kTop + h << "\" stroke=\"#222\"/>\n";
+  for (double t = std::ceil(y0 * 2) / 2; t <= y1 + 1e-9; t += 0.5) {
+    const double v = px({x0, t}).y();
+    out << "<line x1=\"" << left - 5 << "\" y1=\"" << v << "\" x2=\"" << left << "\" y2=\"" << v << "\" stroke=\"#222\"/><text x=\"4\" y=\""
+        << v + 4 << "\">" << (std::abs(t) < 1e-9 ? 0.0 : t) << "</text>\n";
+  }
+  out << "<text x=\"4\" y=\"" << kTop - 8 << "\">y [m]</text>\n</g>\n";
   const double cell = m.resolution() * kScale;
   for (int iy = 0; iy < m.ny(); ++iy) {
     for (int ix = 0; ix < m.nx(); ++ix) {

@@ -193,7 +193,8 @@ int RunPlan(const std::vector<std::string>& args) {
     if (perceived) json["fitted"] = perceived->fitted;
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");
-    WriteFileAtomically(o.out + "/plan.svg", PlanToSvg(plan, stairs, result.map));
+    WriteFileAtomically(o.out + "/plan.svg",
+                        PlanToSvg(plan, stairs, result.map, result.validated ? &result.validation : nullptr));
     if (o.json) {
       std::cout << json.dump(2) << "\n";
     } else {

@@ -1,14 +1,16 @@
 // `stairplan simulate plan.json`: execute a plan in MuJoCo on the stairs it names and print the
 // physics outcome as JSON (exit 0 when the robot got there cleanly, 3 when it did not).
+#include <csignal>
 #include <cstdio>
-#include <iomanip>
+#include <memory>
 #include <iostream>
 #include <sstream>
 
 #include "planning/cli/cli_common.h"
 #include "planning/plan_json_reader.h"
 #include "planning/simulation/plan_executor.h"
-#include "planning/simulation/sim_frame_svg.h"
+#include "planning/simulation/offscreen_renderer.h"
+#include "planning/simulation/video_encoder.h"
 #include "planning/simulation/sim_outcome_json.h"
 
 namespace stairplan::cli {
@@ -28,15 +30,60 @@ std::string TraceCsv(const SimulationOutcome& outcome) {
   return csv.str();
 }
 
+// The run drawn by MuJoCo's renderer into an mp4 and/or PNG frames; the renderer and the encoders
+// start at the first frame, when the world exists.
+class Renderings {
+ public:
+  Renderings(std::string video, std::string frames_dir, double fps)
+      : video_(std::move(video)), frames_dir_(std::move(frames_dir)), fps_(fps) {}
+
+  void Add(MujocoWorld& world) {
+    if (!renderer_) {
+      renderer_ = std::make_unique<OffscreenRenderer>(world);
+      std::signal(SIGPIPE, SIG_IGN);  // a failing ffmpeg is reported by Write, not by a signal
+      if (!video_.empty()) {
+        encoders_.push_back(std::make_unique<VideoEncoder>(VideoOutput::kMp4, video_, renderer_->width(), renderer_->height(), fps_));
+      }
+      if (!frames_dir_.empty()) {
+        encoders_.push_back(std::make_unique<VideoEncoder>(VideoOutput::kPngFrames, frames_dir_, renderer_->width(),
+                                                           renderer_->height(), fps_));
+      }
+    }
+    const Eigen::Vector3d base = world.BasePosition();
+    renderer_->Render(world, base - Eigen::Vector3d(0.0, 0.0, 0.15), &rgb_);
+    for (auto& encoder : encoders_) encoder->Write(rgb_);
+    ++frames_;
+  }
+  void Finish() {
+    for (auto& encoder : encoders_) encoder->Finish();
+  }
+  int frames() const { return frames_; }
+
+ private:
+  std::string video_, frames_dir_;
+  double fps_;
+  std::unique_ptr<OffscreenRenderer> renderer_;
+  std::vector<std::unique_ptr<VideoEncoder>> encoders_;
+  std::vector<unsigned char> rgb_;
+  int frames_ = 0;
+};
+
 int RunSimulate(const std::vector<std::string>& args) {
   CLI::App app("Execute a plan in MuJoCo and report what happened (JSON)", "simulate");
-  std::string path, robot_path, frames_dir, out, trace;
+  std::string path, robot_path, frames_dir, video, out, trace;
   std::vector<std::string> overrides;
-  double frame_ms = 100.0, friction = 0.8;
+  double frame_ms = 100.0, friction = 0.8, video_speed = 1.0;
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
-  app.add_option("--video-frames", frames_dir, "Write an SVG side view every --frame-ms into this directory");
-  app.add_option("--frame-ms", frame_ms, "Interval between frames [ms] (default 100)")->check(CLI::Range(1.0, 10000.0));
+  app.add_option("--video", video, "Render the run with MuJoCo's renderer offscreen (EGL) into this mp4 (ffmpeg)");
+  app.add_option("--frames", frames_dir, "Render the run into this directory as PNGs, one every --frame-ms");
+  app.add_option("--video-speed", video_speed, "Playback speed of --video against the plan's clock (default 1)")
+      ->check(CLI::Range(0.01, 100.0));
+  const CLI::Option* frame_option =
+      app.add_option("--frame-ms", frame_ms,
+                     "Interval between frames [ms] (default 100, 40 with --video or --frames); given, --out also holds "
+                     "the frames (for `stairplan view --sim`)")
+          ->check(CLI::Range(1.0, 10000.0));
   app.add_option("--friction", friction, "Sliding friction of every contact (default 0.8)")->check(CLI::Range(0.0, 10.0));
   app.add_option("--out", out, "Also write the JSON result to this file");
   app.add_option("--set", overrides,
@@ -47,10 +94,13 @@ int RunSimulate(const std::vector<std::string>& args) {
     const PlanFile file = ReadPlanJsonFile(path);
     const RobotModel robot = LoadPlanRobot(file, robot_path);
     const Staircase stairs(file.stairs);
-    if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--video-frames");
+    if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--frames");
+    const bool rendering = !video.empty() || !frames_dir.empty();
+    if (rendering && frame_option->count() == 0) frame_ms = 40.0;
     SimSettings settings;
     settings.world.friction = friction;
-    settings.frame_interval = frames_dir.empty() && trace.empty() ? 0.0 : frame_ms / 1000.0;
+    const bool record = rendering || !trace.empty() || frame_option->count() > 0;
+    settings.frame_interval = record ? frame_ms / 1000.0 : 0.0;
     for (const std::string& o : overrides) {
       const std::size_t eq = o.find('=');
       double value = 0.0;
@@ -68,19 +118,28 @@ int RunSimulate(const std::vector<std::string>& args) {
     }
     Plan plan = file.plan;
     plan.facing = file.facing;
-    const SimulationOutcome outcome = Simulate(robot, stairs, plan, settings);
+    Renderings renderings(video, frames_dir, video_speed / settings.frame_interval);
+    const SimulationOutcome outcome =
+        rendering ? Simulate(robot, stairs, plan, settings, [&](MujocoWorld& world, double) { renderings.Add(world); })
+                  : Simulate(robot, stairs, plan, settings);
+    renderings.Finish();
     nlohmann::json json = SimulationToJson(outcome);
     json["plan"] = path;
     json["robot"] = robot.name();
     if (!trace.empty()) WriteFileAtomically(trace, TraceCsv(outcome));
-    for (std::size_t i = 0; i < outcome.frames.size() && !frames_dir.empty(); ++i) {
-      std::ostringstream name;
-      name << frames_dir << "/frame_" << std::setw(5) << std::setfill('0') << i << ".svg";
-      WriteFileAtomically(name.str(), SimFrameSvg(outcome.frames[i], stairs, plan));
+    if (rendering) {
+      json["video"] = {{"file", video}, {"frames_dir", frames_dir}, {"frames", renderings.frames()},
+                       {"fps", video_speed / settings.frame_interval},
+                       {"duration_s", renderings.frames() * settings.frame_interval / video_speed}};
     }
-    if (!frames_dir.empty()) json["frames"] = outcome.frames.size();
     const std::string text = json.dump(2) + "\n";
-    if (!out.empty()) WriteFileAtomically(out, text);
+    if (!out.empty() && frame_option->count() > 0) {
+      nlohmann::json with_frames = json;
+      with_frames["frames"] = SimFramesToJson(outcome.frames);
+      WriteFileAtomically(out, with_frames.dump() + "\n");
+    } else if (!out.empty()) {
+      WriteFileAtomically(out, text);
+    }
     std::cout << text;
     std::cerr << "stairplan simulate: " << path << ": " << ToString(outcome.status)
               << (outcome.Passed() ? "" : " (" + outcome.FirstCause() + ")") << "; " << outcome.landings.size()

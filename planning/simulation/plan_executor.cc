@@ -431,7 +431,11 @@ void PlanExecutor::RecordFrame(double tp) {
   frame.base_rpy = {measured.roll, measured.pitch, measured.yaw};
   frame.planned_W = planned.position_W;
   frame.planned_pitch = planned.pitch;
-  for (const LegState& leg : legs_) frame.stance.push_back(leg.stance);
+  for (const LegState& leg : legs_) {
+    frame.stance.push_back(leg.stance);
+    frame.legs.push_back(leg.name);
+    frame.joint_q.emplace_back(d->qpos[leg.qpos[0]], d->qpos[leg.qpos[1]], d->qpos[leg.qpos[2]]);
+  }
   for (int b = 1; b < m->nbody; ++b) {
     frame.bodies.emplace_back(d->xpos[3 * b], d->xpos[3 * b + 1], d->xpos[3 * b + 2]);
     frame.parents.push_back(m->body_parentid[b] - 1);
@@ -472,7 +476,7 @@ void PlanExecutor::Judge(double tp) {
   }
 }
 
-SimulationOutcome PlanExecutor::Run() {
+SimulationOutcome PlanExecutor::Run(const FrameCallback& on_frame) {
   const auto start = std::chrono::steady_clock::now();
   outcome_ = SimulationOutcome{};
   outcome_.min_link_clearance_m = settings_.world.detect_margin;
@@ -489,6 +493,7 @@ SimulationOutcome PlanExecutor::Run() {
     if (tp > t_final) break;
     if (settings_.frame_interval > 0.0 && tp >= next_frame - 1e-9) {
       RecordFrame(tp);
+      if (on_frame) on_frame(*world_, tp);
       next_frame += settings_.frame_interval;
     }
     if (tp >= 0.0) UpdatePhases(tp, touching);
@@ -541,10 +546,11 @@ SimulationOutcome PlanExecutor::Run() {
   return outcome_;
 }
 
-SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan, const SimSettings& settings) {
+SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan, const SimSettings& settings,
+                           const FrameCallback& on_frame) {
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, OptionsForPlan(plan));
   PlanExecutor executor(robot, stairs, map, plan, settings);
-  return executor.Run();
+  return executor.Run(on_frame);
 }
 
 }  // namespace stairplan

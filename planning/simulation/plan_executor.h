@@ -9,6 +9,7 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -22,6 +23,10 @@
 
 namespace stairplan {
 
+/// Called at every recorded frame (SimSettings::frame_interval) with the world in that state and
+/// the plan time [s]: for drawing it (OffscreenRenderer), not for changing it.
+using FrameCallback = std::function<void(MujocoWorld& world, double t)>;
+
 class PlanExecutor {
  public:
   /// Builds the world and places the robot on the plan's initial footholds. Throws
@@ -34,7 +39,7 @@ class PlanExecutor {
   PlanExecutor& operator=(const PlanExecutor&) = delete;
 
   /// Settles, executes the plan, holds, and judges. Call once.
-  SimulationOutcome Run();
+  SimulationOutcome Run(const FrameCallback& on_frame = {});
 
   const MujocoWorld& world() const { return *world_; }
 
@@ -79,6 +84,6 @@ class PlanExecutor {
 /// One call: rebuilds the robot-aware map the plan was planned on (OptionsForPlan), executes the
 /// plan, returns what happened. The sweep's `--simulate` and `stairplan simulate` use this.
 SimulationOutcome Simulate(const RobotModel& robot, const Staircase& stairs, const Plan& plan,
-                           const SimSettings& settings = {});
+                           const SimSettings& settings = {}, const FrameCallback& on_frame = {});
 
 }  // namespace stairplan

@@ -59,6 +59,8 @@ struct SimFrame {
   Eigen::Vector3d planned_W = Eigen::Vector3d::Zero();       ///< the plan's base position then [m]
   double planned_pitch = 0.0;                                ///< the plan's pitch then [rad]
   std::vector<bool> stance;                                  ///< per plan leg: stance (true) or swing
+  std::vector<std::string> legs;                             ///< the legs of `stance` and `joint_q`
+  std::vector<Eigen::Vector3d> joint_q;                      ///< per leg: its three joint angles [rad]
   std::vector<Eigen::Vector3d> bodies;
   std::vector<int> parents;
   std::vector<Eigen::Vector3d> feet;

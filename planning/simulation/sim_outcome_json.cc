@@ -65,4 +65,14 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
   return j;
 }
 
+nlohmann::json SimFramesToJson(const std::vector<SimFrame>& frames) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const SimFrame& f : frames) {
+    nlohmann::json q = nlohmann::json::object();
+    for (std::size_t i = 0; i < f.legs.size() && i < f.joint_q.size(); ++i) q[f.legs[i]] = Vec(f.joint_q[i]);
+    out.push_back({{"t", f.t}, {"base", Vec(f.base_W)}, {"roll_pitch_yaw", Vec(f.base_rpy)}, {"q", q}});
+  }
+  return out;
+}
+
 }  // namespace stairplan

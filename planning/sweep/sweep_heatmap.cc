@@ -83,11 +83,41 @@ void DrawPanel(std::ostringstream& svg, const std::vector<SweepRow>& rows, const
   svg << "<text x='" << left - 60 << "' y='" << kMargin - 24 << "'>rise [m]</text>\n</g>\n";
 }
 
+// The legend's items laid out in rows that fit `width`; returns the rows' total height.
+struct LegendItem {
+  const char* colour;
+  std::string label;
+  bool outline;
+};
+double HeatmapLegendHeight(const std::vector<LegendItem>& items, double width, std::ostringstream* svg, double top) {
+  constexpr double kRow = 20.0;
+  double x = kMargin, y = top;
+  for (const LegendItem& item : items) {
+    const double item_width = 40 + 7.0 * static_cast<double>(item.label.size());
+    if (x > kMargin && x + item_width > width - 10) {
+      x = kMargin;
+      y += kRow;
+    }
+    if (svg != nullptr) {
+      *svg << "<rect x='" << x << "' y='" << y << "' width='12' height='12' "
+           << (item.outline ? "fill='none' stroke-width='2' stroke='" : "fill='") << item.colour << "'/>";
+      *svg << "<text x='" << x + 16 << "' y='" << y + 11 << "'>" << item.label << "</text>\n";
+    }
+    x += item_width;
+  }
+  return y - top + kRow;
+}
+
 }  // namespace
 
 std::string SweepHeatmapSvg(const std::vector<SweepRow>& rows, const SweepGrid& grid) {
-  const double width = kMargin + grid.directions.size() * (kPanel + kMargin);
-  const double height = kPanel + 2 * kMargin + 60;
+  const double width = kMargin + static_cast<double>(grid.directions.size()) * (kPanel + kMargin);
+  std::vector<LegendItem> legend = {{StatusColour("valid"), "valid", false},
+                                    {StatusColour("invalid"), "invalid", false},
+                                    {StatusColour("infeasible"), "infeasible", false}};
+  for (const CodeBox& c : kCodes) legend.push_back({c.colour, c.name, true});
+  const double legend_top = kPanel + 2 * kMargin + 20;
+  const double height = legend_top + HeatmapLegendHeight(legend, width, nullptr, legend_top) + 10;
   std::ostringstream svg;
   svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height << "'>\n"
       << "<rect width='100%' height='100%' fill='white'/>\n";
@@ -96,18 +126,8 @@ std::string SweepHeatmapSvg(const std::vector<SweepRow>& rows, const SweepGrid& 
     DrawPanel(svg, rows, grid, dir, left);
     left += kPanel + kMargin;
   }
-  double x = kMargin;
   svg << "<g font-family='sans-serif' font-size='12'>\n";
-  const auto item = [&](const char* colour, const char* label, bool outline) {
-    svg << "<rect x='" << x << "' y='" << height - 30 << "' width='12' height='12' "
-        << (outline ? "fill='none' stroke-width='2' stroke='" : "fill='") << colour << "'/>";
-    svg << "<text x='" << x + 16 << "' y='" << height - 19 << "'>" << label << "</text>\n";
-    x += 40 + 7.0 * std::string(label).size();
-  };
-  item(StatusColour("valid"), "valid", false);
-  item(StatusColour("invalid"), "invalid", false);
-  item(StatusColour("infeasible"), "infeasible", false);
-  for (const CodeBox& c : kCodes) item(c.colour, c.name, true);
+  HeatmapLegendHeight(legend, width, &svg, legend_top);
   svg << "</g>\n</svg>\n";
   return svg.str();
 }

@@ -127,6 +127,19 @@ std::vector<BadCase> Table() {
   t.push_back({"wrong-type", "sweep", "", "", "sweep --steps many --csv {dir}/s.csv", {"--steps"}, sweep_out});
   t.push_back({"empty", "sweep", "", "", "sweep --direction '' --rise 0.17 --run 0.27 --csv {dir}/s.csv", {"--direction"}, sweep_out});
 
+  // view: plan.json, the simulation's frames, a validation report; the page must not appear.
+  const std::vector<std::string> view_out = {"v.html", "v.html.tmp"};
+  const std::string view = "view " + SourceDir() + "/tests/fuzz/corpus/plan_json/minimal.json --html {dir}/v.html ";
+  const std::string sim_frame = "{\"frames\": [{\"t\": 0, \"roll_pitch_yaw\": [0, 0, 0], \"base\": ";
+  t.push_back({"malformed", "view", "p.json", "{\"robot\": {", "view {file} --html {dir}/v.html", {"{file}"}, view_out});
+  t.push_back({"missing", "view", "", "", "view {dir}/absent.json --html {dir}/v.html", {"absent.json"}, view_out});
+  t.push_back({"truncated", "view", "sim.json", sim_frame, view + "--sim {file}", {"{file}"}, view_out});
+  t.push_back({"wrong-type", "view", "sim.json", sim_frame + "[0, 0]}]}", view + "--sim {file}", {"{file}", "frames[0].base"}, view_out});
+  t.push_back({"nan", "view", "sim.json", sim_frame + "[0, 0, NaN]}]}", view + "--sim {file}", {"{file}"}, view_out});
+  t.push_back({"empty", "view", "r.json", "", view + "--validation {file}", {"{file}"}, view_out});
+  t.push_back({"wrong-type", "view", "r.json", "{\"ok\": false, \"violations\": [{\"t\": \"soon\"}]}", view + "--validation {file}",
+               {"{file}", "violations[0].t"}, view_out});
+
   // sweep-merge: shard CSVs; the merged CSV must not appear.
   const std::vector<std::string> merge_out = {"m.csv", "m.csv.tmp"};
   t.push_back({"malformed", "sweep-merge", "a.csv", "rise,run\n0.1\n\"", "sweep-merge --csv {dir}/m.csv {file}", {"{file}"}, merge_out});
