@@ -4,7 +4,6 @@
 #include "planning/optim/clp_solver.h"
 
 #include <cmath>
-#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -40,9 +39,7 @@ ActiveSide SideOf(double dual, double lower, double upper) {
 
 struct ClpSolver::Model {
   std::unique_ptr<ClpSimplex> clp;
-  bool loaded = false;
   int n = 0, m = 0;
-  std::uint64_t hessian_revision = 0, matrix_revision = 0;
   // The last solve's basis and solution, kept for a rebuilt model of the same size.
   std::vector<unsigned char> basis;
   std::vector<double> x;
@@ -58,15 +55,7 @@ struct ClpSolver::Model {
   static bool Flipped(const Program& p, int j) {
     return !std::isfinite(p.variable_lower()[j]) && std::isfinite(p.variable_upper()[j]);
   }
-  bool SameSigns(const Program& p) const {
-    for (int j = 0; j < n; ++j) {
-      if ((sign[static_cast<std::size_t>(j)] < 0) != Flipped(p, j)) return false;
-    }
-    return true;
-  }
-  void SetColumn(const Program& p, int j);
   void Load(const Program& p, const ClpSettings& s);
-  void UpdateVectors(const Program& p);
   void SaveBasis();
 };
 
@@ -126,19 +115,6 @@ void ClpSolver::Model::Load(const Program& p, const ClpSettings& s) {
   // 1.0885 for 0.3701) or did not converge (CVXQP1_S); unscaled it solves both. The barrier
   // keeps CLP's default scaling.
   if (s.algorithm == ClpAlgorithm::kPrimalSimplex) clp->scaling(0);
-  hessian_revision = p.hessian_revision();
-  matrix_revision = p.matrix_revision();
-  loaded = true;
-}
-
-void ClpSolver::Model::UpdateVectors(const Program& p) {
-  for (int j = 0; j < n; ++j) {
-    const double s = sign[static_cast<std::size_t>(j)];
-    clp->setColumnBounds(j, ToClp(s > 0 ? p.variable_lower()[j] : -p.variable_upper()[j]),
-                         ToClp(s > 0 ? p.variable_upper()[j] : kInf));
-    clp->setObjectiveCoefficient(j, s * p.linear_cost()[j]);
-  }
-  for (int i = 0; i < m; ++i) clp->setRowBounds(i, ToClp(p.row_lower()[i]), ToClp(p.row_upper()[i]));
 }
 
 void ClpSolver::Model::SaveBasis() {
@@ -163,16 +139,23 @@ void ClpSolver::DoSolve(const Program& program, SolveResult* result) {
   Model& model = *model_;
   const int n = program.num_variables(), m = program.num_rows();
   const bool warm = settings_.warm_start && settings_.algorithm == ClpAlgorithm::kPrimalSimplex;
-  const bool same_size = model.loaded && model.n == n && model.m == m;
-  if (warm && same_size && model.hessian_revision == program.hessian_revision() &&
-      model.matrix_revision == program.matrix_revision() && model.SameSigns(program)) {
-    model.UpdateVectors(program);  // CLP keeps its basis and solution
-  } else {
-    model.Load(program, settings_);
-    if (warm && same_size && model.basis.size() == static_cast<std::size_t>(n + m)) {
-      model.clp->copyinStatus(model.basis.data());
-      model.clp->setColSolution(model.x.data());
+  const bool same_size = model.n == n && model.m == m;
+  const std::vector<double> previous_sign = model.sign;
+  model.Load(program, settings_);
+  int iterations = 0;
+  if (warm && same_size && model.sign == previous_sign && model.basis.size() == static_cast<std::size_t>(n + m)) {
+    model.clp->copyinStatus(model.basis.data());
+    model.clp->setColSolution(model.x.data());
+    model.clp->primal();
+    if (ToStatus(*model.clp) == SolveStatus::kSolved) {
+      FillResult(program, model, result);
+      return;
     }
+    // From a kept basis CLP called feasible QPs infeasible (x1 + x2 >= 3 after >= 1, x <= 4):
+    // a failed warm start is solved again from cold, as the active-set solver does.
+    iterations = model.clp->numberIterations();
+    ++result->info.cold_restarts;
+    model.Load(program, settings_);
   }
   if (settings_.algorithm == ClpAlgorithm::kBarrier) {
     ClpSolve options;  // presolve, then ClpInterior with a KKT factorisation (barrier() has none for QPs)
@@ -181,6 +164,12 @@ void ClpSolver::DoSolve(const Program& program, SolveResult* result) {
   } else {
     model.clp->primal();
   }
+  FillResult(program, model, result);
+  result->info.iterations += iterations;
+}
+
+void ClpSolver::FillResult(const Program& program, Model& model, SolveResult* result) {
+  const int n = program.num_variables(), m = program.num_rows();
   result->status = ToStatus(*model.clp);
   const Eigen::Map<const Eigen::VectorXd> sign(model.sign.data(), n);
   result->x = sign.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(model.clp->primalColumnSolution(), n));
@@ -206,13 +195,11 @@ void ClpSolver::DoSolve(const Program& program, SolveResult* result) {
   Eigen::VectorXd residual = program.hessian() * result->x + program.linear_cost() + result->bound_duals;
   if (m > 0) residual += program.constraint_matrix().transpose() * result->row_duals;
   result->info.dual_residual = residual.lpNorm<Eigen::Infinity>();
-  if (warm && result->status == SolveStatus::kSolved) {
+  if (settings_.warm_start && settings_.algorithm == ClpAlgorithm::kPrimalSimplex &&
+      result->status == SolveStatus::kSolved) {
     model.SaveBasis();
   } else {
-    // Cold next time (warm starts off, or this solve failed: its basis once made CLP call the
-    // next, feasible problem infeasible).
-    model.loaded = false;
-    model.basis.clear();
+    model.basis.clear();  // cold next time: warm starts off, or this solve failed
   }
 }
 

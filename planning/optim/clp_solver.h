@@ -6,12 +6,12 @@
 // clp_solver_unavailable.cc otherwise (IsAvailable() false, Supports() false, so Solve() reports
 // kInvalidInput, and MakeSolver("clp") throws naming the missing package).
 //
-// Warm starts: the solver keeps its CLP model between solves. While the program's H and A keep
-// their revisions, a solve only copies the new bounds and linear cost into the model, and the
-// simplex starts from the last basis and solution (CLP's own hot start); when H or A changed, the
-// model is rebuilt and the last basis copied into it. ResetWarmStart() or warm_start = false
-// starts from CLP's crash basis. The barrier always starts cold. CLP allocates: a reference for
-// benchmarks and cross-checks, not a per-cycle solver.
+// Warm starts: every solve loads the program into a fresh CLP model and, when the last solve at
+// the same size was solved, starts the simplex from its basis and solution, and solves again from
+// cold when that start fails. (Changing bounds and costs in a kept model, CLP's own hot start,
+// returned points off the optimum on the crane sequence.) ResetWarmStart() or warm_start = false starts from CLP's crash basis; the barrier
+// always starts cold. CLP allocates: a reference for benchmarks and cross-checks, not a
+// per-cycle solver.
 //
 // Duals follow SolveResult's convention (H x + g + A' row_duals + bound_duals = 0): CLP's row
 // duals and reduced costs with their sign flipped. The active set is read from the duals' signs.
@@ -65,13 +65,15 @@ class ClpSolver final : public Solver {
   ClpSettings& settings() { return settings_; }
   const ClpSettings& settings() const { return settings_; }
 
-  /// The next solve starts from CLP's crash basis (the model is rebuilt).
+  /// The next solve starts from CLP's crash basis.
   void ResetWarmStart();
 
  private:
   void DoSolve(const Program& program, SolveResult* result) override;
-
   struct Model;  // CLP's objects, kept out of this header
+  // Reads CLP's solution into `result` and keeps the basis for the next warm start.
+  void FillResult(const Program& program, Model& model, SolveResult* result);
+  // CLP's objects, kept out of this header
   ClpSettings settings_;
   std::unique_ptr<Model> model_;
 };
