@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace stairplan::cli {
 namespace {
@@ -47,7 +48,8 @@ std::pair<int, int> Decades(const QpBenchPanel& panel) {
 }
 
 void DrawPanel(std::ostringstream& svg, const QpBenchPanel& panel, double x0) {
-  const auto [lo, hi] = Decades(panel);
+  const std::pair<int, int> decades = Decades(panel);
+  const int lo = decades.first, hi = decades.second;  // not a structured binding: the lambdas capture them
   const double w = kPanelW - kLeft - kRight, h = kPanelH - kTop - kBottom;
   const auto X = [&](double us) { return x0 + kLeft + w * (std::log10(std::max(us, 0.01)) - lo) / (hi - lo); };
   const auto Y = [&](double fraction) { return kTop + h * (1.0 - fraction); };
