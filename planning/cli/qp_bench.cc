@@ -274,6 +274,7 @@ void Bench::PrintUnsolved(const std::string& set, SolveRegime regime) const {
 
 void Bench::PrintSummary() const {
   const double failure_us = 1e6 * o_.time_limit_s;
+  std::cout << std::defaultfloat << std::setprecision(6);
   std::cout << "\nsummary, qpbenchmark style: solved = status solved with primal residual, dual residual and duality gap"
                "\nall below the tolerance; time = shifted geometric mean of the CPU times, shift "
             << optim::kGeomeanShiftUs << " us, a problem not\nsolved at 1e-6 counted at the time limit ("
