@@ -12,6 +12,9 @@ find_package(mujoco REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 # Debian's Ipopt 3.11 ships no CMake config, only pkg-config.
 pkg_check_modules(IPOPT REQUIRED IMPORTED_TARGET GLOBAL ipopt)
+# CLP (coinor-libclp-dev), the second QP reference: optional, pkg-config only like Ipopt.
+pkg_check_modules(CLP IMPORTED_TARGET GLOBAL clp)
+set(STAIRPLAN_HAS_CLP ${CLP_FOUND})
 if(STAIRPLAN_BUILD_TESTS)
   find_package(Catch2 2 REQUIRED CONFIG)
   include(Catch)

@@ -37,7 +37,7 @@ struct SolveInfo {
   int iterations = 0;           ///< active-set changes (QP) or solver iterations (NLP)
   int outer_iterations = 0;     ///< proximal-point iterations (active-set solver on singular H)
   /// Warm starts abandoned for a cold start (active-set solver: a warm start's Infeasible or
-  /// NumericalError is re-checked from cold before it is reported).
+  /// NumericalError is re-checked from cold before it is reported; CLP: any unsolved warm start).
   int cold_restarts = 0;
   double solve_time_us = 0.0;
   double primal_residual = 0.0;  ///< max violation of rows and bounds

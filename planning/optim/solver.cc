@@ -7,6 +7,7 @@
 #include <string>
 
 #include "planning/optim/active_set_qp_solver.h"
+#include "planning/optim/clp_solver.h"
 #include "planning/optim/ipopt_solver.h"
 #include "planning/optim/nlopt_solver.h"
 
@@ -79,7 +80,16 @@ std::unique_ptr<Solver> MakeSolver(std::string_view name) {
   if (name == "active-set") return std::make_unique<ActiveSetQpSolver>();
   if (name == "ipopt") return std::make_unique<IpoptSolver>();
   if (name == "nlopt") return std::make_unique<NloptSolver>();
-  throw std::invalid_argument("unknown solver '" + std::string(name) + "' (expected active-set, ipopt or nlopt)");
+  if (name == "clp" || name == "clp-barrier") {
+    if (!ClpSolver::IsAvailable()) {
+      throw std::invalid_argument("solver '" + std::string(name) + "' needs CLP: install coinor-libclp-dev and rebuild");
+    }
+    ClpSettings settings;
+    if (name == "clp-barrier") settings.algorithm = ClpAlgorithm::kBarrier;
+    return std::make_unique<ClpSolver>(settings);
+  }
+  throw std::invalid_argument("unknown solver '" + std::string(name) +
+                              "' (expected active-set, ipopt, nlopt, clp or clp-barrier)");
 }
 
 }  // namespace stairplan::optim

@@ -31,7 +31,7 @@ class Solver {
   /// Solves `program` and returns a fresh result.
   SolveResult Solve(const Program& program);
 
-  /// A short name: "active-set", "ipopt", "nlopt".
+  /// A short name: "active-set", "ipopt", "nlopt", "clp", "clp-barrier".
   virtual std::string_view name() const = 0;
   /// True when this solver handles programs of this kind (e.g. QP-only solvers refuse nonlinear ones).
   virtual bool Supports(const Program& program) const = 0;
@@ -49,7 +49,8 @@ class Solver {
 /// The automatic choice: quadratic programs to ActiveSetQpSolver, the others to IpoptSolver.
 std::unique_ptr<Solver> MakeSolver(const Program& program);
 
-/// Solver by name ("active-set", "ipopt", "nlopt"); throws std::invalid_argument naming it otherwise.
+/// Solver by name ("active-set", "ipopt", "nlopt", "clp", "clp-barrier"); throws std::invalid_argument
+/// naming it otherwise, or naming the missing package for CLP in a build without it.
 std::unique_ptr<Solver> MakeSolver(std::string_view name);
 
 }  // namespace stairplan::optim

@@ -93,17 +93,44 @@ TEST_CASE("qp solve honours --time-limit", "[cli]") {
   CHECK_THAT(ReadFile(dir + "/err"), Catch::Contains("--time-limit"));
 }
 
-TEST_CASE("qp bench reports each solver and writes CSV", "[cli]") {
+TEST_CASE("qp bench reports each regime apart and writes CSV, a summary and a plot", "[cli]") {
   const std::string dir = MakeTempDir("qp_bench");
   WriteFile(dir, "a.qps", kFeasible);
   WriteFile(dir, "b.qps", Qp(kFeasible, "    rhs       c1         1.0", "    rhs       c1         2.0"));
   const int code = RunCommand(BinDir() + "/stairplan qp bench " + dir + " --solvers active-set,ipopt --repeat 2 --csv " +
+                                  dir + "/out.csv --summary-csv " + dir + "/summary.csv --plot " + dir + "/plot.svg",
+                              dir + "/out", dir + "/err");
+  REQUIRE(code == 0);
+  const std::string out = ReadFile(dir + "/out");
+  CHECK_THAT(out, Catch::Contains("active-set cold") && Catch::Contains("ipopt cold") && Catch::Contains("re-solve"));
+  CHECK_THAT(out, Catch::Contains("QPS files   cold") && Catch::Contains("QPS files   identical-resolve"));
+  CHECK_THAT(out, Catch::Contains("cold: ipopt / active-set") && Catch::Contains("identical-resolve: ipopt / active-set"));
+  const std::string csv = ReadFile(dir + "/out.csv");
+  CHECK_THAT(csv, Catch::Contains("problem,qp,solver,regime,status,objective,iterations,cpu_us,wall_us,primal_residual"));
+  CHECK_THAT(csv, Catch::Contains("a.qps,0,ipopt,cold,solved") && Catch::Contains("a.qps,0,active-set,identical-resolve,solved"));
+  // Both tiny QPs are solved at 1e-6 by our solver in both regimes.
+  const std::string summary = ReadFile(dir + "/summary.csv");
+  CHECK_THAT(summary, Catch::Contains("QPS files,cold,active-set,2,2,") &&
+                          Catch::Contains("QPS files,identical-resolve,active-set,2,2,"));
+  const std::string svg = ReadFile(dir + "/plot.svg");
+  CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("QPS files, cold, 2 problems") &&
+                      Catch::Contains("identical-resolve"));
+  CHECK(RunCommand(BinDir() + "/stairplan qp bench " + dir + " --regimes lukewarm", dir + "/out", dir + "/err") == 2);
+  CHECK_THAT(ReadFile(dir + "/err"), Catch::Contains("--regimes"));
+}
+
+TEST_CASE("qp bench runs a sequence warm, every solver warm-started", "[cli]") {
+  const std::string seq = SharedPath("data/qp/online_qp/diesel");
+  if (seq.empty()) {
+    WARN("qp bench sequence test skipped: ../shared not found");
+    return;
+  }
+  const std::string dir = MakeTempDir("qp_bench_seq");
+  const int code = RunCommand(BinDir() + "/stairplan qp bench " + seq + " --solvers active-set,ipopt --max-qps 4 --csv " +
                                   dir + "/out.csv", dir + "/out", dir + "/err");
   REQUIRE(code == 0);
   const std::string out = ReadFile(dir + "/out");
-  CHECK_THAT(out, Catch::Contains("active-set") && Catch::Contains("ipopt") && Catch::Contains("2/2"));
-  CHECK_THAT(out, Catch::Contains("ratio"));
-  const std::string csv = ReadFile(dir + "/out.csv");
-  CHECK_THAT(csv, Catch::Contains("problem,solver,status,objective,iterations,time_us"));
-  CHECK_THAT(csv, Catch::Contains("a.qps,ipopt,solved"));
+  CHECK_THAT(out, Catch::Contains("diesel    active-set   warm-sequence      3") &&
+                      Catch::Contains("diesel    ipopt        warm-sequence      3") && Catch::Contains("diesel, warm-sequence: ipopt / active-set"));
+  CHECK_THAT(ReadFile(dir + "/out.csv"), Catch::Contains("diesel,1,active-set,warm-sequence,solved"));
 }
