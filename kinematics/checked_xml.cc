@@ -420,14 +420,13 @@ tinyxml2::XMLElement& RootOf(tinyxml2::XMLDocument& document, const std::string&
 void AppendEscaped(std::string_view value, bool whitespace_as_references, std::string& out) {
   for (std::size_t at = 0; at < value.size();) {
     char32_t c = 0;
-    if (NextChar(value, at, c) != Utf8Status::kOk) {
-      throw std::logic_error("CheckedXml: a checked value is not UTF-8");  // checked on the way in
-    }
+    if (NextChar(value, at, c) != Utf8Status::kOk) throw std::invalid_argument("XML text that is not UTF-8");
     switch (c) {
       case '&': out += "&amp;"; break;
       case '<': out += "&lt;"; break;
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
       default:
         if (c > 0x20 && c < 0x7F) {
           out += static_cast<char>(c);
@@ -501,6 +500,12 @@ CheckedXml::CheckedXml(const std::string& text, const std::string& source_name)
 }
 
 CheckedXml::~CheckedXml() = default;
+
+std::string XmlEscaped(const std::string& text) {
+  std::string out;
+  AppendEscaped(text, false, out);
+  return out;
+}
 
 std::string CheckedXml::Canonical() const {
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";

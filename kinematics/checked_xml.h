@@ -35,13 +35,19 @@ class CheckedXml {
   const tinyxml2::XMLElement& root() const { return *root_; }
 
   /// The document as pure ASCII XML: a UTF-8 declaration, then the root element with its
-  /// attributes in file order and its elements and text; every character outside printable ASCII,
-  /// and each of & < > ", as a reference. Parsing it again gives the same tree and the same text.
+  /// attributes in file order and its elements and text, written with XmlEscaped (below). Parsing
+  /// it again gives the same tree and the same text.
   std::string Canonical() const;
 
  private:
   std::unique_ptr<tinyxml2::XMLDocument> document_;
   const tinyxml2::XMLElement* root_ = nullptr;
 };
+
+/// `text` (UTF-8) as an XML attribute value (in either quotes) or character data made of
+/// printable ASCII: each of & < > " ' and every other character but the space as a reference.
+/// For writers of XML that carries names from a robot file (the MJCF for MuJoCo). Throws
+/// std::invalid_argument when `text` is not UTF-8.
+std::string XmlEscaped(const std::string& text);
 
 }  // namespace stairplan

@@ -165,7 +165,7 @@ TEST_CASE("references, non-ASCII text and whitespace survive the canonical text"
   const std::string canonical = checked.Canonical();
   CHECK(canonical ==
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-        "<robot name=\"a&amp;bAB&lt;&quot;'&#x6DF1;&#x1F9BE;\" v=\"tab&#x9;here\"><material name=\"&#x9ED1;\"/>"
+        "<robot name=\"a&amp;bAB&lt;&quot;&apos;&#x6DF1;&#x1F9BE;\" v=\"tab&#x9;here\"><material name=\"&#x9ED1;\"/>"
         "<t>&#x20;</t><u>x &lt;&amp;&gt; y</u></robot>\n");
   CHECK(CanonicalOf(canonical) == canonical);
 }
