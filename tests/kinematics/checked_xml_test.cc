@@ -133,14 +133,13 @@ std::string CanonicalOf(const std::string& text) { return stairplan::CheckedXml(
 
 }  // namespace checked_xml_test
 
-using namespace checked_xml_test;
 
 TEST_CASE("the canonical text gives urdfdom the same model as every robot file itself", "[checked_xml]") {
-  const std::vector<RobotText> robots = AllRobotTexts();
+  const std::vector<checked_xml_test::RobotText> robots = checked_xml_test::AllRobotTexts();
   CHECK(robots.size() >= (stairplan::testing::SharedDir().empty() ? 1u : 7u));
-  for (const RobotText& robot : robots) {
+  for (const checked_xml_test::RobotText& robot : robots) {
     INFO(robot.label);
-    const std::string canonical = CanonicalOf(robot.text);
+    const std::string canonical = checked_xml_test::CanonicalOf(robot.text);
     for (const char ch : canonical) {
       const bool ascii = ch == '\n' || (ch >= 0x20 && ch < 0x7F);
       if (!ascii) FAIL("a byte outside printable ASCII: " << static_cast<int>(static_cast<unsigned char>(ch)));
@@ -150,8 +149,8 @@ TEST_CASE("the canonical text gives urdfdom the same model as every robot file i
     const auto rewritten = urdf::parseURDF(canonical);
     REQUIRE(original);
     REQUIRE(rewritten);
-    CHECK(DumpModel(*rewritten) == DumpModel(*original));
-    CHECK(CanonicalOf(canonical) == canonical);
+    CHECK(checked_xml_test::DumpModel(*rewritten) == checked_xml_test::DumpModel(*original));
+    CHECK(checked_xml_test::CanonicalOf(canonical) == canonical);
   }
 }
 
@@ -167,7 +166,7 @@ TEST_CASE("references, non-ASCII text and whitespace survive the canonical text"
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
         "<robot name=\"a&amp;bAB&lt;&quot;&apos;&#x6DF1;&#x1F9BE;\" v=\"tab&#x9;here\"><material name=\"&#x9ED1;\"/>"
         "<t>&#x20;</t><u>x &lt;&amp;&gt; y</u></robot>\n");
-  CHECK(CanonicalOf(canonical) == canonical);
+  CHECK(checked_xml_test::CanonicalOf(canonical) == canonical);
 }
 
 TEST_CASE("bytes that are not UTF-8 XML, and malformed XML, are refused with the file and the line", "[checked_xml]") {
@@ -201,11 +200,11 @@ TEST_CASE("bytes that are not UTF-8 XML, and malformed XML, are refused with the
   };
   for (const Bad& c : cases) {
     INFO(c.text);
-    const std::string error = ErrorOf(c.text, "bad.urdf");
+    const std::string error = checked_xml_test::ErrorOf(c.text, "bad.urdf");
     CHECK_THAT(error, Catch::StartsWith("bad.urdf: " + c.line) && Catch::Contains(c.reason));
   }
   // Pure ASCII under a Latin-1 declaration is the same text in UTF-8: accepted.
-  CHECK(ErrorOf("<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?>\n<robot name=\"r\"/>\n", "ok.urdf") == "accepted");
+  CHECK(checked_xml_test::ErrorOf("<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?>\n<robot name=\"r\"/>\n", "ok.urdf") == "accepted");
 }
 
 TEST_CASE("elements nested past tinyxml2's limit are refused, not recursed into", "[checked_xml]") {
@@ -213,5 +212,5 @@ TEST_CASE("elements nested past tinyxml2's limit are refused, not recursed into"
   for (int i = 0; i < 200; ++i) deep += "<a>";
   for (int i = 0; i < 200; ++i) deep += "</a>";
   deep += "\n</robot>\n";
-  CHECK_THAT(ErrorOf(deep, "deep.urdf"), Catch::StartsWith("deep.urdf: line 2") && Catch::Contains("nested deeper"));
+  CHECK_THAT(checked_xml_test::ErrorOf(deep, "deep.urdf"), Catch::StartsWith("deep.urdf: line 2") && Catch::Contains("nested deeper"));
 }
