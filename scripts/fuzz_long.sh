@@ -2,7 +2,7 @@
 # Long fuzzing (issue #28): runs each libFuzzer target of tests/fuzz, built in the sanitized build
 # folder (configured as scripts/sanitize.sh configures it), to a number of runs or minutes, whichever
 # comes first. Each fuzzer starts from its corpus kept outside the repository, which grows from one
-# run to the next, and from tests/fuzz/corpus/<name>; afterwards the inputs that add coverage are
+# run to the next, and from tests/fuzz/corpus/<name>; afterwards the inputs that reach new edges are
 # minimised back into tests/fuzz/corpus/<name> (libFuzzer -merge=1). Prints per fuzzer the runs,
 # the coverage and the findings; exits 1 when there is a finding. CI does not run this: it keeps
 # scripts/sanitize.sh's few seconds per fuzzer.
@@ -89,7 +89,9 @@ for name in "${names[@]}"; do
   added=0
   if [ "$merge" = 1 ]; then
     before=$(find "tests/fuzz/corpus/$name" -type f | wc -l)
-    nice -n "$niceness" "$build/bin/fuzz_$name" -merge=1 -timeout=10 -rss_limit_mb=2048 \
+    # Edges only (-use_counters=0): merging on hit-count features too kept three times as many
+    # inputs (720 against 233 for plan.json after 2 minutes); the outside corpus keeps those.
+    nice -n "$niceness" "$build/bin/fuzz_$name" -merge=1 -use_counters=0 -timeout=10 -rss_limit_mb=2048 \
       "tests/fuzz/corpus/$name" "$corpus" >>"$log" 2>&1 || echo "fuzz_long: merging fuzz_$name's corpus failed (see $log)" >&2
     added=$(( $(find "tests/fuzz/corpus/$name" -type f | wc -l) - before ))
   fi
