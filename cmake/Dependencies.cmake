@@ -2,6 +2,8 @@
 find_package(Eigen3 3.4 REQUIRED CONFIG)
 find_package(orocos_kdl REQUIRED CONFIG)
 find_package(urdfdom REQUIRED CONFIG)
+# tinyxml2 checks robot files before urdfdom (and its TinyXML 2.6) sees them (issue #28).
+find_package(tinyxml2 REQUIRED CONFIG)
 find_package(fcl REQUIRED CONFIG)
 find_package(NLopt REQUIRED CONFIG)
 find_package(yaml-cpp REQUIRED CONFIG)

@@ -6,9 +6,11 @@
 #include <string>
 
 #include <console_bridge/console.h>
-#include <tinyxml.h>
+#include <tinyxml2.h>
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
+
+#include "kinematics/checked_xml.h"
 
 namespace stairplan {
 namespace {
@@ -33,21 +35,23 @@ std::mutex& ParseMutex() {
   return mutex;
 }
 
-std::string Attribute(const TiXmlElement& element, const char* name) {
+using tinyxml2::XMLElement;
+
+std::string Attribute(const XMLElement& element, const char* name) {
   const char* value = element.Attribute(name);
   return value ? value : "";
 }
 
 // urdfdom 3.0.1 knows no <capsule>: it then discards the link's whole collision list, which would
 // make a foot or a leg link vanish from collision checks without a word. Refuse such links.
-void RejectCapsules(const TiXmlElement& robot, const std::string& source) {
-  for (const TiXmlElement* link = robot.FirstChildElement("link"); link; link = link->NextSiblingElement("link")) {
-    for (const TiXmlElement* collision = link->FirstChildElement("collision"); collision;
+void RejectCapsules(const XMLElement& robot, const std::string& source) {
+  for (const XMLElement* link = robot.FirstChildElement("link"); link; link = link->NextSiblingElement("link")) {
+    for (const XMLElement* collision = link->FirstChildElement("collision"); collision;
          collision = collision->NextSiblingElement("collision")) {
-      const TiXmlElement* geometry = collision->FirstChildElement("geometry");
+      const XMLElement* geometry = collision->FirstChildElement("geometry");
       if (geometry && geometry->FirstChildElement("capsule")) {
         throw std::invalid_argument(source + ": <link name=\"" + Attribute(*link, "name") + "\"> line " +
-                                    std::to_string(geometry->Row()) +
+                                    std::to_string(geometry->GetLineNum()) +
                                     ": <capsule> collision geometry is not supported (urdfdom 3.0.1 drops every "
                                     "collision of this link); use a cylinder and two spheres");
       }
@@ -60,11 +64,11 @@ void RejectCapsules(const TiXmlElement& robot, const std::string& source) {
 // through shared pointers, leak even when urdfdom rejects the file for another reason (both found
 // by the URDF fuzzer). So loops are refused before urdfdom sees the file: a link more parents away
 // than there are joints is on one.
-void RejectLoops(const TiXmlElement& robot, const std::string& source) {
+void RejectLoops(const XMLElement& robot, const std::string& source) {
   std::map<std::string, std::pair<std::string, std::string>> parent_of;  // child -> (parent, joint)
-  for (const TiXmlElement* joint = robot.FirstChildElement("joint"); joint; joint = joint->NextSiblingElement("joint")) {
-    const TiXmlElement* parent = joint->FirstChildElement("parent");
-    const TiXmlElement* child = joint->FirstChildElement("child");
+  for (const XMLElement* joint = robot.FirstChildElement("joint"); joint; joint = joint->NextSiblingElement("joint")) {
+    const XMLElement* parent = joint->FirstChildElement("parent");
+    const XMLElement* child = joint->FirstChildElement("child");
     if (!parent || !child) continue;  // urdfdom names what is missing
     parent_of.emplace(Attribute(*child, "link"), std::make_pair(Attribute(*parent, "link"), Attribute(*joint, "name")));
   }
@@ -79,20 +83,6 @@ void RejectLoops(const TiXmlElement& robot, const std::string& source) {
       link = parent;
     }
   }
-}
-
-// The text of line `row` (1-based), trimmed and shortened, to show where the XML breaks.
-std::string LineText(const std::string& text, int row) {
-  std::size_t begin = 0;
-  for (int r = 1; r < row && begin != std::string::npos; ++r) {
-    begin = text.find('\n', begin);
-    if (begin != std::string::npos) ++begin;
-  }
-  if (begin == std::string::npos) return "";
-  std::string line = text.substr(begin, text.find('\n', begin) - begin);
-  line.erase(0, line.find_first_not_of(" \t\r"));
-  line.erase(line.find_last_not_of(" \t\r") + 1);
-  return line.size() > 80 ? line.substr(0, 77) + "..." : line;
 }
 
 // urdfdom names the culprit as "joint [name]" or "link [name]"; turn that into the element.
@@ -116,16 +106,13 @@ std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const st
   if (xml.find_first_not_of(" \t\r\n") == std::string::npos) {
     throw std::invalid_argument(source_name + ": <robot>: the URDF is empty");
   }
-  TiXmlDocument document;
-  document.Parse(xml.c_str());
-  if (document.Error()) {
-    throw std::invalid_argument(source_name + ": line " + std::to_string(document.ErrorRow()) + " (" +
-                                LineText(xml, document.ErrorRow()) + "): malformed XML: " + document.ErrorDesc());
-  }
-  const TiXmlElement* robot = document.FirstChildElement("robot");
-  if (!robot) throw std::invalid_argument(source_name + ": <robot>: no <robot> root element");
-  RejectCapsules(*robot, source_name);
-  RejectLoops(*robot, source_name);
+  const CheckedXml checked(xml, source_name);
+  const XMLElement& robot = checked.root();
+  if (std::string(robot.Name()) != "robot") throw std::invalid_argument(source_name + ": <robot>: no <robot> root element");
+  RejectCapsules(robot, source_name);
+  RejectLoops(robot, source_name);
+  // urdfdom parses with TinyXML 2.6, which must never see the file's own bytes (issue #28).
+  const std::string canonical = checked.Canonical();
 
   std::lock_guard<std::mutex> lock(ParseMutex());
   CapturingHandler handler;
@@ -133,7 +120,7 @@ std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const st
   console_bridge::useOutputHandler(&handler);
   urdf::ModelInterfaceSharedPtr parsed;
   try {
-    parsed = urdf::parseURDF(xml);
+    parsed = urdf::parseURDF(canonical);
   } catch (...) {
     console_bridge::useOutputHandler(previous);
     throw;
@@ -141,7 +128,7 @@ std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const st
   console_bridge::useOutputHandler(previous);
   if (!parsed || !parsed->getRoot()) {
     const std::string why = handler.errors().empty() ? "not a valid URDF" : handler.errors();
-    throw std::invalid_argument(source_name + ": " + ElementOf(why, Attribute(*robot, "name")) + ": " + why);
+    throw std::invalid_argument(source_name + ": " + ElementOf(why, Attribute(robot, "name")) + ": " + why);
   }
   return parsed;
 }

@@ -1,6 +1,7 @@
 // Parsing URDF text with urdfdom so that every failure becomes an exception naming the source and
 // the element: urdfdom reports problems only through console_bridge log lines and a null model,
-// and it silently drops the collision list of a link with a <capsule>.
+// it silently drops the collision list of a link with a <capsule>, and its XML parser (TinyXML 2.6)
+// must not read untrusted bytes (checked_xml.h).
 #pragma once
 
 #include <memory>
@@ -12,10 +13,12 @@ class ModelInterface;
 
 namespace stairplan {
 
-/// Parses `xml` with urdfdom. Throws std::invalid_argument starting with `source_name` and naming
-/// the offending element: malformed XML (with its line), a link with a <capsule> collision (urdfdom
-/// 3.0.1 would drop all of that link's collisions), or urdfdom's own error text (e.g. a joint naming
-/// a missing link). Nothing is printed: console_bridge output is captured while parsing.
+/// Checks `xml` (CheckedXml: UTF-8, well-formed, with its line on failure), then parses its
+/// canonical text with urdfdom, never `xml` itself. Throws std::invalid_argument starting with
+/// `source_name` and naming the line or the offending element: text that is not UTF-8 or not
+/// well-formed XML, a link with a <capsule> collision (urdfdom 3.0.1 would drop all of that link's
+/// collisions), joints forming a loop, or urdfdom's own error text (e.g. a joint naming a missing
+/// link). Nothing is printed: console_bridge output is captured while parsing.
 std::shared_ptr<urdf::ModelInterface> ParseUrdf(const std::string& xml, const std::string& source_name);
 
 }  // namespace stairplan

@@ -7,6 +7,7 @@ packages=(
   libfcl-dev libccd-dev catch2 libbenchmark-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libmujoco-dev libqhull-dev
   nodejs npm chromium ffmpeg librsvg2-bin libegl-dev libosmesa6-dev
   coinor-libclp-dev
+  libtinyxml2-dev
 )
 # `setup.sh sanitize` (scripts/sanitize.sh, run by scripts/test.sh) also installs the sanitizer
 # toolchain: clang 14 with its ASan/UBSan/libFuzzer runtimes, lld and Ninja for a faster build.

@@ -9,6 +9,7 @@
 #include <urdf_model/model.h>
 
 #include "geometry/field_error.h"
+#include "kinematics/checked_xml.h"
 
 namespace stairplan {
 namespace {
@@ -83,14 +84,14 @@ void WriteGeoms(std::ostringstream& out, const urdf::Link& link, const std::stri
     } else {
       continue;  // meshes are not collision primitives: the robots we support use primitives
     }
-    out << indent << "<geom name='" << link.name << "_collision_" << n++ << "' type='" << type << "' size='" << size
+    out << indent << "<geom name='" << XmlEscaped(link.name) << "_collision_" << n++ << "' type='" << type << "' size='" << size
         << "' pos='" << Pos(c->origin) << "' quat='" << Quat(c->origin) << "'/>\n";
   }
 }
 
 void WriteJoint(std::ostringstream& out, const urdf::Joint& j, const MjcfSettings& s, const std::string& indent) {
   const bool hinge = j.type != urdf::Joint::PRISMATIC;
-  out << indent << "<joint name='" << j.name << "' type='" << (hinge ? "hinge" : "slide") << "' axis='"
+  out << indent << "<joint name='" << XmlEscaped(j.name) << "' type='" << (hinge ? "hinge" : "slide") << "' axis='"
       << Vec(j.axis.x, j.axis.y, j.axis.z) << "'";
   if (j.type != urdf::Joint::CONTINUOUS && j.limits && j.limits->upper > j.limits->lower) {
     out << " limited='true' range='" << j.limits->lower << " " << j.limits->upper << "'";
@@ -104,7 +105,7 @@ void WriteBody(std::ostringstream& out, const urdf::Link& link, const MjcfSettin
   const std::string indent(2 * static_cast<std::size_t>(depth), ' ');
   const urdf::Joint& j = *link.parent_joint;
   const urdf::Pose& origin = j.parent_to_joint_origin_transform;
-  out << indent << "<body name='" << link.name << "' pos='" << Pos(origin) << "' quat='" << Quat(origin) << "'>\n";
+  out << indent << "<body name='" << XmlEscaped(link.name) << "' pos='" << Pos(origin) << "' quat='" << Quat(origin) << "'>\n";
   if (IsMovable(j)) WriteJoint(out, j, s, indent + "  ");
   WriteInertial(out, link, s, indent + "  ");
   WriteGeoms(out, link, indent + "  ");
@@ -126,7 +127,7 @@ void WriteMotors(std::ostringstream& out, const RobotModel& robot, double effort
   for (const LegModel& leg : robot.legs()) {
     for (std::size_t i = 0; i < leg.joint_names.size(); ++i) {
       const double effort = effort_scale * (leg.limits[i].effort > 0.0 ? leg.limits[i].effort : 1e3);
-      out << "    <motor name='" << leg.joint_names[i] << "_motor' joint='" << leg.joint_names[i]
+      out << "    <motor name='" << XmlEscaped(leg.joint_names[i]) << "_motor' joint='" << XmlEscaped(leg.joint_names[i])
           << "' ctrllimited='true' ctrlrange='" << -effort << " " << effort << "'/>\n";
     }
   }
@@ -156,7 +157,7 @@ std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const Mj
   const urdf::LinkConstSharedPtr base = model.getLink(robot.base_link());
   std::ostringstream out;
   out << std::setprecision(10);
-  out << "<mujoco model='" << robot.name() << "'>\n"
+  out << "<mujoco model='" << XmlEscaped(robot.name()) << "'>\n"
       << "  <compiler angle='radian' inertiafromgeom='false' boundmass='" << settings.min_mass
       << "' boundinertia='" << settings.min_inertia << "'/>\n"
       << "  <option timestep='" << settings.timestep << "' gravity='0 0 -9.81' cone='"
@@ -166,7 +167,7 @@ std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const Mj
       << "  <worldbody>\n"
       << "    <light pos='0 -3 4' dir='0 0.6 -0.8' directional='true'/>\n";
   WriteStairs(out, stairs);
-  out << "    <body name='" << base->name << "' pos='0 0 1'>\n      <freejoint name='floating_base'/>\n";
+  out << "    <body name='" << XmlEscaped(base->name) << "' pos='0 0 1'>\n      <freejoint name='floating_base'/>\n";
   WriteInertial(out, *base, settings, "      ");
   WriteGeoms(out, *base, "      ");
   for (const auto& child : base->child_links) WriteBody(out, *child, settings, 3);

@@ -61,6 +61,10 @@ std::set<std::string> AvailableCommands() {
 }
 
 const char* kUrdfMalformed = "<robot name=\"r\"><link name=\"base\"><visual></link></robot>\n";
+// Issue #28: bytes that are not UTF-8 never reach an XML parser; an unclosed element is named.
+const char* kUrdfNotUtf8 = "<robot name=\"r\">\n<link name=\"b\xC6\xC6se\"/>\n</robot>\n";
+const char* kUrdfCutCharacter = "<robot name=\"r\">\n<link name=\"base\"/>\n</robot>\xE6\xB7";
+const char* kUrdfUnterminated = "<robot name=\"r\">\n<link name=\"base\">\n<visual/>\n";
 const char* kYamlGood = "steps: 3\nrise: 0.17\nrun: 0.27\nnosing: 0.02\nwidth: 1.0\n";
 const char* kQpsGood =
     "NAME          T\nROWS\n N  obj\n G  c1\nCOLUMNS\n    x1  obj  1.0  c1  1.0\n    x2  obj  1.0  c1  1.0\n"
@@ -83,6 +87,9 @@ std::string EditPlan(const std::string& plan, const std::string& from, const std
   return out;
 }
 
+// stairbot named in Latin-1: the name once reached plan.json and nlohmann's dump threw (exit 1).
+std::string Latin1Stairbot() { return EditPlan(Slurp(SourceDir() + "/data/robots/stairbot.urdf"), "\"stairbot\"", "\"stair\xE9" "bot\""); }
+
 std::vector<BadCase> Table() {
   const std::string plan = GoodPlan();
   const std::vector<std::string> plan_out = {"out/plan.json", "out/plan.json.tmp", "out/plan.svg", "out/plan.svg.tmp"};
@@ -92,6 +99,10 @@ std::vector<BadCase> Table() {
   t.push_back({"empty", "plan", "r.urdf", "", "plan --robot {file} --out {dir}/out", {"{file}"}, plan_out});
   t.push_back({"wrong-type", "plan", "r.urdf", kYamlGood, "plan --robot {file} --out {dir}/out", {"{file}"}, plan_out});
   t.push_back({"missing", "plan", "", "", "plan --robot {dir}/absent.urdf --out {dir}/out", {"absent.urdf"}, plan_out});
+  t.push_back({"malformed", "plan", "r.urdf", kUrdfNotUtf8, "plan --robot {file} --out {dir}/out", {"{file}: line 2", "not UTF-8"}, plan_out});
+  t.push_back({"truncated", "plan", "r.urdf", kUrdfCutCharacter, "plan --robot {file} --out {dir}/out", {"{file}: line 3", "multi-byte"}, plan_out});
+  t.push_back({"truncated", "plan", "r.urdf", kUrdfUnterminated, "plan --robot {file} --out {dir}/out", {"{file}: line 2", "<link> is never closed"}, plan_out});
+  t.push_back({"wrong-type", "plan", "r.urdf", Latin1Stairbot(), "plan --robot {file} --out {dir}/out", {"{file}: line 5", "not UTF-8"}, plan_out});
   t.push_back({"malformed", "plan", "s.yaml", "steps: [3, 4\nrise: 0.17\n", "plan --stairs {file} --out {dir}/out", {"{file}"}, plan_out});
   t.push_back({"truncated", "plan", "s.yaml", "steps: 3\nrise: 0.17\nrun:", "plan --stairs {file} --out {dir}/out", {"{file}", "run"}, plan_out});
   t.push_back({"nan", "plan", "s.yaml", "steps: 3\nrise: .nan\n", "plan --stairs {file} --out {dir}/out", {"{file}", "rise"}, plan_out});

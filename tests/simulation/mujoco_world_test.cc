@@ -57,6 +57,25 @@ TEST_CASE("the shared robots load in MuJoCo through our writer", "[mujoco]") {
   }
 }
 
+TEST_CASE("names holding XML's special characters reach MuJoCo unchanged", "[mujoco]") {
+  // Legal URDF names may hold quotes, '&' and '<' (written as references in the file); copied
+  // into the MJCF as they were, an apostrophe broke its XML and `simulate` exited 1 (issue #28).
+  std::string urdf = BuiltinRobotUrdf();
+  const auto replace_all = [&](const std::string& from, const std::string& to) {
+    for (std::size_t at = 0; (at = urdf.find(from, at)) != std::string::npos; at += to.size()) urdf.replace(at, from.size(), to);
+  };
+  replace_all("\"LF_foot\"", "\"LF&apos;foot &amp; &lt;1&gt;\"");
+  replace_all("\"LF_KFE\"", "\"LF&quot;KFE\"");
+  replace_all("<robot name=\"stairbot\">", "<robot name=\"stair'bot\">");
+  const RobotModel robot = RobotModel::FromUrdfString(urdf, "quotes.urdf");
+  REQUIRE(robot.name() == "stair'bot");
+  MujocoWorld world(robot, Staircase(StairSpec{}));
+  CHECK(mj_name2id(world.model(), mjOBJ_BODY, "LF'foot & <1>") >= 0);
+  CHECK(mj_name2id(world.model(), mjOBJ_JOINT, "LF\"KFE") >= 0);
+  CHECK(mj_name2id(world.model(), mjOBJ_ACTUATOR, "LF\"KFE_motor") >= 0);
+  CHECK(world.model()->nu == 12);
+}
+
 TEST_CASE("the built-in robot stands on the landing under PD control", "[mujoco]") {
   const RobotModel& robot = BuiltinRobot();
   MujocoWorld world(robot, Staircase(StairSpec{}));
