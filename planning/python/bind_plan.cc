@@ -60,7 +60,8 @@ py::object Body(const std::vector<BodyState>& body) {
 
 PlanResult RunPlan(const py::object& robot_arg, const py::object& stairs_arg, const py::kwargs& kwargs) {
   nlohmann::json options = nlohmann::json::object(), stair_fields = nlohmann::json::object();
-  for (const auto& [key, value] : FromPython(kwargs, "").items()) {
+  const nlohmann::json given = FromPython(kwargs, "");
+  for (const auto& [key, value] : given.items()) {
     const auto& names = StairOptionNames();
     if (value.is_null()) continue;
     (std::find(names.begin(), names.end(), key) != names.end() ? stair_fields : options)[key] = value;
