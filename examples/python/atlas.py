@@ -53,8 +53,10 @@ def main():
         print(f"{name}: {args.size} x {args.size} stairs", file=sys.stderr)
         rows, grid = sweep(robot, args.size, args.threads)
         rises, runs = np.unique(rows["rise"]), np.unique(rows["run"])
+        half_run = (runs[-1] - runs[0]) / max(args.size - 1, 1) / 2 or 0.005
+        half_rise = (rises[-1] - rises[0]) / max(args.size - 1, 1) / 2 or 0.005
         ax.imshow(grid, origin="lower", cmap=cmap, vmin=-0.5, vmax=3.5, aspect="auto",
-                  extent=(runs[0], runs[-1], rises[0], rises[-1]) if args.size > 1 else None)
+                  extent=(runs[0] - half_run, runs[-1] + half_run, rises[0] - half_rise, rises[-1] + half_rise))
         ax.set_title(f"{name}: {int((grid == 3).sum())}/{grid.size} valid")
         ax.set_xlabel("run [m]")
         ax.set_ylabel("rise [m]")
