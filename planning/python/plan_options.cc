@@ -2,6 +2,7 @@
 
 #include "geometry/field_error.h"
 #include "geometry/stair_spec_yaml.h"
+#include "planning/sweep/pipeline_sweep_row.h"
 
 namespace stairplan::python {
 namespace {
@@ -94,36 +95,15 @@ Staircase StairsFrom(StairSpec base, const nlohmann::json& overrides, const std:
 }
 
 SweepRow EvaluateSweepPoint(const SweepPoint& point, const RobotModel& robot, const PipelineOptions& options) {
-  SweepRow row;
-  row.point = point;
   try {
-    const Staircase stairs(point.Spec());
-    const PipelineResult result = RunPipeline(robot, stairs, options);
-    row.cadence_s = result.plan.cadence_s;
-    row.footsteps = static_cast<int>(result.plan.footsteps.size());
-    for (const auto& [stage, us] : result.plan.timing_us) (stage == "validate" ? row.validate_us : row.plan_us) += us;
-    if (result.plan.status != PlanStatus::kOk) {
-      row.status = "infeasible";
-      row.reason = result.plan.status_reason;
-      return row;
-    }
-    if (!result.validated) {
-      row.status = "planned";
-      return row;
-    }
-    const ValidationReport& v = result.validation;
-    row.min_clearance_m = v.min_clearance_m;
-    row.min_stability_margin_m = v.min_stability_margin_m;
-    row.status = v.ok ? "valid" : "invalid";
-    if (!v.violations.empty()) {
-      const Violation& first = v.violations.front();
-      row.reason = std::string(ToString(first.kind)) + " " + first.leg + (first.detail.empty() ? "" : " " + first.detail);
-    }
+    return PipelineSweepRow(point, RunPipeline(robot, Staircase(point.Spec()), options));
   } catch (const std::invalid_argument& e) {
+    SweepRow row;
+    row.point = point;
     row.status = "bad_stairs";
     row.reason = e.what();
+    return row;
   }
-  return row;
 }
 
 }  // namespace stairplan::python
