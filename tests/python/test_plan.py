@@ -95,3 +95,17 @@ def test_perceive_a_cloud_of_the_default_stairs():
     assert seen.found, seen.reason
     assert seen.fit["steps"] == 3 and seen.fit["rise"] == pytest.approx(0.17, abs=0.01)
     assert len(seen.map.regions) == 4
+
+
+def test_validate_and_simulate_a_short_flight(tmp_path):
+    plan = stairplan.plan(steps=2)
+    assert plan.ok, plan.status_reason
+    # The validator run again, on the Plan and on its plan.json, gives the pipeline's report.
+    assert stairplan.validate(plan) == plan.validation
+    path = tmp_path / "plan.json"
+    path.write_text(plan.to_json())
+    assert stairplan.validate(path) == plan.validation
+    outcome = stairplan.simulate(plan)
+    assert outcome["passed"], outcome["cause"]
+    assert outcome["final_error_m"] < 0.1 and outcome["all_landed_in_step_regions"]
+    assert len(outcome["landings"]) == len(plan.footsteps)
