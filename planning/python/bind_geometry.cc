@@ -10,7 +10,7 @@
 #include "geometry/stair_perception.h"
 #include "geometry/stair_spec_yaml.h"
 #include "kinematics/builtin_robot.h"
-#include "plan_options.h"
+#include "pipeline_adapter.h"
 #include "planning/plan_json.h"
 
 namespace stairplan::python {

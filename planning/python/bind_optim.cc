@@ -27,6 +27,16 @@ struct CallbackError {
   std::exception_ptr error;
 };
 
+// A Python callable shared by the copies of a std::function: a copy made without the GIL (inside a
+// solve) touches no Python reference count; the last owner releases it holding the GIL.
+using SharedCallable = std::shared_ptr<py::function>;
+SharedCallable Share(const py::function& f) {
+  return SharedCallable(new py::function(f), [](py::function* p) {
+    py::gil_scoped_acquire gil;
+    delete p;
+  });
+}
+
 template <typename F>
 void Guard(const std::shared_ptr<CallbackError>& state, F body, const std::function<void()>& on_error) {
   py::gil_scoped_acquire gil;
@@ -54,14 +64,14 @@ void AddNonlinearCost(PyProgram& p, const std::vector<VariableBlock>& blocks, co
   cost.name = name;
   cost.blocks = blocks;
   const auto state = p.callback_error;
-  cost.value = [state, value](const Vector& x) {
+  cost.value = [state, value = Share(value)](const Vector& x) {
     double f = NAN;
-    Guard(state, [&] { f = value(x).cast<double>(); }, [&] { f = NAN; });
+    Guard(state, [&] { f = (*value)(x).cast<double>(); }, [&] { f = NAN; });
     return f;
   };
-  cost.gradient = [state, gradient](const Vector& x, int block, Eigen::Ref<Vector> out) {
+  cost.gradient = [state, gradient = Share(gradient)](const Vector& x, int block, Eigen::Ref<Vector> out) {
     Guard(state, [&] {
-      const Vector g = gradient(x, block).cast<Vector>();
+      const Vector g = (*gradient)(x, block).cast<Vector>();
       if (g.size() != out.size()) throw py::value_error("gradient: block " + std::to_string(block) + " needs " +
                                                         std::to_string(out.size()) + " entries");
       out = g;
@@ -79,16 +89,16 @@ void AddNonlinearConstraint(PyProgram& p, const std::vector<VariableBlock>& bloc
   c.lower = lower;
   c.upper = upper;
   const auto state = p.callback_error;
-  c.value = [state, value](const Vector& x, Eigen::Ref<Vector> out) {
+  c.value = [state, value = Share(value)](const Vector& x, Eigen::Ref<Vector> out) {
     Guard(state, [&] {
-      const Vector v = value(x).cast<Vector>();
+      const Vector v = (*value)(x).cast<Vector>();
       if (v.size() != out.size()) throw py::value_error("value: needs " + std::to_string(out.size()) + " entries");
       out = v;
     }, [&] { out.setConstant(NAN); });
   };
-  c.jacobian = [state, jacobian](const Vector& x, int block, Eigen::Ref<Matrix> out) {
+  c.jacobian = [state, jacobian = Share(jacobian)](const Vector& x, int block, Eigen::Ref<Matrix> out) {
     Guard(state, [&] {
-      const Matrix j = jacobian(x, block).cast<Matrix>();
+      const Matrix j = (*jacobian)(x, block).cast<Matrix>();
       if (j.rows() != out.rows() || j.cols() != out.cols()) {
         throw py::value_error("jacobian: block " + std::to_string(block) + " needs shape (" +
                               std::to_string(out.rows()) + ", " + std::to_string(out.cols()) + ")");

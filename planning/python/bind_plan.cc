@@ -1,5 +1,5 @@
-// Planning, validation, simulation and the gait design: stairplan.plan() over the pipeline (its
-// options mapped by plan_options.h), the Plan with numpy footsteps and body, validate(),
+// Planning, validation, simulation and the gait design: stairplan.plan() over the pipeline (through
+// pipeline_adapter.h), the Plan with numpy footsteps and body, validate(),
 // simulate(), design_gait().
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -7,7 +7,7 @@
 #include "bindings.h"
 #include "geometry/field_error.h"
 #include "kinematics/builtin_robot.h"
-#include "plan_options.h"
+#include "pipeline_adapter.h"
 #include "planning/gait/gait_design.h"
 #include "planning/plan_json.h"
 #include "planning/plan_json_reader.h"
@@ -78,13 +78,7 @@ PlanResult RunPlan(const py::object& robot_arg, const py::object& stairs_arg, co
   auto result = std::make_shared<PipelineResult>();
   {
     py::gil_scoped_release release;
-    if (perceived != nullptr) {
-      ConstrainedMap map = *perceived->map;
-      AddPipelineRobotRegions(*out.robot, *out.stairs, pipeline, map);
-      *result = RunPipelineOnMap(*out.robot, *out.stairs, map, pipeline);
-    } else {
-      *result = RunPipeline(*out.robot, *out.stairs, pipeline);
-    }
+    *result = RunPlanPipeline(*out.robot, *out.stairs, perceived ? perceived->map.get() : nullptr, pipeline);
     out.json = PlanToJson(result->plan, *out.stairs, result->map);
     if (result->validated) out.json["validation"] = ValidationToJson(result->validation);
   }

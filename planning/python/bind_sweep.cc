@@ -8,7 +8,7 @@
 
 #include "bindings.h"
 #include "geometry/field_error.h"
-#include "plan_options.h"
+#include "pipeline_adapter.h"
 
 namespace stairplan::python {
 namespace {

@@ -1,4 +1,4 @@
-#include "plan_options.h"
+#include "pipeline_adapter.h"
 
 #include "geometry/field_error.h"
 #include "geometry/stair_spec_yaml.h"
@@ -92,6 +92,14 @@ Staircase StairsFrom(StairSpec base, const nlohmann::json& overrides, const std:
   if ((overrides.contains("rise") || steps) && !overrides.contains("rises")) base.rises.clear();
   if ((overrides.contains("run") || steps) && !overrides.contains("runs")) base.runs.clear();
   return Staircase(StairSpecFromYaml(overrides.dump(), source, base));
+}
+
+PipelineResult RunPlanPipeline(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap* perceived_map,
+                               const PipelineOptions& options) {
+  if (perceived_map == nullptr) return RunPipeline(robot, stairs, options);
+  ConstrainedMap map = *perceived_map;
+  AddPipelineRobotRegions(robot, stairs, options, map);
+  return RunPipelineOnMap(robot, stairs, map, options);
 }
 
 SweepRow EvaluateSweepPoint(const SweepPoint& point, const RobotModel& robot, const PipelineOptions& options) {

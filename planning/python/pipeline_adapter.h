@@ -1,6 +1,6 @@
-// The one place that maps the Python API's keyword options onto the library's planning inputs
-// (PipelineOptions and the stairs), with the CLI's names and defaults (`stairplan plan`): when
-// the pipeline's options change, this file changes and the bindings do not.
+// The one place where the Python API meets the planning pipeline: its keyword options mapped onto
+// PipelineOptions and the stairs with the CLI's names and defaults (`stairplan plan`), and the
+// pipeline's entry points. When the pipeline changes, this file changes and the bindings do not.
 #pragma once
 
 #include <string>
@@ -35,6 +35,11 @@ Staircase StairsFrom(StairSpec base, const nlohmann::json& overrides, const std:
 #include "planning/sweep/sweep_runner.h"
 
 namespace stairplan::python {
+
+/// Plans `stairs` for `robot` with `options`, on `perceived_map` (the robot's regions added) when
+/// given, else on the map the pipeline builds. Call without the GIL.
+PipelineResult RunPlanPipeline(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap* perceived_map,
+                               const PipelineOptions& options);
 
 /// One sweep point through the pipeline with `options`, as `stairplan sweep` evaluates it (that
 /// command's physics aside): never throws; bad stairs give the row status "bad_stairs".
