@@ -95,6 +95,12 @@ def test_perceive_a_cloud_of_the_default_stairs():
     assert seen.found, seen.reason
     assert seen.fit["steps"] == 3 and seen.fit["rise"] == pytest.approx(0.17, abs=0.01)
     assert len(seen.map.regions) == 4
+    # Planned on the perceived map, as `stairplan plan --cloud`: the fit is in plan.json.
+    plan = stairplan.plan(stairs=seen)
+    assert plan.ok, plan.status_reason
+    assert plan.to_dict()["fitted"]["steps"] == 3
+    with pytest.raises(ValueError, match="rise"):
+        stairplan.plan(stairs=seen, rise=0.2)
 
 
 def test_validate_and_simulate_a_short_flight(tmp_path):
