@@ -13,6 +13,7 @@
 #include "planning/cli/cli_common.h"
 #include "planning/plan_pipeline.h"
 #include "planning/simulation/sweep_physics.h"
+#include "planning/sweep/pipeline_sweep_row.h"
 #include "planning/sweep/sweep_region.h"
 #include "planning/sweep/sweep_runner.h"
 
@@ -54,22 +55,7 @@ SweepRow Evaluate(const SweepPoint& point, const RobotModel& robot, Facing facin
     options.validation.time_step = validation_step;
     const PipelineResult result = RunPipeline(robot, stairs, options);
     if (physics != nullptr) physics->Record(point, robot, stairs, result);
-    row.cadence_s = result.plan.cadence_s;
-    row.footsteps = static_cast<int>(result.plan.footsteps.size());
-    for (const auto& [stage, us] : result.plan.timing_us) (stage == "validate" ? row.validate_us : row.plan_us) += us;
-    if (result.plan.status != PlanStatus::kOk) {
-      row.status = "infeasible";
-      row.reason = result.plan.status_reason;
-      return row;
-    }
-    const ValidationReport& v = result.validation;
-    row.min_clearance_m = v.min_clearance_m;
-    row.min_stability_margin_m = v.min_stability_margin_m;
-    row.status = v.ok ? "valid" : "invalid";
-    if (!v.violations.empty()) {
-      const Violation& first = v.violations.front();
-      row.reason = std::string(ToString(first.kind)) + " " + first.leg + (first.detail.empty() ? "" : " " + first.detail);
-    }
+    return PipelineSweepRow(point, result);
   } catch (const std::invalid_argument& e) {
     row.status = "bad_stairs";
     row.reason = e.what();
