@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "planning/json_version.h"
+
 namespace stairplan {
 namespace {
 
@@ -79,7 +81,7 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
   }
   nlohmann::json timing = nlohmann::json::object();
   for (const auto& [stage, us] : plan.timing_us) timing[stage] = us;
-  return {{"robot", {{"name", plan.robot_name}, {"source", plan.robot_source}, {"legs", plan.legs}}},
+  nlohmann::json out = {{"robot", {{"name", plan.robot_name}, {"source", plan.robot_source}, {"legs", plan.legs}}},
           {"stairs", StairsToJson(stairs)},
           {"facing", ToString(plan.facing)},
           {"map", MapToJson(map)},
@@ -96,6 +98,7 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
           {"timing_us", timing},
           {"controllers", controllers},
           {"selected", plan.selected}};
+  return StampVersion(out);
 }
 
 }  // namespace stairplan

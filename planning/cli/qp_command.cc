@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "planning/cli/cli_common.h"
+#include "planning/json_version.h"
 #include "planning/optim/active_set_qp_solver.h"
 #include "planning/optim/ipopt_solver.h"
 #include "planning/optim/nlopt_solver.h"
@@ -74,7 +75,7 @@ int RunSolve(const std::string& file, const std::string& solver_name, bool json,
     out["solve_time_us"] = r.info.solve_time_us;
     out["max_violation"] = violation;
     out["x"] = std::vector<double>(r.x.data(), r.x.data() + r.x.size());
-    std::cout << out.dump(2) << "\n";
+    std::cout << StampVersion(out).dump(2) << "\n";
   } else {
     std::cout << "stairplan qp solve: " << file << " (" << qp.program.num_variables() << " variables, "
               << qp.program.num_rows() << " rows)\n"
