@@ -17,9 +17,11 @@
 namespace stairplan {
 namespace {
 
-// Bounds that keep a hostile header from overflowing a point's byte size.
-constexpr long long kMaxCount = 1 << 20;
+// Bounds that keep a hostile header from asking for gigabytes per point (PCL's widest descriptor,
+// VFH, has 308 values).
+constexpr long long kMaxCount = 1 << 16;
 constexpr std::size_t kMaxFields = 4096;
+constexpr long long kMaxValuesPerPoint = 1 << 16;
 
 struct PcdField {
   std::string name;
@@ -130,6 +132,12 @@ void CheckHeader(PcdHeader& h, const std::string& source) {
     h.point_bytes += f.bytes();
   }
   if (h.xyz[0] < 0 || h.xyz[1] < 0 || h.xyz[2] < 0) throw FieldError(Line(source, h.fields_line, "FIELDS"), "needs x, y and z");
+  long long values = 0;
+  for (const PcdField& f : h.fields) values += f.count;
+  if (values > kMaxValuesPerPoint) {
+    throw FieldError(Line(source, h.fields_line, "FIELDS"), "a point of " + std::to_string(values) + " values (COUNT summed over the fields); at most " +
+                                                                 std::to_string(kMaxValuesPerPoint));
+  }
   if (h.height < 0) h.height = 1;
   long long grid = -1;  // WIDTH x HEIGHT, when WIDTH is given
   if (h.width >= 0) {

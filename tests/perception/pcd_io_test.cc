@@ -166,6 +166,7 @@ TEST_CASE("PCD: broken files name the file and the header field or the encoding"
   } cases[] = {
       {"wrong field count", edit(ascii, "SIZE 4 4 4 4", "SIZE 4 4 4"), {"c.pcd: line 4 (SIZE)", "3 entries, FIELDS names 4"}},
       {"wrong type count", edit(ascii, "TYPE F F F U", "TYPE F F F U U"), {"(TYPE)", "5 entries"}},
+      {"huge count", edit(ascii, "COUNT 1 1 1 1", "COUNT 1 1 1 65536"), {"(FIELDS)", "65539 values", "at most 65536"}},
       {"no z", edit(ascii, "FIELDS x y z rgb", "FIELDS x y w rgb"), {"(FIELDS)", "x, y and z"}},
       {"integer x", edit(ascii, "TYPE F F F U", "TYPE I F F U"), {"field 'x'", "TYPE F"}},
       {"points vs width", edit(ascii, "POINTS 50", "POINTS 49"), {"(POINTS)", "WIDTH x HEIGHT"}},
