@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -343,12 +342,6 @@ PointCloud ParsePcd(const std::string& bytes, const std::string& source) {
   return cloud;
 }
 
-PointCloud ReadPcd(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FieldError(path, "cannot open the point cloud file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return ParsePcd(buffer.str(), path);
-}
+PointCloud ReadPcd(const std::string& path) { return ParsePcd(ReadCloudFile(path), path); }
 
 }  // namespace stairplan

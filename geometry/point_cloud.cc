@@ -55,12 +55,14 @@ PointCloud ParsePointCloud(const std::string& bytes, const std::string& source) 
   return ParseXyz(bytes, source);
 }
 
-PointCloud ReadPointCloud(const std::string& path) {
+std::string ReadCloudFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FieldError(path, "cannot open the point cloud file");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return ParsePointCloud(buffer.str(), path);
+  return buffer.str();
 }
+
+PointCloud ReadPointCloud(const std::string& path) { return ParsePointCloud(ReadCloudFile(path), path); }
 
 }  // namespace stairplan

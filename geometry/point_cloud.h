@@ -30,6 +30,9 @@ enum class CloudFormat { kPly, kPcd, kXyz };
 /// says what is wrong), else XYZ text.
 CloudFormat DetectCloudFormat(const std::string& bytes, const std::string& path);
 
+/// The bytes of a cloud file; a file that cannot be opened is a FieldError naming the path.
+std::string ReadCloudFile(const std::string& path);
+
 /// Parses a cloud in the format DetectCloudFormat finds; `source` names it in errors.
 PointCloud ParsePointCloud(const std::string& bytes, const std::string& source);
 

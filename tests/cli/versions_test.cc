@@ -14,19 +14,6 @@ using namespace stairplan::testing;
 
 namespace {
 
-struct VersionRun {
-  int code = -1;
-  std::string out, err;
-};
-
-VersionRun RunVersionCli(const std::string& dir, const std::string& args) {
-  VersionRun o;
-  o.code = RunCommand(BinDir() + "/stairplan " + args, dir + "/out", dir + "/err");
-  o.out = ReadFile(dir + "/out");
-  o.err = ReadFile(dir + "/err");
-  return o;
-}
-
 void CheckVersioned(const nlohmann::json& j) {
   REQUIRE(j.is_object());
   CHECK(j.value("version", "") == std::string(stairplan::kVersion));
@@ -42,18 +29,18 @@ const char* kSmallQps =
 TEST_CASE("stairplan --version and -V print the version", "[cli][version]") {
   const std::string dir = MakeTempDir("version");
   for (const char* flag : {"--version", "-V"}) {
-    const VersionRun o = RunVersionCli(dir, flag);
+    const StairplanRun o = RunStairplan(dir, flag);
     CHECK(o.code == 0);
     CHECK(o.out == "stairplan " + std::string(stairplan::kVersion) + " (file schema " + std::to_string(stairplan::kSchemaVersion) + ")\n");
   }
   CHECK_THAT(std::string(stairplan::kVersion), Catch::Matches("[0-9]+\\.[0-9]+\\.[0-9]+"));
-  CHECK_THAT(RunVersionCli(dir, "--help").out, Catch::Contains("stairplan --version"));
+  CHECK_THAT(RunStairplan(dir, "--help").out, Catch::Contains("stairplan --version"));
 }
 
 // map and footfalls are checked in tests/perception/cloud_formats_cli_test.cc, simulate below.
 TEST_CASE("plan.json and every command's JSON carry version and schema_version", "[cli][version]") {
   const std::string dir = MakeTempDir("version-json");
-  const VersionRun plan = RunVersionCli(dir, "plan --steps 1 --out " + dir + "/plan");
+  const StairplanRun plan = RunStairplan(dir, "plan --steps 1 --out " + dir + "/plan");
   INFO(plan.err);
   REQUIRE((plan.code == 0 || plan.code == 3));
   const std::string plan_json = dir + "/plan/plan.json";
@@ -65,7 +52,7 @@ TEST_CASE("plan.json and every command's JSON carry version and schema_version",
       "qp solve --json " + dir + "/t.qps",
   };
   for (const std::string& args : commands) {
-    const VersionRun o = RunVersionCli(dir, args);
+    const StairplanRun o = RunStairplan(dir, args);
     INFO(args << "\n" << o.err);
     CHECK((o.code == 0 || o.code == 3));
     CheckVersioned(nlohmann::json::parse(o.out));
@@ -75,7 +62,7 @@ TEST_CASE("plan.json and every command's JSON carry version and schema_version",
 TEST_CASE("simulate prints a summary by default, like every command, and its JSON with --json", "[cli][version]") {
   const std::string dir = MakeTempDir("simulate-summary");
   const std::string plan = SourceDir() + "/tests/fuzz/corpus/plan_json/minimal.json";
-  const VersionRun summary = RunVersionCli(dir, "simulate " + plan + " --out " + dir + "/sim.json");
+  const StairplanRun summary = RunStairplan(dir, "simulate " + plan + " --out " + dir + "/sim.json");
   INFO(summary.err);
   CHECK((summary.code == 0 || summary.code == 3));
   CHECK_THAT(summary.out, Catch::StartsWith("stairplan simulate: " + plan));
@@ -83,7 +70,7 @@ TEST_CASE("simulate prints a summary by default, like every command, and its JSO
   // --out still holds the JSON, which --json prints.
   const nlohmann::json written = nlohmann::json::parse(ReadFile(dir + "/sim.json"));
   CheckVersioned(written);
-  const VersionRun json = RunVersionCli(dir, "simulate --json " + plan);
+  const StairplanRun json = RunStairplan(dir, "simulate --json " + plan);
   CHECK(json.code == summary.code);
   CHECK(nlohmann::json::parse(json.out)["status"] == written["status"]);
 }

@@ -25,19 +25,6 @@ using namespace stairplan::testing;
 
 namespace {
 
-struct CloudCliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CloudCliRun RunCloudCli(const std::string& dir, const std::string& args) {
-  CloudCliRun o;
-  o.code = RunCommand(BinDir() + "/stairplan " + args, dir + "/out", dir + "/err");
-  o.out = ReadFile(dir + "/out");
-  o.err = ReadFile(dir + "/err");
-  return o;
-}
-
 std::string WriteCloudFile(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
   return path;
@@ -56,7 +43,7 @@ PointCloud ScannedStairs(int steps = 7) {
 TEST_CASE("map: PCD in each encoding gives the constrained map the same points give as PLY", "[cli][perception][pcd]") {
   const std::string dir = MakeTempDir("map-pcd");
   const PointCloud cloud = ScannedStairs();
-  const CloudCliRun ply = RunCloudCli(dir, "map --json --cloud " + WriteCloudFile(dir + "/scan.ply", PlyBytes(cloud, PlyFormat::kBinaryLittleEndian, true)));
+  const StairplanRun ply = RunStairplan(dir, "map --json --cloud " + WriteCloudFile(dir + "/scan.ply", PlyBytes(cloud, PlyFormat::kBinaryLittleEndian, true)));
   INFO(ply.err);
   REQUIRE(ply.code == 0);
   const nlohmann::json reference = nlohmann::json::parse(ply.out);
@@ -69,7 +56,7 @@ TEST_CASE("map: PCD in each encoding gives the constrained map the same points g
     PcdEncoding encoding;
   } files[] = {{"scan.pcd", PcdEncoding::kAscii}, {"scan.bin", PcdEncoding::kBinary}, {"scan.xyz", PcdEncoding::kBinaryCompressed}};
   for (const auto& f : files) {
-    const CloudCliRun pcd = RunCloudCli(dir, "map --json --cloud " + WriteCloudFile(dir + "/" + f.name, PcdFileBytes(cloud, f.encoding, layout)));
+    const StairplanRun pcd = RunStairplan(dir, "map --json --cloud " + WriteCloudFile(dir + "/" + f.name, PcdFileBytes(cloud, f.encoding, layout)));
     INFO(f.name << ": " << pcd.err);
     REQUIRE(pcd.code == 0);
     const nlohmann::json j = nlohmann::json::parse(pcd.out);
@@ -87,7 +74,7 @@ TEST_CASE("map --stairs-out writes the stairs that plan --stairs plans on and va
   // Under the sanitizers a 3-step flight: the plan's cost grows with the steps (tests/sanitized.h).
   const int steps = FullOrSanitized(7, 3);
   const std::string cloud = WriteCloudFile(dir + "/scan.pcd", PcdFileBytes(ScannedStairs(steps), PcdEncoding::kBinaryCompressed));
-  const CloudCliRun map = RunCloudCli(dir, "map --cloud " + cloud + " --stairs-out " + dir + "/stairs.yaml");
+  const StairplanRun map = RunStairplan(dir, "map --cloud " + cloud + " --stairs-out " + dir + "/stairs.yaml");
   INFO(map.err);
   REQUIRE(map.code == 0);
   CHECK_THAT(map.out, Catch::Contains("wrote:      " + dir + "/stairs.yaml"));
@@ -96,7 +83,7 @@ TEST_CASE("map --stairs-out writes the stairs that plan --stairs plans on and va
   CHECK(spec.rise == Approx(0.17).margin(0.005));
   CHECK(spec.run == Approx(0.27).margin(0.005));
   CHECK(spec.direction == TravelDirection::kUp);
-  const CloudCliRun plan = RunCloudCli(dir, "plan --stairs " + dir + "/stairs.yaml --out " + dir + "/plan");
+  const StairplanRun plan = RunStairplan(dir, "plan --stairs " + dir + "/stairs.yaml --out " + dir + "/plan");
   INFO(plan.out << plan.err);
   CHECK(plan.code == 0);
   const nlohmann::json j = nlohmann::json::parse(ReadFile(dir + "/plan/plan.json"));
@@ -109,7 +96,7 @@ TEST_CASE("map --stairs-out writes the stairs that plan --stairs plans on and va
   for (int i = 0; i < 40; ++i) {
     for (int k = 0; k < 20; ++k) floor.points.emplace_back(0.05 * i, 0.05 * k, 0.0);
   }
-  const CloudCliRun flat = RunCloudCli(dir, "map --cloud " + WriteCloudFile(dir + "/floor.pcd", PcdFileBytes(floor, PcdEncoding::kBinary)) +
+  const StairplanRun flat = RunStairplan(dir, "map --cloud " + WriteCloudFile(dir + "/floor.pcd", PcdFileBytes(floor, PcdEncoding::kBinary)) +
                                          " --stairs-out " + dir + "/floor.yaml");
   CHECK(flat.code == 3);
   CHECK_FALSE(std::filesystem::exists(dir + "/floor.yaml"));
@@ -120,7 +107,7 @@ TEST_CASE("footfalls --stairs-out writes one stairs YAML per staircase walked", 
   FootfallWalkSettings walk;
   walk.sigma = 0.01;
   const std::string csv = WriteCloudFile(dir + "/walk.csv", FootfallCsv(WalkFootfalls(TwoUpTwoDownLoop(), walk)));
-  const CloudCliRun o = RunCloudCli(dir, "footfalls " + csv + " --json --stairs-out " + dir + "/flight.yaml");
+  const StairplanRun o = RunStairplan(dir, "footfalls " + csv + " --json --stairs-out " + dir + "/flight.yaml");
   INFO(o.err);
   REQUIRE(o.code == 0);
   const nlohmann::json j = nlohmann::json::parse(o.out);
