@@ -45,6 +45,34 @@ struct BodyState {
 enum class PlanStatus { kOk, kInfeasible };
 const char* ToString(PlanStatus status);
 
+/// What made a plan's body trajectory.
+enum class BodyPlannerKind {
+  kQuasiStaticPath,     ///< the quasi-static COM path fitted to the footsteps (planning/body_path.h)
+  kRecedingHorizonQp,   ///< the receding-horizon body QP run forward cycle by cycle (planning/body/)
+  kRecedingHorizonNlp,  ///< that QP's plan refined window by window by the exact NLP
+};
+/// "quasi_static_path", "receding_horizon_qp", "receding_horizon_nlp".
+const char* ToString(BodyPlannerKind kind);
+
+/// How one control cycle of the receding-horizon body planner went.
+enum class BodyPlanStatus {
+  kOk,          ///< solved this cycle
+  kStale,       ///< not solved in the cycle budget (or the solver failed): the shifted previous plan
+  kInfeasible,  ///< the next knot breaks a stance leg's bound (no valid hip height there)
+};
+/// "ok", "stale", "infeasible".
+const char* ToString(BodyPlanStatus status);
+
+/// One cycle of the receding-horizon body planner as the offline driver ran it.
+struct BodyCycleStats {
+  double t = 0.0;          ///< the cycle's time [s]
+  BodyPlanStatus status = BodyPlanStatus::kOk;
+  int solves = 0;          ///< QPs solved (more than one only at warm-up)
+  int iterations = 0;      ///< the QPs' active-set changes
+  double solve_us = 0.0;   ///< wall time in the QP solver [us]
+  double total_us = 0.0;   ///< wall time of the whole cycle, linearisation included [us]
+};
+
 /// How one fixed-cadence controller of the step planner fared over a traversal.
 struct ControllerScore {
   double cadence_s = 0.0;         ///< swing duration [s]
@@ -68,6 +96,8 @@ struct Plan {
   std::vector<Eigen::Vector3d> initial_feet_W;  ///< contact points at t = 0, in `legs` order
   std::vector<Footstep> footsteps;            ///< sorted by touchdown time
   std::vector<BodyState> body;                ///< sampled body trajectory
+  BodyPlannerKind body_planner = BodyPlannerKind::kQuasiStaticPath;
+  std::vector<BodyCycleStats> body_cycles;    ///< the receding horizon's cycles, empty for the path
   PlanStatus status = PlanStatus::kOk;
   std::string status_reason;                  ///< why it is infeasible, empty when ok
   std::vector<std::pair<std::string, double>> timing_us;  ///< per stage [us]

@@ -1,5 +1,6 @@
 #include "planning/plan_json.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "planning/json_version.h"
@@ -54,6 +55,48 @@ nlohmann::json ValidationToJson(const ValidationReport& report) {
           {"violations", violations}};
 }
 
+namespace {
+
+// The receding horizon's cycles: a summary, then one array per statistic (one entry per cycle).
+nlohmann::json BodyCyclesToJson(const std::vector<BodyCycleStats>& cycles) {
+  nlohmann::json t = nlohmann::json::array(), status = t, solves = t, iterations = t, solve_us = t, total_us = t;
+  int stale = 0, infeasible = 0, max_iterations = 0;
+  double iteration_sum = 0.0;
+  std::vector<double> solve_times;
+  solve_times.reserve(cycles.size());
+  for (const BodyCycleStats& c : cycles) {
+    t.push_back(c.t);
+    status.push_back(ToString(c.status));
+    solves.push_back(c.solves);
+    iterations.push_back(c.iterations);
+    solve_us.push_back(c.solve_us);
+    total_us.push_back(c.total_us);
+    stale += c.status == BodyPlanStatus::kStale ? 1 : 0;
+    infeasible += c.status == BodyPlanStatus::kInfeasible ? 1 : 0;
+    max_iterations = std::max(max_iterations, c.iterations);
+    iteration_sum += c.iterations;
+    solve_times.push_back(c.solve_us);
+  }
+  std::sort(solve_times.begin(), solve_times.end());
+  const auto quantile = [&](double q) {
+    return solve_times.empty() ? 0.0 : solve_times[static_cast<std::size_t>(q * static_cast<double>(solve_times.size() - 1))];
+  };
+  const double n = std::max<double>(1.0, static_cast<double>(cycles.size()));
+  return {{"count", cycles.size()},
+          {"stale", stale},
+          {"infeasible", infeasible},
+          {"iterations_mean", iteration_sum / n},
+          {"iterations_max", max_iterations},
+          {"solve_us_p50", quantile(0.5)},
+          {"solve_us_p99", quantile(0.99)},
+          {"solve_us_max", quantile(1.0)},
+          {"per_cycle",
+           {{"t", t}, {"status", status}, {"solves", solves}, {"iterations", iterations}, {"solve_us", solve_us},
+            {"total_us", total_us}}}};
+}
+
+}  // namespace
+
 nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map) {
   nlohmann::json footsteps = nlohmann::json::array();
   for (const Footstep& f : plan.footsteps) {
@@ -92,6 +135,8 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
           {"initial_feet", initial},
           {"footsteps", footsteps},
           {"body", body},
+          {"body_planner", ToString(plan.body_planner)},
+          {"body_cycles", BodyCyclesToJson(plan.body_cycles)},
           {"duration_s", plan.duration()},
           {"status", ToString(plan.status)},
           {"status_reason", plan.status_reason},

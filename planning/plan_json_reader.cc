@@ -174,6 +174,15 @@ PlanFile ReadPlanJson(const std::string& text, const std::string& source) {
     plan.hip_height_fraction = r.Number(root, "hip_height_fraction", "");
     if (plan.hip_height_fraction <= 0.0 || plan.hip_height_fraction > 1.0) r.Fail("hip_height_fraction", "must be in (0, 1]");
   }
+  if (root.contains("body_planner")) {
+    const std::string kind = r.Text(root, "body_planner", "");
+    bool known = false;
+    for (const BodyPlannerKind k : {BodyPlannerKind::kQuasiStaticPath, BodyPlannerKind::kRecedingHorizonQp,
+                                    BodyPlannerKind::kRecedingHorizonNlp}) {
+      if (kind == ToString(k)) plan.body_planner = k, known = true;
+    }
+    if (!known) r.Fail("body_planner", "must be quasi_static_path, receding_horizon_qp or receding_horizon_nlp");
+  }
   const std::string status = r.Text(root, "status", "");
   plan.status = status == "ok" ? PlanStatus::kOk : PlanStatus::kInfeasible;
   const json& initial = r.Array(root, "initial_feet", "");

@@ -36,6 +36,13 @@ class BodyBounds {
   /// The hip heights valid for every placement in `box` (worst case over the box). Allocation-free
   /// once the footholds are set; may compute and cache what it has not seen before.
   virtual HeightRange HipHeight(const HipBox& box) = 0;
+  /// The hip heights above a foot point at which the leg reaches it within its joint limits, for
+  /// every placement in `box` (box.foothold is not used): the bound of a swinging leg, whose foot
+  /// is in the air. Unbounded unless an implementation knows the legs.
+  virtual HeightRange ReachHeight(const HipBox& box) {
+    (void)box;
+    return {-1e9, 1e9};
+  }
   /// The hip height above the contacts the body should keep when nothing else matters [m].
   virtual double NominalHipHeight() const = 0;
 };

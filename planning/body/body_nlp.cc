@@ -98,6 +98,7 @@ Plan RefineBodyNlp(const RobotModel& robot, const Staircase& stairs, const Const
   if (!check.ok()) failure = "body NLP re-check: " + check.first_violation;
   plan.status = failure.empty() ? PlanStatus::kOk : PlanStatus::kInfeasible;
   plan.status_reason = failure;
+  if (worst.windows_refined > 0) plan.body_planner = BodyPlannerKind::kRecedingHorizonNlp;
   plan.timing_us.emplace_back("body_nlp", std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
   if (summary != nullptr) *summary = worst;
   return plan;

@@ -49,18 +49,9 @@ void CheckFinite(double value, const char* what) {
 
 }  // namespace
 
-const char* ToString(BodyPlanStatus status) {
-  switch (status) {
-    case BodyPlanStatus::kOk: return "ok";
-    case BodyPlanStatus::kStale: return "stale";
-    case BodyPlanStatus::kInfeasible: return "infeasible";
-  }
-  return "unknown";
-}
-
 BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                          const Plan& footsteps, const BodyPlannerSettings& settings)
-    : settings_(settings), schedule_(robot, footsteps) {
+    : settings_(settings), schedule_(robot, footsteps, &stairs) {
   settings_.Validate();
   bounds_ = std::make_shared<KinematicBodyBounds>(robot, stairs, map.facing(), settings_);
   Initialise(robot, stairs);
@@ -68,7 +59,7 @@ BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const
 
 BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const Plan& footsteps,
                          std::shared_ptr<BodyBounds> bounds, const BodyPlannerSettings& settings)
-    : settings_(settings), schedule_(robot, footsteps), bounds_(std::move(bounds)) {
+    : settings_(settings), schedule_(robot, footsteps, &stairs), bounds_(std::move(bounds)) {
   settings_.Validate();
   if (!bounds_) throw std::invalid_argument("BodyPlanner: bounds must not be null");
   Initialise(robot, stairs);
@@ -201,7 +192,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       const LegPhase& phase = knot_phases[l];
       const Eigen::Vector3d& hip_B = hips_B_[static_cast<std::size_t>(l)];
       qp.height_ref[k * kBodyLegs + l] = phase.foot_W.z() + hip_height_ + command.height_offset - (HipDzAt(hip_B, turn_m) - c * pm);
-      if (!phase.stance || k == 0) continue;
+      if (k == 0) continue;
       // The exact hip offsets over the pitch interval: sampled at its ends and middle, padded by
       // the curvature bound (|hip_B| (w/2)^2 / 8 per half).
       const double pad = hip_B.norm() * (ph - pl) * (ph - pl) / 32.0;
@@ -210,7 +201,10 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       const double g1 = HipDxAt(hip_B, turn_l), g2 = HipDxAt(hip_B, turn_m), g3 = HipDxAt(hip_B, turn_h);
       const double e_min = std::min({e1, e2, e3}) - pad, e_max = std::max({e1, e2, e3}) + pad;
       const double g_min = std::min({g1, g2, g3}) - pad, g_max = std::max({g1, g2, g3}) + pad;
-      const Eigen::Vector3d& contact = schedule_.footholds()[static_cast<std::size_t>(phase.foothold)].contact_W;
+      // A swinging leg's foot is where its swing trajectory has it: the leg must reach it too
+      // (a knot at a liftoff has the foot still on its foothold, in the air a lift brings it
+      // nearer the hip), though only stance legs count the foothold's clearance.
+      const Eigen::Vector3d contact = schedule_.SwingFoot(l, phase);
       const double base = heading * (xy.x() - contact.x());
       HipBox box;
       box.leg = l;
@@ -219,9 +213,9 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       box.dx_hi = base + qp.shift_hi[k] + g_max;
       box.pitch_lo = pl;
       box.pitch_hi = ph;
-      const HeightRange range = bounds_->HipHeight(box);
+      const HeightRange range = phase.stance ? bounds_->HipHeight(box) : bounds_->ReachHeight(box);
       const double lo = range.lo + contact.z() - e_min, hi = range.hi + contact.z() - e_max - lateral_pad;
-      narrowest = std::min(narrowest, range.empty() ? -1.0 : hi - lo);
+      if (phase.stance) narrowest = std::min(narrowest, range.empty() ? -1.0 : hi - lo);
       // The previous plan (the centre of the trust region) is kept feasible: where it breaks a
       // bound, the bound gives way to it and the row counts as a conflict. So the QP always has
       // a solution, and the cost pulls the plan back inside as the bounds allow.

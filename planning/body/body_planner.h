@@ -41,13 +41,6 @@ struct BodyCommand {
   double pitch_offset = 0.0;   ///< added to the pitch reference [rad]
 };
 
-enum class BodyPlanStatus {
-  kOk,          ///< solved this cycle
-  kStale,       ///< not solved in the cycle budget (or the solver failed): the shifted previous plan
-  kInfeasible,  ///< the next knot breaks a stance leg's bound (no valid hip height there)
-};
-/// "ok", "stale", "infeasible".
-const char* ToString(BodyPlanStatus status);
 
 /// One leg's footstep target at the current time.
 struct LegTarget {

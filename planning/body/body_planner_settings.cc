@@ -1,6 +1,7 @@
 #include "planning/body/body_planner_settings.h"
 
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "geometry/field_error.h"
@@ -47,6 +48,32 @@ void BodyPlannerSettings::Validate() const {
   CheckRange("trust_shift", trust_shift, 0.0, 1.0);
   CheckRange("cycle_budget_s", cycle_budget_s, 0.0, 10.0);
   if (warmup_solves < 1 || warmup_solves > 100000) throw FieldError("warmup_solves", "must be in [1, 100000]");
+}
+
+void BodyPlannerSettings::Set(const std::string& name, double value) {
+  if (name == "knots") {
+    if (!(value >= 3 && value <= 400 && value == std::floor(value))) throw FieldError(name, "must be a whole number in [3, 400]");
+    knots = static_cast<int>(value);
+    return;
+  }
+  if (name == "warmup_solves") {
+    if (!(value >= 1 && value <= 100000 && value == std::floor(value))) throw FieldError(name, "must be a whole number in [1, 100000]");
+    warmup_solves = static_cast<int>(value);
+    return;
+  }
+  const std::map<std::string, double*> fields = {
+      {"knot_dt", &knot_dt}, {"hip_height_fraction", &hip_height_fraction}, {"stairs_com_shift", &stairs_com_shift},
+      {"height_weight", &height_weight}, {"pitch_weight", &pitch_weight}, {"shift_weight", &shift_weight},
+      {"velocity_weight", &velocity_weight}, {"acceleration_weight", &acceleration_weight}, {"max_pitch", &max_pitch},
+      {"max_shift", &max_shift}, {"max_height_accel", &max_height_accel}, {"max_pitch_accel", &max_pitch_accel},
+      {"max_shift_accel", &max_shift_accel}, {"stability_margin", &stability_margin}, {"lateral_weight", &lateral_weight},
+      {"max_lateral_shift", &max_lateral_shift}, {"max_lateral_accel", &max_lateral_accel}, {"reach_margin", &reach_margin},
+      {"clearance_margin", &clearance_margin}, {"grid_dx", &grid_dx}, {"grid_pitch", &grid_pitch},
+      {"grid_height", &grid_height}, {"trust_pitch", &trust_pitch}, {"trust_shift", &trust_shift},
+      {"trust_lateral", &trust_lateral}, {"cycle_budget_s", &cycle_budget_s}};
+  const auto it = fields.find(name);
+  if (it == fields.end()) throw FieldError(name, "no such body planner setting");
+  *it->second = value;
 }
 
 }  // namespace stairplan

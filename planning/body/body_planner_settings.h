@@ -3,6 +3,8 @@
 // linearisation and the cycle budget. Defaults suit a medium quadruped on building-code stairs.
 #pragma once
 
+#include <string>
+
 namespace stairplan {
 
 struct BodyPlannerSettings {
@@ -68,6 +70,9 @@ struct BodyPlannerSettings {
 
   /// Throws std::invalid_argument naming the offending field.
   void Validate() const;
+  /// Sets the field called `name` (as in this struct, e.g. "stability_margin"); throws FieldError
+  /// for an unknown name. Call Validate() after the last one.
+  void Set(const std::string& name, double value);
 };
 
 }  // namespace stairplan

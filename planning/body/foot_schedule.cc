@@ -8,7 +8,8 @@
 
 namespace stairplan {
 
-FootSchedule::FootSchedule(const RobotModel& robot, const Plan& plan) {
+FootSchedule::FootSchedule(const RobotModel& robot, const Plan& plan, const Staircase* stairs,
+                           const SwingSettings& swing) {
   const auto& models = robot.legs();
   if (plan.initial_feet_W.size() != plan.legs.size() || plan.legs.size() != models.size()) {
     throw std::invalid_argument("FootSchedule: the plan's legs and initial_feet_W must match the robot's " +
@@ -49,6 +50,14 @@ FootSchedule::FootSchedule(const RobotModel& robot, const Plan& plan) {
     }
     tl.liftoffs.push_back(f.t_liftoff);
     tl.touchdowns.push_back(f.t_touchdown);
+    const Eigen::Vector3d& from = footholds_[static_cast<std::size_t>(tl.footholds.back())].contact_W;
+    if (std::isfinite(f.swing_apex_z)) {
+      tl.swings.emplace_back(from, f.position_W, f.swing_apex_z, swing);
+    } else if (stairs != nullptr) {
+      tl.swings.emplace_back(from, f.position_W, *stairs, swing);
+    } else {
+      tl.swings.emplace_back(from, f.position_W, std::max(from.z(), f.position_W.z()) + swing.min_lift, swing);
+    }
     tl.footholds.push_back(static_cast<int>(footholds_.size()));
     footholds_.push_back({l, f.position_W, f.stair_index});
     end_time_ = std::max(end_time_, f.t_touchdown);
@@ -72,6 +81,7 @@ LegPhase FootSchedule::Phase(int leg, double t) const {
     const Eigen::Vector3d& a = footholds_[static_cast<std::size_t>(phase.foothold)].contact_W;
     const Eigen::Vector3d& b = footholds_[static_cast<std::size_t>(phase.next_foothold)].contact_W;
     phase.foot_W = (1.0 - phase.progress) * a + phase.progress * b;
+    phase.swing = static_cast<int>(j - 1);
     return phase;
   }
   phase.stance = true;
@@ -81,6 +91,11 @@ LegPhase FootSchedule::Phase(int leg, double t) const {
   phase.t_touchdown = j > 0 ? tl.touchdowns[j - 1] : 0.0;
   phase.foot_W = footholds_[static_cast<std::size_t>(phase.foothold)].contact_W;
   return phase;
+}
+
+Eigen::Vector3d FootSchedule::SwingFoot(int leg, const LegPhase& phase) const {
+  if (phase.stance || phase.swing < 0) return phase.foot_W;
+  return legs_[static_cast<std::size_t>(leg)].swings[static_cast<std::size_t>(phase.swing)].At(phase.progress);
 }
 
 template <typename FootAt>

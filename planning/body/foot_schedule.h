@@ -11,6 +11,7 @@
 
 #include "kinematics/robot_model.h"
 #include "planning/plan.h"
+#include "planning/swing_trajectory.h"
 
 namespace stairplan {
 
@@ -29,16 +30,22 @@ struct LegPhase {
   double progress = 0.0;   ///< swing progress in [0, 1]; 0 in stance
   double t_liftoff = 0.0;  ///< the phase's liftoff (swing) or the next liftoff (stance; +inf if none)
   double t_touchdown = 0.0;  ///< the phase's touchdown (swing) or the last one (stance)
-  Eigen::Vector3d foot_W = Eigen::Vector3d::Zero();  ///< contact point, interpolated in swing
+  /// Contact point; in swing the straight line between the footholds (the neutral body follows
+  /// it), while FootSchedule::SwingFoot() gives where the foot really is.
+  Eigen::Vector3d foot_W = Eigen::Vector3d::Zero();
+  int swing = -1;          ///< in swing: the leg's swing number (for SwingFoot()), else -1
 };
 
 class FootSchedule {
  public:
   FootSchedule() = default;
-  /// Reads `plan`'s initial feet and footsteps for `robot` (legs matched by name). Throws
+  /// Reads `plan`'s initial feet and footsteps for `robot` (legs matched by name); swings follow
+  /// SwingTrajectory with `swing` settings and each footstep's apex (from `stairs` where the
+  /// footstep states none; without stairs, min_lift above the higher foothold). Throws
   /// std::invalid_argument naming the footstep when a leg is unknown, times are not finite or a
   /// leg's footsteps overlap in time.
-  FootSchedule(const RobotModel& robot, const Plan& plan);
+  FootSchedule(const RobotModel& robot, const Plan& plan, const Staircase* stairs = nullptr,
+               const SwingSettings& swing = {});
 
   const std::vector<Foothold>& footholds() const { return footholds_; }
   int leg_count() const { return static_cast<int>(legs_.size()); }
@@ -49,6 +56,9 @@ class FootSchedule {
 
   /// Leg `leg` at time t (clamped to [0, end_time()]). Allocation-free.
   LegPhase Phase(int leg, double t) const;
+  /// Where leg `leg`'s foot contact point is in `phase` (from Phase()): on its foothold in stance,
+  /// along its swing trajectory in swing. Allocation-free.
+  Eigen::Vector3d SwingFoot(int leg, const LegPhase& phase) const;
   /// The body's neutral horizontal position at t: the mean of (foot - the leg's neutral offset).
   Eigen::Vector2d NeutralBodyXY(double t) const;
   /// The pitch of the line from the hind feet to the front feet at t (nose-up negative).
@@ -68,6 +78,7 @@ class FootSchedule {
     std::vector<int> footholds;     // in time order; footholds[0] is the initial one
     std::vector<double> liftoffs;   // liftoffs[j]: leaving footholds[j]
     std::vector<double> touchdowns; // touchdowns[j]: arriving on footholds[j + 1]
+    std::vector<SwingTrajectory> swings;  // swings[j]: from footholds[j] to footholds[j + 1]
   };
   // The two above over the feet foot_W(leg) gives.
   template <typename FootAt>

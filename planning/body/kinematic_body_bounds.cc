@@ -175,9 +175,14 @@ float KinematicBodyBounds::FillClearLow(ClearNode& node, int foothold, int i, in
 }
 
 HeightRange KinematicBodyBounds::HipHeight(const HipBox& box) {
-  if (box.leg < 0 || box.leg >= kinematics_->leg_count() || box.foothold < 0 ||
-      box.foothold >= static_cast<int>(footholds_.size()) || !(box.dx_lo <= box.dx_hi) ||
-      !(box.pitch_lo <= box.pitch_hi)) {
+  if (box.foothold < 0 || box.foothold >= static_cast<int>(footholds_.size())) return {1.0, 0.0};
+  return Interpolate(box, true);
+}
+
+HeightRange KinematicBodyBounds::ReachHeight(const HipBox& box) { return Interpolate(box, false); }
+
+HeightRange KinematicBodyBounds::Interpolate(const HipBox& box, bool with_clearance) {
+  if (box.leg < 0 || box.leg >= kinematics_->leg_count() || !(box.dx_lo <= box.dx_hi) || !(box.pitch_lo <= box.pitch_hi)) {
     return {1.0, 0.0};
   }
   // Bilinear interpolation of the node bounds at the box's corners, the worst corner kept: it is
@@ -197,7 +202,8 @@ HeightRange KinematicBodyBounds::HipHeight(const HipBox& box) {
         for (int c = 0; c < 4; ++c) {
           const int di = c / 2, dj = c % 2;
           const ReachNode& r = Reach(box.leg, i + di, j + dj);
-          const double node_lo = std::max(static_cast<double>(r.lo), static_cast<double>(ClearLow(box.foothold, i + di, j + dj)));
+          const double clear_lo = with_clearance ? static_cast<double>(ClearLow(box.foothold, i + di, j + dj)) : r.lo;
+          const double node_lo = std::max(static_cast<double>(r.lo), clear_lo);
           if (!(node_lo <= r.hi)) return {1.0, 0.0};  // a corner node has no valid height
           cell_lo[static_cast<std::size_t>(c)] = node_lo;
           cell_hi[static_cast<std::size_t>(c)] = r.hi;

@@ -38,6 +38,7 @@ class KinematicBodyBounds final : public BodyBounds {
 
   void SetFootholds(const std::vector<Foothold>& footholds) override;
   HeightRange HipHeight(const HipBox& box) override;
+  HeightRange ReachHeight(const HipBox& box) override;
   /// The foot radius plus hip_height_fraction of the legs' mean reach within their limits.
   double NominalHipHeight() const override { return nominal_hip_height_; }
 
@@ -76,6 +77,9 @@ class KinematicBodyBounds final : public BodyBounds {
   }
   const ReachNode& FillReach(ReachNode& node, int leg, int i, int j);
   float FillClearLow(ClearNode& node, int foothold, int i, int j);
+  // HipHeight and ReachHeight: the nodes' bounds interpolated over the box, with the foothold's
+  // clearance or without.
+  HeightRange Interpolate(const HipBox& box, bool with_clearance);
 
   BodyPlannerSettings settings_;
   std::unique_ptr<RobotKinematics> kinematics_;

@@ -23,6 +23,8 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   const int cycles = static_cast<int>(std::ceil(end / dt - 1e-9));
   std::vector<BodyState> body;
   body.reserve(static_cast<std::size_t>(cycles) + 1);
+  plan.body_cycles.clear();
+  plan.body_cycles.reserve(static_cast<std::size_t>(cycles) + 1);
   BodyState state = planner.StartState();
   // Cycles whose next knot had no valid body height under the (conservative, linearised) bounds.
   int conflict_cycles = 0, stale_cycles = 0;
@@ -44,11 +46,13 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
         first_conflict = text;
       }
     }
+    plan.body_cycles.push_back({now, out.status, out.solves, out.iterations, out.timings.solve_us, out.timings.total_us});
     body.push_back(out.knots[0]);
     body.back().t = now;
     state = planner.Interpolate(std::min(end, (c + 1) * dt));
   }
   plan.body = std::move(body);
+  plan.body_planner = BodyPlannerKind::kRecedingHorizonQp;
   const double plan_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
   // The plan stands or falls by the exact re-check: the cached bounds are conservative, so a
   // cycle may report a conflict the exact kinematics do not have.

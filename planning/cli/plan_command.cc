@@ -25,6 +25,7 @@ struct PlanOptions {
   std::string nlp;
   std::string cloud;
   std::string out = "stairplan-out";
+  std::vector<std::string> set;
   bool json = false;
 };
 
@@ -43,6 +44,32 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
                  "step: the step planner's own footsteps");
   app.add_option("--out", o.out, "Output directory for plan.json and plan.svg (default ./stairplan-out)");
   app.add_flag("--json", o.json, "Print the plan JSON on stdout instead of the summary");
+  app.add_option("--set", o.set, "Override a body planner setting, body.NAME=VALUE (e.g. body.stability_margin=0.03)");
+}
+
+// --set body.NAME=VALUE: the body planner's settings by their field names.
+void ApplySettings(const std::vector<std::string>& assignments, PipelineOptions& options) {
+  for (const std::string& a : assignments) {
+    const std::size_t eq = a.find('=');
+    const std::string prefix = "body.";
+    if (eq == std::string::npos || a.compare(0, prefix.size(), prefix) != 0) {
+      throw BadInput("--set: expected body.NAME=VALUE (got '" + a + "')");
+    }
+    double value = 0.0;
+    try {
+      std::size_t used = 0;
+      value = std::stod(a.substr(eq + 1), &used);
+      if (used != a.size() - eq - 1) throw std::invalid_argument("trailing characters");
+    } catch (const std::exception&) {
+      throw BadInput("--set: '" + a.substr(eq + 1) + "' is not a number (in '" + a + "')");
+    }
+    try {
+      options.body_qp.Set(a.substr(prefix.size(), eq - prefix.size()), value);
+      options.body_qp.Validate();
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(std::string("--set: body.") + e.what());
+    }
+  }
 }
 
 double MicrosSince(std::chrono::steady_clock::time_point start) {
@@ -129,6 +156,7 @@ int RunPlan(const std::vector<std::string>& args) {
       throw BadInput(std::string("--") + e.what());
     }
     SetBodyOptions(o, options);
+    ApplySettings(o.set, options);
     const RobotModel robot = LoadRobot(o.robot);
     std::optional<CloudStairs> perceived;
     if (!o.cloud.empty()) perceived = PerceiveCloud(o.cloud, o.stairs, options.facing);

@@ -2,6 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include "kinematics/builtin_robot.h"
+#include <limits>
+
 #include "planning/body/foot_schedule.h"
 
 using namespace stairplan;
@@ -76,4 +78,32 @@ TEST_CASE("a malformed footstep plan names the offending footstep", "[body][sche
   plan = OneStep(robot);
   plan.footsteps[0].t_touchdown = 0.5;  // before its liftoff
   CHECK_THROWS_AS(FootSchedule(robot, plan), std::invalid_argument);
+}
+
+TEST_CASE("a swinging foot follows its swing trajectory: the footstep's apex, or the stairs' when it states none",
+          "[body][schedule]") {
+  const RobotModel& robot = BuiltinRobot();
+  Plan plan = OneStep(robot);
+  plan.footsteps[0].swing_apex_z = 0.3;
+  const FootSchedule stated(robot, plan);
+  const SwingTrajectory path(plan.footsteps[0].from_W, plan.footsteps[0].position_W, 0.3);
+  for (const double t : {1.0, 1.1, 1.25, 1.4, 1.49}) {
+    const LegPhase phase = stated.Phase(0, t);
+    REQUIRE_FALSE(phase.stance);
+    INFO("t = " << t);
+    CHECK((stated.SwingFoot(0, phase) - path.At(phase.progress)).norm() < 1e-12);
+  }
+  // Mid-swing the foot is at the apex, above the straight line the neutral body follows.
+  CHECK(stated.SwingFoot(0, stated.Phase(0, 1.25)).z() == Approx(0.3));
+  // In stance it is the foothold.
+  const LegPhase stance = stated.Phase(1, 1.25);
+  CHECK((stated.SwingFoot(1, stance) - stance.foot_W).norm() == 0.0);
+
+  // No apex stated: the stairs' (the highest obstacle plus the clearance), as the validator has it.
+  plan.footsteps[0].swing_apex_z = std::numeric_limits<double>::quiet_NaN();
+  StairSpec spec;
+  const Staircase stairs(spec);
+  const FootSchedule derived(robot, plan, &stairs);
+  const SwingTrajectory from_stairs(plan.footsteps[0].from_W, plan.footsteps[0].position_W, stairs);
+  CHECK(derived.SwingFoot(0, derived.Phase(0, 1.25)).z() == Approx(from_stairs.apex_z()));
 }

@@ -128,6 +128,42 @@ TEST_CASE("plan --json prints the same plan on stdout", "[cli][plan]") {
   CHECK(printed["stairs"]["steps"] == 3);
 }
 
+TEST_CASE("plan.json names the body planner and, for the receding horizon, carries every cycle's solve", "[cli][plan]") {
+  const std::string dir = MakeTempDir("plan-cycles");
+  const Run path = Plan("--steps 2 --out " + dir + "/path", dir);
+  REQUIRE(path.code == 0);
+  const json by_path = json::parse(ReadFile(dir + "/path/plan.json"));
+  CHECK(by_path["body_planner"] == "quasi_static_path");
+  CHECK(by_path["body_cycles"]["count"] == 0);
+
+  const Run qp = Plan("--steps 2 --body qp --set body.stability_margin=0.03 --out " + dir + "/qp", dir);
+  INFO(qp.out << qp.err);
+  REQUIRE(qp.code == 0);  // with the support rows the QP's own plan validates
+  const json plan = json::parse(ReadFile(dir + "/qp/plan.json"));
+  CHECK(plan["body_planner"] == "receding_horizon_qp");
+  const json& cycles = plan["body_cycles"];
+  // One cycle per body sample, as a control loop would have run it.
+  REQUIRE(cycles["count"] == plan["body"].size());
+  const json& per = cycles["per_cycle"];
+  for (const char* key : {"t", "status", "solves", "iterations", "solve_us", "total_us"}) {
+    INFO(key);
+    CHECK(per[key].size() == plan["body"].size());
+  }
+  for (std::size_t i = 0; i < plan["body"].size(); ++i) CHECK(per["t"][i] == plan["body"][i]["t"]);
+  // The first cycle converges the linearisation (several QPs); nearly all later ones solve one warm QP.
+  CHECK(per["solves"][0].get<int>() > 1);
+  std::size_t single = 0;
+  for (std::size_t i = 1; i < per["solves"].size(); ++i) single += per["solves"][i] == 1 ? 1 : 0;
+  CHECK(single >= 9 * (per["solves"].size() - 1) / 10);
+  CHECK(cycles["stale"] == 0);
+  CHECK(cycles["solve_us_p99"].get<double>() >= cycles["solve_us_p50"].get<double>());
+  CHECK(cycles["iterations_max"].get<int>() >= 1);
+  // validate reads the plan back.
+  const int code = RunCommand(BinDir() + "/stairplan validate " + dir + "/qp/plan.json", dir + "/v.txt", dir + "/v.err");
+  INFO(ReadFile(dir + "/v.txt") << ReadFile(dir + "/v.err"));
+  CHECK(code == 0);
+}
+
 TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[cli][plan]") {
   const std::string dir = MakeTempDir("plan-bad");
   const auto expect_bad = [&](const std::string& args, const std::string& named) {
@@ -147,6 +183,10 @@ TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[
   expect_bad("--robot /nonexistent.urdf", "/nonexistent.urdf");
   expect_bad("--stairs /nonexistent.yaml", "/nonexistent.yaml");
   expect_bad("--no-such-flag", "--no-such-flag");
+  expect_bad("--set body.no_such_setting=1", "no_such_setting");
+  expect_bad("--set body.stability_margin=abc", "abc");
+  expect_bad("--set body.knots=2", "knots");
+  expect_bad("--set stability_margin=0.03", "body.NAME=VALUE");
   {
     std::ofstream(dir + "/negative.yaml") << "steps: 5\nrun: -0.27\n";
     expect_bad("--stairs " + dir + "/negative.yaml", "'run'");
