@@ -69,7 +69,9 @@ void ParseHeaderLine(const std::string& keyword, const std::vector<std::string>&
   const std::string where = Line(source, line, keyword);
   if (keyword == "VERSION" || keyword == "VIEWPOINT") return;
   if (keyword == "FIELDS" || keyword == "COLUMNS") {
-    if (values.empty() || values.size() > kMaxFields) throw FieldError(where, "needs 1 to " + std::to_string(kMaxFields) + " field names");
+    if (values.empty() || values.size() > kMaxFields) {
+      throw FieldError(where, "needs 1 to " + std::to_string(kMaxFields) + " field names");
+    }
     h.fields.assign(values.size(), PcdField{});
     for (std::size_t i = 0; i < values.size(); ++i) h.fields[i].name = values[i];
     h.fields_line = line;
@@ -79,7 +81,9 @@ void ParseHeaderLine(const std::string& keyword, const std::vector<std::string>&
     RequireOnePerField(h, values.size(), where);
     for (std::size_t i = 0; i < values.size(); ++i) {
       const long long size = Integer(values[i], where, 1, 8);
-      if (size != 1 && size != 2 && size != 4 && size != 8) throw FieldError(where, "field '" + h.fields[i].name + "': SIZE must be 1, 2, 4 or 8");
+      if (size != 1 && size != 2 && size != 4 && size != 8) {
+        throw FieldError(where, "field '" + h.fields[i].name + "': SIZE must be 1, 2, 4 or 8");
+      }
       h.fields[i].size = static_cast<int>(size);
     }
   } else if (keyword == "TYPE") {
@@ -134,13 +138,16 @@ void CheckHeader(PcdHeader& h, const std::string& source) {
   long long values = 0;
   for (const PcdField& f : h.fields) values += f.count;
   if (values > kMaxValuesPerPoint) {
-    throw FieldError(Line(source, h.fields_line, "FIELDS"), "a point of " + std::to_string(values) + " values (COUNT summed over the fields); at most " +
+    throw FieldError(Line(source, h.fields_line, "FIELDS"), "a point of " + std::to_string(values) +
+                                                                 " values (COUNT summed over the fields); at most " +
                                                                  std::to_string(kMaxValuesPerPoint));
   }
   if (h.height < 0) h.height = 1;
   long long grid = -1;  // WIDTH x HEIGHT, when WIDTH is given
   if (h.width >= 0) {
-    if (h.height > 0 && h.width > std::numeric_limits<long long>::max() / h.height) throw FieldError(data, "WIDTH x HEIGHT is too large");
+    if (h.height > 0 && h.width > std::numeric_limits<long long>::max() / h.height) {
+      throw FieldError(data, "WIDTH x HEIGHT is too large");
+    }
     grid = h.width * h.height;
   }
   if (h.points < 0) {
@@ -230,7 +237,9 @@ void ReadAscii(const std::string& bytes, const PcdHeader& h, const std::string& 
     for (std::string token; fields >> token; ++count) {
       char* stop = nullptr;
       const double value = std::strtod(token.c_str(), &stop);
-      if (stop == token.c_str() || *stop != '\0') throw FieldError(source + ": line " + std::to_string(line_number), "'" + token + "' is not a number");
+      if (stop == token.c_str() || *stop != '\0') {
+        throw FieldError(source + ": line " + std::to_string(line_number), "'" + token + "' is not a number");
+      }
       if (count < values_per_point && value_axis[count] >= 0) xyz[value_axis[count]] = value;
     }
     if (count == 0) continue;
@@ -286,7 +295,9 @@ std::uint32_t ReadU32(const std::string& bytes, std::size_t at) {
 void ReadCompressed(const std::string& bytes, const PcdHeader& h, const std::string& source, PointCloud& cloud) {
   const std::string where = Line(source, h.data_line, "DATA binary_compressed");
   const std::size_t available = bytes.size() - h.data_start;
-  if (available < 8) throw FieldError(where, "truncated: the block's two sizes need 8 bytes, " + std::to_string(available) + " follow the header");
+  if (available < 8) {
+    throw FieldError(where, "truncated: the block's two sizes need 8 bytes, " + std::to_string(available) + " follow the header");
+  }
   const std::size_t compressed = ReadU32(bytes, h.data_start), uncompressed = ReadU32(bytes, h.data_start + 4);
   if (compressed > available - 8) {
     throw FieldError(where, "truncated compressed block: " + std::to_string(compressed) + " bytes declared, " +
@@ -337,7 +348,8 @@ PointCloud ParsePcd(const std::string& bytes, const std::string& source) {
     case PcdEncoding::kBinaryCompressed: ReadCompressed(bytes, h, source, cloud); break;
   }
   if (cloud.empty()) {
-    throw FieldError(Line(source, h.data_line, "DATA"), "no finite points (all " + std::to_string(h.points) + " have a NaN coordinate)");
+    throw FieldError(Line(source, h.data_line, "DATA"),
+                     "no finite points (all " + std::to_string(h.points) + " have a NaN coordinate)");
   }
   return cloud;
 }
