@@ -6,9 +6,17 @@ install(TARGETS ${modules} EXPORT stairplanTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS stairplan RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# Headers the implementation shares between its files, which no public header includes (and some
+# include urdfdom, a private dependency): not installed. scripts/check_install.sh checks that every
+# installed header's includes of ours are installed too.
+set(internal_headers body_nlp_internal.h difference_matrices.h urdf_parse.h urdf_pose.h lzf.h)
+set(exclude_internal "")
+foreach(header ${internal_headers})
+  list(APPEND exclude_internal PATTERN ${header} EXCLUDE)
+endforeach()
 foreach(dir geometry kinematics collision planning)
   install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stairplan/${dir}
-    FILES_MATCHING PATTERN "*.h" PATTERN "cli" EXCLUDE)
+    FILES_MATCHING PATTERN "*.h" PATTERN "cli" EXCLUDE ${exclude_internal})
 endforeach()
 install(FILES ${PROJECT_BINARY_DIR}/generated/stairplan/version.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stairplan/stairplan)
@@ -22,3 +30,26 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/stairplanConfigVersion.cm
   COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/stairplanConfig.cmake ${PROJECT_BINARY_DIR}/stairplanConfigVersion.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/stairplan)
+
+# stairplan.pc for pkg-config: our archives, most dependent first, then the libraries of the
+# dependencies that cannot be in its Requires: MuJoCo has no .pc file, and FCL's and Ipopt's add
+# -std=c++11 to the cflags, which would override a consumer's -std=c++17. Those go in by path or
+# with the flags pkg-config gives here.
+set(STAIRPLAN_PC_LIBS "")
+set(pc_modules ${modules})
+list(REVERSE pc_modules)
+foreach(module ${pc_modules})
+  string(APPEND STAIRPLAN_PC_LIBS "-l${module} ")
+endforeach()
+pkg_check_modules(STAIRPLAN_PC_FCL QUIET fcl)
+if(NOT STAIRPLAN_PC_FCL_FOUND)
+  set(STAIRPLAN_PC_FCL_LDFLAGS "$<TARGET_LINKER_FILE:fcl>")
+endif()
+string(REPLACE ";" " " pc_dependency_libs "$<TARGET_LINKER_FILE:mujoco::mujoco>;${STAIRPLAN_PC_FCL_LDFLAGS};${IPOPT_LDFLAGS}")
+string(APPEND STAIRPLAN_PC_LIBS "${pc_dependency_libs}")
+file(RELATIVE_PATH STAIRPLAN_PC_PREFIX_FROM_PCDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+string(REGEX REPLACE "/$" "" STAIRPLAN_PC_PREFIX_FROM_PCDIR "${STAIRPLAN_PC_PREFIX_FROM_PCDIR}")
+configure_file(cmake/stairplan.pc.in ${PROJECT_BINARY_DIR}/stairplan.pc.in @ONLY)
+file(GENERATE OUTPUT ${PROJECT_BINARY_DIR}/stairplan.pc INPUT ${PROJECT_BINARY_DIR}/stairplan.pc.in)
+install(FILES ${PROJECT_BINARY_DIR}/stairplan.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+install(FILES LICENSE CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -201,13 +200,7 @@ PointCloud ParsePly(const std::string& bytes, const std::string& source) {
   return cloud;
 }
 
-PointCloud ReadPly(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FieldError(path, "cannot open the point cloud file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return ParsePly(buffer.str(), path);
-}
+PointCloud ReadPly(const std::string& path) { return ParsePly(ReadCloudFile(path), path); }
 
 std::string PlyBytes(const PointCloud& cloud, PlyFormat format, bool as_float) {
   std::ostringstream out;

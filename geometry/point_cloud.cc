@@ -1,9 +1,13 @@
 #include "geometry/point_cloud.h"
 
 #include <cctype>
+#include <fstream>
+#include <sstream>
 
 #include <Eigen/Geometry>
 
+#include "geometry/field_error.h"
+#include "geometry/pcd_io.h"
 #include "geometry/ply_io.h"
 #include "geometry/xyz_io.h"
 
@@ -31,11 +35,34 @@ PointCloud TransformCloud(const PointCloud& cloud, double yaw, const Eigen::Vect
   return out;
 }
 
-PointCloud ReadPointCloud(const std::string& path) {
+CloudFormat DetectCloudFormat(const std::string& bytes, const std::string& path) {
+  if (bytes.compare(0, 4, "ply\n") == 0 || bytes.compare(0, 5, "ply\r\n") == 0) return CloudFormat::kPly;
+  if (LooksLikePcd(bytes)) return CloudFormat::kPcd;
   const auto dot = path.rfind('.');
   std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == "ply" ? ReadPly(path) : ReadXyz(path);
+  if (ext == "ply") return CloudFormat::kPly;
+  if (ext == "pcd") return CloudFormat::kPcd;
+  return CloudFormat::kXyz;
 }
+
+PointCloud ParsePointCloud(const std::string& bytes, const std::string& source) {
+  switch (DetectCloudFormat(bytes, source)) {
+    case CloudFormat::kPly: return ParsePly(bytes, source);
+    case CloudFormat::kPcd: return ParsePcd(bytes, source);
+    case CloudFormat::kXyz: break;
+  }
+  return ParseXyz(bytes, source);
+}
+
+std::string ReadCloudFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FieldError(path, "cannot open the point cloud file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+PointCloud ReadPointCloud(const std::string& path) { return ParsePointCloud(ReadCloudFile(path), path); }
 
 }  // namespace stairplan

@@ -1,5 +1,5 @@
-// A point cloud: the raw 3-D points a depth sensor returns, in the world frame, and the readers
-// that load one from a file (PLY or whitespace XYZ text, chosen by the file's extension).
+// A point cloud: the raw 3-D points a depth sensor returns, in the world frame, and the reader
+// that loads one from a file (PLY, PCD or whitespace XYZ text, chosen by the file's content).
 #pragma once
 
 #include <string>
@@ -23,8 +23,21 @@ struct PointCloud {
 /// The cloud rotated by `yaw` about z, then translated: p_W = Rz(yaw) p + translation.
 PointCloud TransformCloud(const PointCloud& cloud, double yaw, const Eigen::Vector3d& translation);
 
-/// Reads a PLY file (`.ply`) or whitespace XYZ text (anything else). Errors are FieldError naming
-/// the file and the line (or the vertex of a binary PLY); a file with no points is an error.
+enum class CloudFormat { kPly, kPcd, kXyz };
+
+/// The format of a cloud file by its content: a "ply" first line, a PCD header (comments, then
+/// VERSION or FIELDS); failing both, the extension (`.ply`, `.pcd`: that reader's error then
+/// says what is wrong), else XYZ text.
+CloudFormat DetectCloudFormat(const std::string& bytes, const std::string& path);
+
+/// The bytes of a cloud file; a file that cannot be opened is a FieldError naming the path.
+std::string ReadCloudFile(const std::string& path);
+
+/// Parses a cloud in the format DetectCloudFormat finds; `source` names it in errors.
+PointCloud ParsePointCloud(const std::string& bytes, const std::string& source);
+
+/// Reads a PLY, PCD or XYZ file (ParsePointCloud). Errors are FieldError naming the file and the
+/// line, header field or point; a missing file or one with no points is an error.
 PointCloud ReadPointCloud(const std::string& path);
 
 }  // namespace stairplan

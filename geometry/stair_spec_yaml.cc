@@ -1,5 +1,6 @@
 #include "geometry/stair_spec_yaml.h"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -42,6 +43,26 @@ int ReadCount(const YAML::Node& node, const std::string& where) {
   const double value = ReadNumber(node, where);
   if (value != std::floor(value) || value < 1 || value > 200) throw FieldError(where, "must be a whole number from 1 to 200");
   return static_cast<int>(value);
+}
+
+// The shortest text that parses back to `value` (std::to_chars), so a written spec reads back equal.
+std::string Shortest(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string YamlList(const std::vector<double>& values) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + Shortest(values[i]);
+  return out + "]";
+}
+
+bool AllEqual(const std::vector<double>& values, double value) {
+  for (double v : values) {
+    if (v != value) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -101,6 +122,19 @@ StairSpec StairSpecFromYamlFile(const std::string& path, const StairSpec& defaul
   std::stringstream buffer;
   buffer << in.rdbuf();
   return StairSpecFromYaml(buffer.str(), path, defaults);
+}
+
+std::string StairSpecToYaml(const StairSpec& spec, const std::string& comment) {
+  std::ostringstream out;
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
+  out << "steps: " << spec.steps << "\nrise: " << Shortest(spec.rise) << "\nrun: " << Shortest(spec.run)
+      << "\nnosing: " << Shortest(spec.nosing) << "\nwidth: " << Shortest(spec.width)
+      << "\nlanding_before: " << Shortest(spec.landing_before) << "\nlanding_after: " << Shortest(spec.landing_after)
+      << "\nnosing_thickness: " << Shortest(spec.nosing_thickness) << "\ndirection: " << ToString(spec.direction) << "\n";
+  if (!AllEqual(spec.rises, spec.rise)) out << "rises: " << YamlList(spec.rises) << "\n";
+  if (!AllEqual(spec.runs, spec.run)) out << "runs: " << YamlList(spec.runs) << "\n";
+  return out.str();
 }
 
 }  // namespace stairplan

@@ -1,4 +1,4 @@
-// Reading a StairSpec from YAML. Keys: steps, rise, run, nosing, width, landing_before,
+// A StairSpec as YAML, read and written. Keys: steps, rise, run, nosing, width, landing_before,
 // landing_after, nosing_thickness, rises, runs, direction (up|down). Unknown keys are errors.
 #pragma once
 
@@ -14,6 +14,11 @@ StairSpec StairSpecFromYaml(const std::string& text, const std::string& source, 
 
 /// Reads and parses a YAML file; a missing or unreadable file is a FieldError naming the path.
 StairSpec StairSpecFromYamlFile(const std::string& path, const StairSpec& defaults = {});
+
+/// The YAML that StairSpecFromYaml reads back into `spec` exactly (shortest round-trip numbers).
+/// `rises` and `runs` are written only where a step differs from `rise` or `run`. Each line of
+/// `comment` becomes a leading "# " line.
+std::string StairSpecToYaml(const StairSpec& spec, const std::string& comment = "");
 
 /// Parses "up" / "down"; throws FieldError naming `field` otherwise.
 TravelDirection ParseDirection(const std::string& text, const std::string& field);

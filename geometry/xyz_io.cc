@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 #include "geometry/field_error.h"
@@ -42,13 +41,7 @@ PointCloud ParseXyz(const std::string& text, const std::string& source) {
   return cloud;
 }
 
-PointCloud ReadXyz(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FieldError(path, "cannot open the point cloud file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return ParseXyz(buffer.str(), path);
-}
+PointCloud ReadXyz(const std::string& path) { return ParseXyz(ReadCloudFile(path), path); }
 
 std::string XyzText(const PointCloud& cloud) {
   std::ostringstream out;

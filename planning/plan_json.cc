@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "planning/json_version.h"
+
 namespace stairplan {
 namespace {
 
@@ -122,25 +124,26 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
   }
   nlohmann::json timing = nlohmann::json::object();
   for (const auto& [stage, us] : plan.timing_us) timing[stage] = us;
-  return {{"robot", {{"name", plan.robot_name}, {"source", plan.robot_source}, {"legs", plan.legs}}},
-          {"stairs", StairsToJson(stairs)},
-          {"facing", ToString(plan.facing)},
-          {"map", MapToJson(map)},
-          {"gait", plan.gait},
-          {"cadence_s", plan.cadence_s},
-          {"hip_height_fraction", std::isfinite(plan.hip_height_fraction) ? nlohmann::json(plan.hip_height_fraction)
-                                                                          : nlohmann::json(nullptr)},
-          {"initial_feet", initial},
-          {"footsteps", footsteps},
-          {"body", body},
-          {"body_planner", ToString(plan.body_planner)},
-          {"body_cycles", BodyCyclesToJson(plan.body_cycles)},
-          {"duration_s", plan.duration()},
-          {"status", ToString(plan.status)},
-          {"status_reason", plan.status_reason},
-          {"timing_us", timing},
-          {"controllers", controllers},
-          {"selected", plan.selected}};
+  nlohmann::json out = {{"robot", {{"name", plan.robot_name}, {"source", plan.robot_source}, {"legs", plan.legs}}},
+                         {"stairs", StairsToJson(stairs)},
+                         {"facing", ToString(plan.facing)},
+                         {"map", MapToJson(map)},
+                         {"gait", plan.gait},
+                         {"cadence_s", plan.cadence_s},
+                         {"hip_height_fraction", std::isfinite(plan.hip_height_fraction) ? nlohmann::json(plan.hip_height_fraction)
+                                                                                         : nlohmann::json(nullptr)},
+                         {"initial_feet", initial},
+                         {"footsteps", footsteps},
+                         {"body", body},
+                         {"body_planner", ToString(plan.body_planner)},
+                         {"body_cycles", BodyCyclesToJson(plan.body_cycles)},
+                         {"duration_s", plan.duration()},
+                         {"status", ToString(plan.status)},
+                         {"status_reason", plan.status_reason},
+                         {"timing_us", timing},
+                         {"controllers", controllers},
+                         {"selected", plan.selected}};
+  return StampVersion(out);
 }
 
 }  // namespace stairplan

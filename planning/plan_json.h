@@ -16,7 +16,8 @@ namespace stairplan {
 nlohmann::json StairsToJson(const Staircase& stairs);
 /// The validator's report: ok, min_clearance_m, min_stability_margin_m, violations [{t, leg, kind, value, detail}].
 nlohmann::json ValidationToJson(const ValidationReport& report);
-/// The whole plan: robot, stairs, map regions, footsteps, body, cadence, status, timings.
+/// The whole plan: robot, stairs, map regions, footsteps, body, cadence, status, timings, and the
+/// version and schema_version of the writer.
 nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map);
 
 }  // namespace stairplan

@@ -10,6 +10,7 @@
 #include "geometry/field_error.h"
 #include "geometry/stair_spec_yaml.h"
 #include "planning/json_field_reader.h"
+#include "stairplan/version.h"
 
 namespace stairplan {
 namespace {
@@ -112,6 +113,11 @@ PlanFile ReadPlanJson(const std::string& text, const std::string& source) {
     throw std::invalid_argument(source + ": not valid JSON (a number too large for a double)");
   }
   if (!root.is_object()) throw std::invalid_argument(source + ": plan.json must be one JSON object");
+  // Files without the field predate it (schema 1); a newer schema may have changed what a key means.
+  if (root.contains("schema_version") && r.Number(root, "schema_version", "") > kSchemaVersion) {
+    r.Fail("schema_version", "the file has schema " + root["schema_version"].dump() + ", newer than this stairplan " + kVersion +
+                                 " reads (" + std::to_string(kSchemaVersion) + "); update stairplan");
+  }
   PlanFile file;
   Plan& plan = file.plan;
   const json& robot = r.At(root, "robot", "");

@@ -16,7 +16,8 @@ struct PlanFile {
   Facing facing = Facing::kForward;
 };
 
-/// Parses plan.json text. Throws std::invalid_argument "<source>: field '<path>': <problem>".
+/// Parses plan.json text. Throws std::invalid_argument "<source>: field '<path>': <problem>", also
+/// for a schema_version newer than kSchemaVersion.
 PlanFile ReadPlanJson(const std::string& text, const std::string& source);
 /// Reads and parses a plan.json file.
 PlanFile ReadPlanJsonFile(const std::string& path);

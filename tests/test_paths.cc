@@ -41,4 +41,12 @@ std::string ReadFile(const std::string& path) {
   return buffer.str();
 }
 
+StairplanRun RunStairplan(const std::string& dir, const std::string& args) {
+  StairplanRun run;
+  run.code = RunCommand(BinDir() + "/stairplan " + args, dir + "/stairplan.out", dir + "/stairplan.err");
+  run.out = ReadFile(dir + "/stairplan.out");
+  run.err = ReadFile(dir + "/stairplan.err");
+  return run;
+}
+
 }  // namespace stairplan::testing

@@ -20,4 +20,12 @@ int RunCommand(const std::string& command, const std::string& out_file, const st
 /// Reads a whole text file ("" when missing).
 std::string ReadFile(const std::string& path);
 
+/// What `stairplan ARGS` (this build's program) exited with and printed.
+struct StairplanRun {
+  int code = -1;
+  std::string out, err;
+};
+/// Runs this build's stairplan with `args`; its stdout and stderr go through files in `dir`.
+StairplanRun RunStairplan(const std::string& dir, const std::string& args);
+
 }  // namespace stairplan::testing

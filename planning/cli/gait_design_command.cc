@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,7 @@
 #include "planning/gait/feasibility_figure.h"
 #include "planning/gait/gait_design.h"
 #include "planning/gait/tread_error.h"
+#include "planning/json_version.h"
 
 namespace stairplan::cli {
 namespace {
@@ -25,13 +27,27 @@ nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 
 nlohmann::json StabilityJson(const CrawlStability& s) {
   nlohmann::json by_leg = nlohmann::json::object();
-  const char* names[4] = {"HR", "HL", "FR", "FL"};
+  const char* names[4] = {"RH", "LH", "RF", "LF"};  // CrawlStability's order
   for (std::size_t i = 0; i < 4; ++i) by_leg[names[i]] = s.fraction_outside_by_leg[i];
   nlohmann::json sequence = nlohmann::json::array();
   for (const char* leg : s.swing_sequence) sequence.push_back(leg);
   return {{"swing_sequence", sequence}, {"fraction_outside", s.fraction_outside},
           {"fraction_of_swing_time", s.fraction_of_swing_time}, {"fraction_outside_by_leg", by_leg},
           {"min_margin", Number(s.min_margin)}};
+}
+
+// An empty range is said to be empty, not printed as an interval.
+std::string ToleranceText(const TreadErrorTolerance& t) {
+  std::ostringstream text;
+  text << std::setprecision(4);
+  if (!std::isfinite(t.lower) || !std::isfinite(t.upper)) {
+    text << "none (undefined without D_s > 0)";
+  } else if (t.empty()) {
+    text << "none (eq. (17) needs dW > " << t.lower << " m and dW < " << t.upper << " m)";
+  } else {
+    text << t.lower << " < dW < " << t.upper << " m";
+  }
+  return text.str();
 }
 
 int RunGaitDesign(const std::vector<std::string>& args) {
@@ -78,7 +94,8 @@ int RunGaitDesign(const std::vector<std::string>& args) {
         {"CL", g.cl}, {"phi", g.phi}, {"l_min", g.l_min}, {"a_min", Number(g.a_min)}, {"a_max", Number(g.a_max)},
         {"D_s", Number(g.d_s)}, {"D_i", Number(g.d_i)}, {"D_o", Number(g.d_o)}, {"D_o_share", Number(g.d_o / g.cl)}, {"rem", g.rem},
         {"conditions", conditions}, {"feasible", g.feasible}, {"binding", g.binding},
-        {"error_tolerance", {{"dW_min", Number(tolerance.lower)}, {"dW_max", Number(tolerance.upper)}}}};
+        {"error_tolerance", {{"dW_min", Number(tolerance.lower)}, {"dW_max", Number(tolerance.upper)}, {"empty", tolerance.empty()}}}};
+    StampVersion(out);
     out["cumulative_error"] = nullptr;
     std::optional<CumulativeTreadError> cumulative;
     if (!tread_errors.empty()) {
@@ -121,7 +138,7 @@ int RunGaitDesign(const std::vector<std::string>& args) {
                   << c.slack << " m)\n";
       }
       std::cout << "  verdict: " << (g.feasible ? "feasible" : "infeasible") << ", binding " << g.binding << "\n"
-                << "  tread error tolerance: " << tolerance.lower << " < dW < " << tolerance.upper << " m\n";
+                << "  tread error tolerance: " << ToleranceText(tolerance) << "\n";
       if (cumulative) {
         std::cout << "  cumulative tread error over " << tread_errors.size() << " steps: "
                   << (cumulative->within() ? "within the tolerance"

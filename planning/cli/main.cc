@@ -4,11 +4,13 @@
 #include <vector>
 
 #include "planning/cli/cli_common.h"
+#include "stairplan/version.h"
 
 namespace {
 
 void PrintUsage(std::ostream& out) {
-  out << "usage: stairplan <command> [options]   (stairplan <command> --help for details)\n\ncommands:\n";
+  out << "usage: stairplan <command> [options]   (stairplan <command> --help for details)\n"
+      << "       stairplan --version\n\ncommands:\n";
   for (const auto& command : stairplan::cli::Commands()) {
     out << "  " << command.name << std::string(command.name.size() < 14 ? 14 - command.name.size() : 1, ' ')
         << command.summary << "\n";
@@ -25,6 +27,10 @@ int main(int argc, char** argv) {
   const std::string name = argv[1];
   if (name == "--help" || name == "-h" || name == "help") {
     PrintUsage(std::cout);
+    return stairplan::cli::kExitOk;
+  }
+  if (name == "--version" || name == "-V") {
+    std::cout << "stairplan " << stairplan::kVersion << " (file schema " << stairplan::kSchemaVersion << ")\n";
     return stairplan::cli::kExitOk;
   }
   for (const auto& command : stairplan::cli::Commands()) {

@@ -11,6 +11,7 @@
 #include "geometry/stair_perception.h"
 #include "geometry/stair_spec_yaml.h"
 #include "planning/cli/cli_common.h"
+#include "planning/json_version.h"
 
 namespace stairplan::cli {
 namespace {
@@ -143,6 +144,17 @@ std::string Svg(const StairPerception& p, const MapFromHeightMapSettings& s) {
   return out.str();
 }
 
+// The perceived stairs for `plan --stairs`; the comment places their frame in the cloud's.
+std::string StairsYaml(const PerceivedStairs& seen, const StairModel& model, const MapFromHeightMapSettings& s,
+                       const std::string& cloud_path) {
+  const Eigen::Vector3d origin = model.StairToWorld(Eigen::Vector3d::Zero(), s.travel, s.nosing);
+  std::ostringstream comment;
+  comment << "Stairs fitted by stairplan " << kVersion << " map from " << cloud_path << "; plan with: stairplan plan --stairs FILE\n"
+          << "In the cloud's frame this staircase's origin is (" << origin.x() << ", " << origin.y() << ", " << origin.z()
+          << ") m and its x axis heads " << model.TravelYaw(s.travel) << " rad.";
+  return StairSpecToYaml(seen.stairs.spec(), comment.str());
+}
+
 Facing ParseFacingFlag(const std::string& text) {
   if (text == "forward") return Facing::kForward;
   if (text == "backward") return Facing::kBackward;
@@ -152,14 +164,20 @@ Facing ParseFacingFlag(const std::string& text) {
 int RunMap(const std::vector<std::string>& args) {
   CLI::App app("Map stairs from a point cloud: height map, fitted stairs, constrained map.\n"
                "Exit 0 when stairs were found, 3 when the cloud is not stairs, 2 on bad input.", "map");
-  std::string cloud_path, svg_path, direction = "up", facing = "forward";
+  std::string cloud_path, svg_path, stairs_out, direction = "up", facing = "forward";
   double resolution = 0.02;
   bool json = false;
-  app.add_option("--cloud", cloud_path, "Point cloud: .ply (ascii or binary little-endian) or x y z text")->required();
+  app.add_option("--cloud", cloud_path,
+                 "Point cloud: PLY (ascii or binary little-endian), PCD (ascii, binary or binary_compressed) or x y z "
+                 "text, told apart by the content")
+      ->required();
   app.add_option("--direction", direction, "How the robot will traverse the stairs: up or down (default up)");
   app.add_option("--facing", facing, "forward or backward (default forward)");
   app.add_option("--resolution", resolution, "Height-map cell size [m] (default 0.02)");
   app.add_option("--svg", svg_path, "Write a top view of the map to this SVG file");
+  app.add_option("--stairs-out", stairs_out,
+                 "Write the fitted stairs as the YAML that `stairplan plan --stairs` reads (in the stairs' own frame; "
+                 "a comment says where that frame lies in the cloud's)");
   app.add_flag("--json", json, "Print JSON (keys cloud, height_map, stairs, map) instead of the summary");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("map", [&] {
@@ -184,7 +202,9 @@ int RunMap(const std::vector<std::string>& args) {
         {"stairs", StairsJson(p.fit)},
         {"reason", p.fit.reason},
         {"map", p.stairs ? MapJson(*p.stairs, p.fit.model, settings.regions) : nlohmann::json(nullptr)}};
+    StampVersion(out);
     if (!svg_path.empty()) WriteFileAtomically(svg_path, Svg(p, settings.regions));
+    if (!stairs_out.empty() && p.stairs) WriteFileAtomically(stairs_out, StairsYaml(*p.stairs, p.fit.model, settings.regions, cloud_path));
     if (json) {
       std::cout << out.dump(2) << "\n";
     } else {
@@ -206,6 +226,7 @@ int RunMap(const std::vector<std::string>& args) {
         std::cout << "  stairs:     none (" << p.fit.reason << ")\n";
       }
       if (!svg_path.empty()) std::cout << "  wrote:      " << svg_path << "\n";
+      if (!stairs_out.empty() && p.stairs) std::cout << "  wrote:      " << stairs_out << "\n";
     }
     return p.fit.found ? kExitOk : kExitInfeasible;
   });

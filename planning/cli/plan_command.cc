@@ -39,7 +39,7 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
   app.add_option("--horizon", o.horizon, "Knots of the body QP's horizon, 25 ms apart (implies --body qp; default 40)");
   app.add_option("--nlp", o.nlp, "Refine the QP body with the exact NLP: ipopt or nlopt (implies --body qp)");
   app.add_option("--cloud", o.cloud,
-                 "Plan on the stairs perceived in this point cloud (PLY or XYZ; the stairs flags are ignored)");
+                 "Plan on the stairs perceived in this point cloud (PLY, PCD or XYZ; the stairs flags are ignored)");
   app.add_option("--planner", o.planner,
                  "crawl: the step planner picks the cadence, feet at step-region centres (default); "
                  "step: the step planner's own footsteps; "

@@ -15,6 +15,11 @@
 #include "planning/cli/cli_common.h"
 #include "planning/cli/qp_bench.h"
 #include "planning/optim/clp_solver.h"
+#include "planning/json_version.h"
+#include "planning/optim/active_set_qp_solver.h"
+#include "planning/optim/ipopt_solver.h"
+#include "planning/optim/nlopt_solver.h"
+#include "planning/optim/oqp_reader.h"
 #include "planning/optim/qps_reader.h"
 #include "planning/optim/solver.h"
 
@@ -54,7 +59,7 @@ int RunSolve(const std::string& file, const std::string& solver_name, bool json,
     out["solve_time_us"] = r.info.solve_time_us;
     out["max_violation"] = violation;
     out["x"] = std::vector<double>(r.x.data(), r.x.data() + r.x.size());
-    std::cout << out.dump(2) << "\n";
+    std::cout << StampVersion(out).dump(2) << "\n";
   } else {
     std::cout << "stairplan qp solve: " << file << " (" << qp.program.num_variables() << " variables, "
               << qp.program.num_rows() << " rows)\n"

@@ -7,6 +7,7 @@
 
 #include "geometry/field_error.h"
 #include "planning/cli/cli_common.h"
+#include "planning/json_version.h"
 #include "planning/cli/stair_flags.h"
 #include "planning/robustness.h"
 
@@ -42,11 +43,10 @@ int RunRobustness(const std::vector<std::string>& args) {
       throw BadInput("--" + flag + ": " + e.problem());
     }
     if (json) {
-      std::cout << nlohmann::json{{"trials", report.trials}, {"nominal_valid", report.nominal_valid == 1},
-                                  {"open_loop_ok", report.open_loop_ok}, {"replanned_ok", report.replanned_ok},
-                                  {"worst_cumulative_run_error_m", report.worst_cumulative_run_error}}
-                       .dump(2)
-                << "\n";
+      nlohmann::json out = {{"trials", report.trials}, {"nominal_valid", report.nominal_valid == 1},
+                            {"open_loop_ok", report.open_loop_ok}, {"replanned_ok", report.replanned_ok},
+                            {"worst_cumulative_run_error_m", report.worst_cumulative_run_error}};
+      std::cout << StampVersion(out).dump(2) << "\n";
     } else {
       std::cout << "stairplan robustness: nominal plan " << (report.nominal_valid ? "valid" : "INVALID") << "; over "
                 << report.trials << " perturbed staircases (sigma rise " << settings.sigma_rise << " m, run "

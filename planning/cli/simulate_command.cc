@@ -1,5 +1,6 @@
-// `stairplan simulate plan.json`: execute a plan in MuJoCo on the stairs it names and print the
-// physics outcome as JSON (exit 0 when the robot got there cleanly, 3 when it did not).
+// `stairplan simulate plan.json`: execute a plan in MuJoCo on the stairs it names and print a
+// summary of the physics outcome, or with --json the outcome as JSON (exit 0 when the robot got
+// there cleanly, 3 when it did not).
 #include <csignal>
 #include <cstdio>
 #include <memory>
@@ -7,6 +8,7 @@
 #include <sstream>
 
 #include "planning/cli/cli_common.h"
+#include "planning/json_version.h"
 #include "planning/plan_json_reader.h"
 #include "planning/simulation/plan_executor.h"
 #include "planning/simulation/offscreen_renderer.h"
@@ -69,10 +71,11 @@ class Renderings {
 };
 
 int RunSimulate(const std::vector<std::string>& args) {
-  CLI::App app("Execute a plan in MuJoCo and report what happened (JSON)", "simulate");
+  CLI::App app("Execute a plan in MuJoCo and report what happened", "simulate");
   std::string path, robot_path, frames_dir, video, out, trace;
   std::vector<std::string> overrides;
   double frame_ms = 100.0, friction = 0.8, video_speed = 1.0;
+  bool print_json = false;
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
   app.add_option("--video", video, "Render the run with MuJoCo's renderer offscreen (EGL) into this mp4 (ffmpeg)");
@@ -89,6 +92,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   app.add_option("--set", overrides,
                  "Override a simulation setting, name=value (e.g. kp_per_kg=10; time_scale=3 replays 3x slower than planned)");
   app.add_option("--trace", trace, "Write a CSV of the base (measured and planned) every --frame-ms");
+  app.add_flag("--json", print_json, "Print the outcome as JSON (the --out file's contents) instead of the summary");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("simulate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
@@ -132,21 +136,25 @@ int RunSimulate(const std::vector<std::string>& args) {
                        {"fps", video_speed / settings.frame_interval},
                        {"duration_s", renderings.frames() * settings.frame_interval / video_speed}};
     }
-    const std::string text = json.dump(2) + "\n";
+    const std::string text = StampVersion(json).dump(2) + "\n";
     if (!out.empty() && frame_option->count() > 0) {
-      nlohmann::json with_frames = json;
+      nlohmann::json with_frames = StampVersion(json);
       with_frames["frames"] = SimFramesToJson(outcome.frames);
       WriteFileAtomically(out, with_frames.dump() + "\n");
     } else if (!out.empty()) {
       WriteFileAtomically(out, text);
     }
-    std::cout << text;
-    std::cerr << "stairplan simulate: " << path << ": " << ToString(outcome.status)
-              << (outcome.Passed() ? "" : " (" + outcome.FirstCause() + ")") << "; " << outcome.landings.size()
-              << " landings, max error " << outcome.MaxLandingError() * 1000 << " mm; peak torque "
-              << outcome.max_torque_ratio * 100 << "% of the limit; time_scale " << outcome.time_scale
-              << ", plan ZMP margin " << outcome.plan_zmp_margin_m * 1000 << " mm; real-time factor "
-              << outcome.real_time_factor << "\n";
+    if (print_json) {
+      std::cout << text;
+    } else {
+      std::cout << "stairplan simulate: " << path << ": " << ToString(outcome.status)
+                << (outcome.Passed() ? "" : " (" + outcome.FirstCause() + ")") << "; " << outcome.landings.size()
+                << " landings, max error " << outcome.MaxLandingError() * 1000 << " mm; peak torque "
+                << outcome.max_torque_ratio * 100 << "% of the limit; time_scale " << outcome.time_scale
+                << ", plan ZMP margin " << outcome.plan_zmp_margin_m * 1000 << " mm; real-time factor "
+                << outcome.real_time_factor << "\n";
+      if (!out.empty()) std::cout << "  wrote: " << out << "\n";
+    }
     return outcome.Passed() ? kExitOk : kExitInfeasible;
   });
 }

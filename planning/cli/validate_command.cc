@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "planning/cli/cli_common.h"
+#include "planning/json_version.h"
 #include "planning/plan_json.h"
 #include "planning/plan_json_reader.h"
 #include "planning/plan_pipeline.h"
@@ -26,7 +27,8 @@ int RunValidate(const std::vector<std::string>& args) {
     TraversalValidator validator(robot, stairs, map, options.validation);
     const ValidationReport report = validator.Validate(file.plan);
     if (json) {
-      std::cout << ValidationToJson(report).dump(2) << "\n";
+      nlohmann::json out = ValidationToJson(report);
+      std::cout << StampVersion(out).dump(2) << "\n";
     } else {
       std::cout << "stairplan validate: " << path << ": " << (report.ok ? "valid" : "INVALID") << ", "
                 << report.samples << " instants, min clearance " << report.min_clearance_m * 1000

@@ -68,10 +68,10 @@ CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDe
   if (samples < 4) throw std::invalid_argument("EvaluateCrawlStability: samples must be >= 4");
   const bool switched = arrangement == CrawlCase::kFrontSwitched;
   const std::array<CrawlLeg, 4> legs = {{
-      {"HR", 0.0, -1.0, g.a_min},
-      {"HL", 0.0, 1.0, g.a_max},
-      {"FR", input.body_length, -1.0, switched ? g.a_max : g.a_min},
-      {"FL", input.body_length, 1.0, switched ? g.a_min : g.a_max},
+      {"RH", 0.0, -1.0, g.a_min},
+      {"LH", 0.0, 1.0, g.a_max},
+      {"RF", input.body_length, -1.0, switched ? g.a_max : g.a_min},
+      {"LF", input.body_length, 1.0, switched ? g.a_min : g.a_max},
   }};
   const double cos_phi = std::cos(g.phi);
   const double sin_phi = std::sin(g.phi);

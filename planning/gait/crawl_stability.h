@@ -21,14 +21,15 @@ enum class CrawlCase { kRightFirst = 1, kFrontSwitched = 2 };
 /// The stability estimate for one arrangement.
 struct CrawlStability {
   CrawlCase arrangement = CrawlCase::kRightFirst;
-  /// Legs in the order they swing within one cycle, starting with the hind right leg.
+  /// Legs in the order they swing within one cycle, starting with the right hind leg (names as
+  /// everywhere in stairplan: LF, RF, LH, RH).
   std::array<const char*, 4> swing_sequence{};
   /// Fraction of a cycle with the COM outside the support polygon (two legs in the air counts
   /// as outside) [0, 1].
   double fraction_outside = 0.0;
   /// The same as a share of the time some leg is in the air (4 D_i of each CL) [0, 1].
   double fraction_of_swing_time = 0.0;
-  /// The same split by the swinging leg, in the order HR, HL, FR, FL.
+  /// The same split by the swinging leg, in the order RH, LH, RF, LF.
   std::array<double, 4> fraction_outside_by_leg{};
   /// The smallest stability margin over the cycle: the COM's distance to the nearest edge line of
   /// the support polygon, negative when outside [m]. Unlike the fraction, it scales with the body

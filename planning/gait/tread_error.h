@@ -15,6 +15,8 @@ struct TreadErrorTolerance {
   double upper = 0.0;
   /// Eq. (17)'s right side with b = a_max (the left foot's contact offset) and D_s from eq. (18).
   double lower = 0.0;
+  /// No error is tolerated: eq. (17) gives lower >= upper, or the bounds are NaN (no D_s > 0).
+  bool empty() const { return !(lower < upper); }
 };
 
 /// Eq. (17) for the design's stairs, leg and hip clearance. The paper's example (W = 27 cm,

@@ -34,8 +34,8 @@ std::string Sequence(const CrawlStability& s) {
 TEST_CASE("the swing sequences of the paper's two arrangements", "[gait]") {
   const GaitDesignInput in = Paper();
   const GaitDesign g = DesignGait(in);
-  CHECK(Sequence(EvaluateCrawlStability(in, g, CrawlCase::kRightFirst)) == "HR,HL,FR,FL");
-  CHECK(Sequence(EvaluateCrawlStability(in, g, CrawlCase::kFrontSwitched)) == "HR,HL,FL,FR");
+  CHECK(Sequence(EvaluateCrawlStability(in, g, CrawlCase::kRightFirst)) == "RH,LH,RF,LF");
+  CHECK(Sequence(EvaluateCrawlStability(in, g, CrawlCase::kFrontSwitched)) == "RH,LH,LF,RF");
 }
 
 TEST_CASE("stability: fractions are consistent and the COM only leaves during swings", "[gait]") {

@@ -30,7 +30,7 @@ TEST_CASE("gait-design --json: the paper's robot on its stairs", "[gait][cli]") 
   CHECK(j["D_o"].get<double>() == Approx(1.58 * 0.05737).margin(0.00002));
   CHECK(j["feasible"].get<bool>());
   CHECK_FALSE(j["binding"].get<std::string>().empty());
-  CHECK(j["swing_sequence"] == nlohmann::json({"HR", "HL", "FR", "FL"}));
+  CHECK(j["swing_sequence"] == nlohmann::json({"RH", "LH", "RF", "LF"}));
   CHECK(j["error_tolerance"]["dW_max"].get<double>() == Approx(0.029).margin(0.0005));
   CHECK(j["stability"]["case1"]["fraction_outside"].get<double>() > 0.0);
   // Ours, not the paper's 27.3 % and 30 %: third_party_notes/chen2012_stair_climbing.md.
@@ -88,4 +88,22 @@ TEST_CASE("gait-design --tread-errors: the cumulative error of eq. (19)", "[gait
   CHECK(j["cumulative_error"]["first_violation"] == -1);
   CHECK(Run(base + "0.01,abc", &out, &err) == 2);
   CHECK_THAT(err, Catch::Contains("--tread-errors"));
+}
+
+TEST_CASE("gait-design: an empty tread-error range is said to be empty, not printed as an interval", "[gait][cli]") {
+  std::string out, err;
+  // Eq. (17) needs dW > -0.0205 m and dW < -0.0719 m here: no tread error is tolerated.
+  const std::string flags = "--rise 0.10 --run 0.15 --lmax 0.2 --body-length 0.5 --hip-clearance 0.1";
+  CHECK(Run(flags + " --json", &out, &err) == 3);
+  auto j = nlohmann::json::parse(out);
+  CHECK(j["error_tolerance"]["empty"] == true);
+  CHECK(j["error_tolerance"]["dW_min"].get<double>() > j["error_tolerance"]["dW_max"].get<double>());
+  CHECK(Run(flags, &out, &err) == 3);
+  CHECK_THAT(out, Catch::Contains("tread error tolerance: none (eq. (17) needs dW > -0.02052 m and dW < -0.07194 m)"));
+  CHECK_THAT(out, !Catch::Contains("< dW <"));
+  // Without D_s > 0 there is no range at all; the paper's own stairs have one.
+  CHECK(Run("--rise 0.17 --run 0.27 --lmax 0.18 --body-length 0.444", &out, &err) == 3);
+  CHECK_THAT(out, Catch::Contains("tread error tolerance: none (undefined without D_s > 0)"));
+  CHECK(Run("--rise 0.17 --run 0.27 --lmax 0.21 --body-length 0.444 --json", &out, &err) == 0);
+  CHECK(nlohmann::json::parse(out)["error_tolerance"]["empty"] == false);
 }

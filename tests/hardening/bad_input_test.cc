@@ -172,6 +172,7 @@ std::vector<BadCase> Table() {
   t.push_back({"huge", "qp", "seq/dims.oqp", "1e300 2 1 0\n", "qp bench {dir}/seq --csv {dir}/b.csv", {"dims.oqp"}, {"b.csv", "b.csv.tmp"}});
   t.push_back({"huge", "qp", "seq/dims.oqp", "100000 100000 100000 0\n", "qp bench {dir}/seq --csv {dir}/b.csv", {"dims.oqp"}, {"b.csv", "b.csv.tmp"}});
   t.push_back({"huge", "validate", "p.json", EditPlan(plan, "\"stair_index\":", "\"stair_index\": 1e300, \"x0\":"), "validate {file} --json", {"{file}", "stair_index"}, {}});
+  t.push_back({"huge", "validate", "p.json", EditPlan(plan, "\"cadence_s\":", "\"schema_version\": 99, \"cadence_s\":"), "validate {file} --json", {"{file}", "schema_version"}, {}});
 
   // gait-design: flags only.
   const std::string gait = "gait-design --json --run 0.27 --lmax 0.6 --body-length 0.6 ";
@@ -198,6 +199,20 @@ std::vector<BadCase> Table() {
   t.push_back({"empty", "map", "c.xyz", "", map, {"{file}"}, map_out});
   t.push_back({"wrong-type", "map", "c.xyz", kCsvGood, map, {"{file}"}, map_out});
   t.push_back({"huge", "map", "c.xyz", "0 0 0\n0.1 0 0\n0.2 0 0.17\n", "map --json --resolution 1e-9 --svg {dir}/m.svg --cloud {file}", {"--resolution"}, map_out});
+  // map and plan --cloud: PCD clouds (header, binary data, LZF block).
+  using namespace std::string_literals;
+  const auto pcd = [](const std::string& points, const std::string& data) {
+    return "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " + points + "\nHEIGHT 1\nPOINTS " + points +
+           "\nDATA " + data + "\n";
+  };
+  t.push_back({"malformed", "map", "c.pcd", "VERSION 0.7\nFIELDS x y z rgb\nSIZE 4 4 4\nTYPE F F F U\nPOINTS 1\nDATA ascii\n1 2 3 4\n", map, {"{file}", "SIZE"}, map_out});
+  t.push_back({"truncated", "map", "c.pcd", pcd("10", "binary") + "\x01\x02\x03\x04\x05\x06\x07", map, {"{file}", "DATA binary"}, map_out});
+  t.push_back({"malformed", "map", "c.pcd", pcd("1", "binary_compressed") + "\x03\0\0\0\x0c\0\0\0\x3f\0\0"s, map, {"{file}", "binary_compressed", "corrupt"}, map_out});
+  t.push_back({"nan", "map", "c.pcd", pcd("2", "ascii") + "nan nan nan\nnan 0 nan\n", map, {"{file}", "no finite points"}, map_out});
+  t.push_back({"huge", "map", "c.pcd", pcd("4000000000", "binary_compressed") + "\x03\0\0\0\x0c\0\0\0\x3f\0\0"s, map, {"{file}", "POINTS"}, map_out});
+  t.push_back({"empty", "map", "c.pcd", "", map, {"{file}"}, map_out});
+  t.push_back({"wrong-type", "map", "c.pcd", kYamlGood, map, {"{file}"}, map_out});
+  t.push_back({"truncated", "plan", "c.pcd", pcd("10", "binary") + "\x01\x02", "plan --cloud {file} --out {dir}/out", {"{file}", "DATA binary"}, plan_out});
 
   // footfalls: CSV.
   t.push_back({"malformed", "footfalls", "f.csv", "t,leg,x,y,z\n0.0,LF,0.3;0.15;0\n", "footfalls --json {file}", {"{file}", "line 2"}, {}});

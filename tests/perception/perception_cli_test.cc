@@ -15,10 +15,10 @@
 #include "test_paths.h"
 
 using namespace stairplan;
-using stairplan::testing::BinDir;
 using stairplan::testing::MakeTempDir;
 using stairplan::testing::ReadFile;
-using stairplan::testing::RunCommand;
+using stairplan::testing::RunStairplan;
+using stairplan::testing::StairplanRun;
 
 namespace {
 
@@ -28,19 +28,6 @@ std::string Write(const std::string& dir, const std::string& name, const std::st
   return path;
 }
 
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
-
-Run Stairplan(const std::string& dir, const std::string& args) {
-  Run r;
-  r.code = RunCommand(BinDir() + "/stairplan " + args, dir + "/out", dir + "/err");
-  r.out = ReadFile(dir + "/out");
-  r.err = ReadFile(dir + "/err");
-  return r;
-}
-
 }  // namespace
 
 TEST_CASE("stairplan map: fitted stairs and the constrained map of a camera cloud", "[cli][perception]") {
@@ -48,7 +35,7 @@ TEST_CASE("stairplan map: fitted stairs and the constrained map of a camera clou
   const double yaw = 0.4;
   const auto scene = stairplan::testing::ScanFromBottom(Staircase(StairSpec{}), yaw, Eigen::Vector3d(2.0, 1.0, 0.0), 0.005, 3);
   const std::string cloud = Write(dir, "stairs.ply", PlyBytes(scene.cloud, PlyFormat::kBinaryLittleEndian, true));
-  const Run r = Stairplan(dir, "map --cloud " + cloud + " --json --svg " + dir + "/map.svg");
+  const StairplanRun r = RunStairplan(dir, "map --cloud " + cloud + " --json --svg " + dir + "/map.svg");
   INFO(r.err);
   REQUIRE(r.code == 0);
   const auto json = nlohmann::json::parse(r.out);
@@ -62,7 +49,7 @@ TEST_CASE("stairplan map: fitted stairs and the constrained map of a camera clou
   CHECK(json["height_map"]["occluded"].get<int>() > 0);
   CHECK_THAT(ReadFile(dir + "/map.svg"), Catch::StartsWith("<svg"));
   // The summary names the same stairs.
-  const Run text = Stairplan(dir, "map --cloud " + cloud + " --direction down --facing backward");
+  const StairplanRun text = RunStairplan(dir, "map --cloud " + cloud + " --direction down --facing backward");
   CHECK(text.code == 0);
   CHECK_THAT(text.out, Catch::Contains("7 steps"));
 }
@@ -74,7 +61,7 @@ TEST_CASE("stairplan map: a flat floor is not stairs (exit 3, stairs null)", "[c
     for (double y = -0.5; y < 0.5; y += 0.02) floor.points.emplace_back(x, y, 0.001 * std::sin(37.0 * x * y));
   }
   const std::string cloud = Write(dir, "floor.xyz", XyzText(floor));
-  const Run r = Stairplan(dir, "map --cloud " + cloud + " --json");
+  const StairplanRun r = RunStairplan(dir, "map --cloud " + cloud + " --json");
   REQUIRE(r.code == 3);
   const auto json = nlohmann::json::parse(r.out);
   CHECK(json["stairs"].is_null());
@@ -100,14 +87,14 @@ TEST_CASE("stairplan map: bad clouds exit 2 naming the file and the line", "[cli
   };
   for (const auto& c : cases) {
     const std::string path = Write(dir, c.name, c.contents);
-    const Run r = Stairplan(dir, "map --cloud " + path);
+    const StairplanRun r = RunStairplan(dir, "map --cloud " + path);
     INFO(c.name << ": " << r.err);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Catch::Contains(dir + "/" + c.expected));
   }
-  CHECK(Stairplan(dir, "map --cloud " + dir + "/missing.ply").code == 2);
-  CHECK(Stairplan(dir, "map").code == 2);
-  CHECK(Stairplan(dir, "map --cloud " + dir + "/bad_row.xyz --direction sideways").code == 2);
+  CHECK(RunStairplan(dir, "map --cloud " + dir + "/missing.ply").code == 2);
+  CHECK(RunStairplan(dir, "map").code == 2);
+  CHECK(RunStairplan(dir, "map --cloud " + dir + "/bad_row.xyz --direction sideways").code == 2);
 }
 
 TEST_CASE("stairplan footfalls: the loop's four staircases as JSON", "[cli][perception]") {
@@ -115,7 +102,7 @@ TEST_CASE("stairplan footfalls: the loop's four staircases as JSON", "[cli][perc
   FootfallWalkSettings walk;
   walk.sigma = 0.01;
   const std::string csv = Write(dir, "walk.csv", FootfallCsv(WalkFootfalls(stairplan::testing::TwoUpTwoDownLoop(), walk)));
-  const Run r = Stairplan(dir, "footfalls " + csv + " --json");
+  const StairplanRun r = RunStairplan(dir, "footfalls " + csv + " --json");
   INFO(r.err);
   REQUIRE(r.code == 0);
   const auto json = nlohmann::json::parse(r.out);
@@ -131,7 +118,7 @@ TEST_CASE("stairplan footfalls: the loop's four staircases as JSON", "[cli][perc
     CHECK(staircases[i]["run"].get<double>() > 0.25);
     CHECK(staircases[i]["direction"].size() == 2u);
   }
-  const Run text = Stairplan(dir, "footfalls " + csv);
+  const StairplanRun text = RunStairplan(dir, "footfalls " + csv);
   CHECK(text.code == 0);
   CHECK_THAT(text.out, Catch::Contains("4 staircases"));
 }
@@ -139,12 +126,12 @@ TEST_CASE("stairplan footfalls: the loop's four staircases as JSON", "[cli][perc
 TEST_CASE("stairplan footfalls: a CSV with a bad row exits 2 naming the file and the line", "[cli][perception][errors]") {
   const std::string dir = MakeTempDir("footfalls-bad");
   const std::string csv = Write(dir, "bad.csv", "t,leg,x,y,z\n0,LF,0,0,0\n0.5,RF,0,0.3\n");
-  const Run r = Stairplan(dir, "footfalls " + csv);
+  const StairplanRun r = RunStairplan(dir, "footfalls " + csv);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains(csv + ": line 3"));
-  const Run empty = Stairplan(dir, "footfalls " + Write(dir, "empty.csv", ""));
+  const StairplanRun empty = RunStairplan(dir, "footfalls " + Write(dir, "empty.csv", ""));
   CHECK(empty.code == 2);
   CHECK_THAT(empty.err, Catch::Contains("empty.csv: line 1"));
-  CHECK(Stairplan(dir, "footfalls " + dir + "/missing.csv").code == 2);
-  CHECK(Stairplan(dir, "footfalls " + csv + " --min-rise -1").code == 2);
+  CHECK(RunStairplan(dir, "footfalls " + dir + "/missing.csv").code == 2);
+  CHECK(RunStairplan(dir, "footfalls " + csv + " --min-rise -1").code == 2);
 }

@@ -26,7 +26,7 @@ def main():
     assert r.returncode == 0, r.stderr
     video = os.path.join(work, "climb.mp4")
     r = subprocess.run([binary, "simulate", os.path.join(work, "plan.json"), "--video", video, "--frame-ms", str(FRAME_MS),
-                        "--video-speed", str(SPEED)], capture_output=True, text=True, timeout=600)
+                        "--video-speed", str(SPEED), "--json"], capture_output=True, text=True, timeout=600)
     if "offscreen rendering:" in r.stderr:
         print("SKIP: " + r.stderr.strip())
         return SKIP
