@@ -7,6 +7,7 @@
 
 #include <fstream>
 
+#include "planning/simulation/sweep_physics.h"
 #include "planning/sweep/sweep_manifest.h"
 #include "planning/sweep/sweep_runner.h"
 #include "sanitized.h"
@@ -84,7 +85,9 @@ TEST_CASE("mpirun -np 3 sweep writes the single process's CSV", "[sweep][cli][mp
 TEST_CASE("sweep-merge refuses a missing, a duplicated and a foreign shard, naming the file", "[sweep][cli]") {
   const std::string dir = MakeTempDir("sweep-merge-refusals");
   // Shard files as sweep writes them, of a sweep that is never planned: the merge checks them only.
-  const auto write = [&](const std::string& name, const std::string& rise, const stairplan::Shard& shard) {
+  // With `physics`, as `sweep --simulate` writes them: a physics CSV beside each.
+  const auto write = [&](const std::string& name, const std::string& rise, const stairplan::Shard& shard,
+                         bool physics = false) {
     stairplan::SweepGrid grid;
     grid.rise = stairplan::SweepAxis::Parse(rise, "rise");
     grid.run = {0.26, 0.26, 1};
@@ -94,9 +97,22 @@ TEST_CASE("sweep-merge refuses a missing, a duplicated and a foreign shard, nami
       row.status = "valid";
       return row;
     }, 1, shard);
-    const auto manifest = stairplan::SweepManifest::Current(stairplan::SweepTable::kPlans, grid, "fake", "simulate=no", shard);
-    const std::string text = manifest.ToText() + stairplan::SweepToCsv(rows, false);
-    std::ofstream(dir + "/" + name) << text;
+    const std::string settings = physics ? "simulate=yes" : "simulate=no";
+    const auto manifest = [&](stairplan::SweepTable table) {
+      return stairplan::SweepManifest::Current(table, grid, "fake", settings, shard).ToText();
+    };
+    std::ofstream(dir + "/" + name) << manifest(stairplan::SweepTable::kPlans) + stairplan::SweepToCsv(rows, false);
+    if (!physics) return;
+    std::string text = manifest(stairplan::SweepTable::kPhysics) + stairplan::PhysicsCsvHeader() + "\n";
+    for (const auto& r : rows) {
+      stairplan::PhysicsRow p;
+      p.index = r.point.index;
+      p.validator = "valid";
+      p.status = "success";
+      p.passed = p.index % 2 == 0;
+      text += stairplan::PhysicsCsvLine(p) + "\n";
+    }
+    std::ofstream(dir + "/" + name + ".physics.csv") << text;
   };
   write("a.csv", "0.1:0.2:4", {0, 2});
   write("b.csv", "0.1:0.2:4", {1, 2});
@@ -112,6 +128,16 @@ TEST_CASE("sweep-merge refuses a missing, a duplicated and a foreign shard, nami
   CHECK_THAT(ReadFile(dir + "/err.txt"), Catch::Contains("b_again.csv: shard 1/2 given twice"));
   CHECK(ScaleRun(merge + "a.csv " + dir + "/other.csv", dir) == 2);
   CHECK_THAT(ReadFile(dir + "/err.txt"), Catch::Contains("other.csv: a different sweep from") && Catch::Contains("rise: '0.1:0.2:5'"));
+  // --simulate shards: their physics CSVs are merged beside the plans.
+  write("sa.csv", "0.1:0.2:4", {0, 2}, true);
+  write("sb.csv", "0.1:0.2:4", {1, 2}, true);
+  REQUIRE(ScaleRun(merge + "sb.csv " + dir + "/sa.csv", dir) == 0);
+  const std::string physics = ReadFile(dir + "/m.csv.physics.csv");
+  CHECK(ScaleDataRows(physics) == 4);
+  CHECK_THAT(physics, Catch::Contains("# table: physics") && Catch::Contains("# shard: 0/1"));
+  CHECK_THAT(ReadFile(dir + "/out.txt"), Catch::Contains("2 both ok"));
+  CHECK(ScaleRun(merge + "sa.csv " + dir + "/b.csv", dir) == 2);  // a --simulate shard and a plain one
+  CHECK_THAT(ReadFile(dir + "/err.txt"), Catch::Contains("b.csv: a different sweep from") && Catch::Contains("settings"));
 }
 
 TEST_CASE("an atlas sweeps each robot and writes its heatmaps and the summary table", "[sweep][cli]") {
