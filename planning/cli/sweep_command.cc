@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -137,85 +138,64 @@ std::string SettingsText(const SweepOptions& o) {
   return s.str();
 }
 
-// Runs one robot's sweep; on rank 0 (or without MPI) returns the rows of the finished CSV.
-std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const SweepGrid& grid, const Shard& shard,
-                                                SweepCluster* cluster, const SweepJob& job) {
-  const bool coordinator = cluster == nullptr || cluster->Rank() == 0;
-  const std::vector<SweepPoint> points = EnumeratePoints(grid);
-  std::optional<RobotModel> robot;
-  std::unique_ptr<SweepJournal> plans, physics_journal;
-  const SweepPhysics physics_settings;
-  try {
-    robot.emplace(LoadRobot(job.robot_path));
-    if (coordinator) {
-      const std::string identity = RobotIdentity(job.robot_path, *robot);
-      const auto manifest = [&](SweepTable table) {
-        return SweepManifest::Current(table, grid, identity, SettingsText(o), shard);
-      };
-      plans = std::make_unique<SweepJournal>(job.csv, manifest(SweepTable::kPlans), SweepCsvHeader(o.times), o.resume);
-      if (o.simulate) {
-        physics_journal = std::make_unique<SweepJournal>(job.csv + ".physics.csv", manifest(SweepTable::kPhysics),
-                                                         PhysicsCsvHeader(), o.resume);
-        physics_journal->RetainOnly(plans->lines());  // a point whose row was lost is simulated again
-        physics_journal->Open();
-      }
-      plans->Open();
-    }
-  } catch (...) {
-    if (cluster != nullptr) cluster->AllReady(false);
-    throw;
-  }
-  if (cluster != nullptr && !cluster->AllReady(true)) {
-    if (coordinator) throw BadInput("another MPI rank could not start the sweep (see its message)");
-    return std::nullopt;
-  }
+// Rank 0's output files of one robot's sweep, opened (and with --resume, read) before any point.
+struct SweepFiles {
+  std::unique_ptr<SweepJournal> plans;
+  std::unique_ptr<SweepJournal> physics;  // with --simulate
+};
 
-  std::vector<int> todo;
-  for (const SweepPoint& p : points) {
-    if (shard.Holds(p.index) && (plans == nullptr || plans->lines().count(p.index) == 0)) todo.push_back(p.index);
+SweepFiles OpenSweepFiles(const SweepOptions& o, const SweepGrid& grid, const Shard& shard, const SweepJob& job,
+                          const RobotModel& robot) {
+  const std::string identity = RobotIdentity(job.robot_path, robot);
+  const auto manifest = [&](SweepTable table) { return SweepManifest::Current(table, grid, identity, SettingsText(o), shard); };
+  SweepFiles files;
+  files.plans = std::make_unique<SweepJournal>(job.csv, manifest(SweepTable::kPlans), SweepCsvHeader(o.times), o.resume);
+  if (o.simulate) {
+    files.physics = std::make_unique<SweepJournal>(job.csv + ".physics.csv", manifest(SweepTable::kPhysics),
+                                                   PhysicsCsvHeader(), o.resume);
+    files.physics->RetainOnly(files.plans->lines());  // a point whose row was lost is simulated again
+    files.physics->Open();
   }
-  const int already = plans != nullptr ? static_cast<int>(plans->lines().size()) : 0;
-  SweepProgressReport progress(job.label.empty() ? "" : job.label + " ", already + static_cast<int>(todo.size()),
-                               already, isatty(STDERR_FILENO) != 0);
-  int done = 0;
-  const auto deliver = [&](const std::string& text) {
-    const std::size_t newline = text.find('\n');
-    const SweepRow row = SweepRowFromCsvLine(text.substr(0, newline));
-    if (newline != std::string::npos && physics_journal) physics_journal->Append(row.point.index, text.substr(newline + 1));
-    plans->Append(row.point.index, SweepCsvLine(row, o.times));  // after its physics: a row means all is there
-    progress.Update(++done);
-  };
-  const SweepPhysics* physics = o.simulate ? &physics_settings : nullptr;
-  const auto start = std::chrono::steady_clock::now();
+  files.plans->Open();
+  return files;
+}
+
+// Computes `todo` on the cluster's ranks or on this process's threads; `deliver` gets each
+// point's Serialize()d results, serialised.
+void ComputePoints(SweepCluster* cluster, const std::vector<int>& todo, const std::vector<SweepPoint>& points,
+                   const std::function<PointOutcome(const SweepPoint&)>& evaluate,
+                   const std::function<void(const std::string&)>& deliver, int threads) {
   if (cluster != nullptr) {
     cluster->Run(todo, [&](int index) {
-      const PointOutcome r = Evaluate(points[static_cast<std::size_t>(index)], *robot, grid.facing, o.validation_step, physics);
+      const PointOutcome r = evaluate(points[static_cast<std::size_t>(index)]);
       return Serialize(r.row, r.physics ? PhysicsCsvLine(*r.physics) : "");
-    }, deliver, o.threads);
-    if (!coordinator) return std::nullopt;
-  } else {
-    std::vector<SweepPoint> mine;
-    for (int index : todo) mine.push_back(points[static_cast<std::size_t>(index)]);
-    std::mutex physics_mutex;
-    std::map<int, std::string> physics_lines;  // from a worker's evaluation to its row's delivery
-    RunSweep(mine, [&](const SweepPoint& p) {
-      const PointOutcome r = Evaluate(p, *robot, grid.facing, o.validation_step, physics);
-      if (r.physics) {
-        const std::lock_guard<std::mutex> lock(physics_mutex);
-        physics_lines[p.index] = PhysicsCsvLine(*r.physics);
-      }
-      return r.row;
-    }, o.threads, Shard{}, nullptr, [&](const SweepRow& row) {
-      std::string line;
-      {
-        const std::lock_guard<std::mutex> lock(physics_mutex);
-        if (const auto it = physics_lines.find(row.point.index); it != physics_lines.end()) line = it->second;
-      }
-      deliver(Serialize(row, line));
-    });
+    }, deliver, threads);
+    return;
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::vector<SweepRow> rows = SweepRowsFromCsv(plans->Finish(), job.csv);
+  std::vector<SweepPoint> mine;
+  for (int index : todo) mine.push_back(points[static_cast<std::size_t>(index)]);
+  std::mutex physics_mutex;
+  std::map<int, std::string> physics_lines;  // from a worker's evaluation to its row's delivery
+  RunSweep(mine, [&](const SweepPoint& p) {
+    const PointOutcome r = evaluate(p);
+    if (r.physics) {
+      const std::lock_guard<std::mutex> lock(physics_mutex);
+      physics_lines[p.index] = PhysicsCsvLine(*r.physics);
+    }
+    return r.row;
+  }, threads, Shard{}, nullptr, [&](const SweepRow& row) {
+    std::string line;
+    {
+      const std::lock_guard<std::mutex> lock(physics_mutex);
+      if (const auto it = physics_lines.find(row.point.index); it != physics_lines.end()) line = it->second;
+    }
+    deliver(Serialize(row, line));
+  });
+}
+
+// The finished sweep's heatmaps and summary; the agreement with physics when it was simulated.
+void ReportSweep(const std::vector<SweepRow>& rows, const SweepGrid& grid, const Shard& shard, const SweepJob& job,
+                 const std::string& throughput, const SweepJournal* physics) {
   if (!job.svg.empty()) WriteFileAtomically(job.svg, SweepHeatmapSvg(rows, grid));
   for (TravelDirection d : grid.directions) {
     if (job.svg_per_direction_prefix.empty()) break;
@@ -225,22 +205,68 @@ std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const Swe
   }
   int valid = 0;
   for (const SweepRow& r : rows) valid += r.status == "valid" ? 1 : 0;
-  const int workers = cluster != nullptr ? cluster->Size() - 1 + o.threads : o.threads;
   std::cout << "stairplan sweep" << (job.label.empty() ? "" : " (" + job.label + ")") << ": " << rows.size()
-            << " points, " << valid << " valid; " << done << " computed in " << seconds << " s on " << workers
-            << " worker(s)" << (cluster != nullptr ? " over " + std::to_string(cluster->Size()) + " MPI rank(s)" : "")
-            << ", " << (seconds > 0 ? done / seconds : 0.0) << " points/s\n";
+            << " points, " << valid << " valid; " << throughput << "\n";
   // The shape of the success region; a shard sees only its own points, so it says nothing.
   if (shard.count == 1) std::cout << SweepRegionsToText(AnalyseSweepRegions(rows));
-  if (physics_journal) {
-    SweepPhysics collected;
-    for (const auto& [index, line] : physics_journal->lines()) collected.Add(PhysicsRowFromCsvLine(line));
-    physics_journal->Finish();
-    std::cout << "physics passes: got there, feet in their regions, no other link on the stairs\n"
-              << AgreementToText(collected.Agreement()) << "... and no other link within the validator's "
-              << ValidationSettings{}.min_clearance * 1000 << " mm of the stairs\n"
-              << AgreementToText(collected.Agreement(true));
+  if (physics == nullptr) return;
+  SweepPhysics collected;
+  for (const auto& [index, line] : physics->lines()) collected.Add(PhysicsRowFromCsvLine(line));
+  std::cout << "physics passes: got there, feet in their regions, no other link on the stairs\n"
+            << AgreementToText(collected.Agreement()) << "... and no other link within the validator's "
+            << ValidationSettings{}.min_clearance * 1000 << " mm of the stairs\n"
+            << AgreementToText(collected.Agreement(true));
+}
+
+// Runs one robot's sweep; on rank 0 (or without MPI) returns the rows of the finished CSV.
+std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const SweepGrid& grid, const Shard& shard,
+                                                SweepCluster* cluster, const SweepJob& job) {
+  const bool coordinator = cluster == nullptr || cluster->Rank() == 0;
+  std::optional<RobotModel> robot;
+  SweepFiles files;
+  try {
+    robot.emplace(LoadRobot(job.robot_path));
+    if (coordinator) files = OpenSweepFiles(o, grid, shard, job, *robot);
+  } catch (...) {
+    if (cluster != nullptr) cluster->AllReady(false);
+    throw;
   }
+  if (cluster != nullptr && !cluster->AllReady(true)) {
+    if (coordinator) throw BadInput("another MPI rank could not start the sweep (see its message)");
+    return std::nullopt;
+  }
+  const std::vector<SweepPoint> points = EnumeratePoints(grid);
+  std::vector<int> todo;
+  for (const SweepPoint& p : points) {
+    if (shard.Holds(p.index) && (!files.plans || files.plans->lines().count(p.index) == 0)) todo.push_back(p.index);
+  }
+  const int already = files.plans ? static_cast<int>(files.plans->lines().size()) : 0;
+  SweepProgressReport progress(job.label.empty() ? "" : job.label + " ", already + static_cast<int>(todo.size()),
+                               already, isatty(STDERR_FILENO) != 0);
+  int done = 0;
+  const auto deliver = [&](const std::string& text) {
+    const std::size_t newline = text.find('\n');
+    const SweepRow row = SweepRowFromCsvLine(text.substr(0, newline));
+    if (newline != std::string::npos && files.physics) files.physics->Append(row.point.index, text.substr(newline + 1));
+    files.plans->Append(row.point.index, SweepCsvLine(row, o.times));  // after its physics: a row means all is there
+    progress.Update(++done);
+  };
+  const SweepPhysics physics_settings;
+  const SweepPhysics* physics = o.simulate ? &physics_settings : nullptr;
+  const auto start = std::chrono::steady_clock::now();
+  ComputePoints(cluster, todo, points, [&](const SweepPoint& p) {
+    return Evaluate(p, *robot, grid.facing, o.validation_step, physics);
+  }, deliver, o.threads);
+  if (!coordinator) return std::nullopt;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::vector<SweepRow> rows = SweepRowsFromCsv(files.plans->Finish(), job.csv);
+  if (files.physics) files.physics->Finish();
+  const int workers = cluster != nullptr ? cluster->Size() - 1 + o.threads : o.threads;
+  std::ostringstream throughput;
+  throughput << done << " computed in " << seconds << " s on " << workers << " worker(s)"
+             << (cluster != nullptr ? " over " + std::to_string(cluster->Size()) + " MPI rank(s)" : "") << ", "
+             << (seconds > 0 ? done / seconds : 0.0) << " points/s";
+  ReportSweep(rows, grid, shard, job, throughput.str(), files.physics.get());
   return rows;
 }
 
