@@ -112,21 +112,17 @@ std::vector<SweepRow> SweepRowsFromCsv(const std::string& text, const std::strin
 }
 
 SweepRow EvaluateGuarded(const PointEvaluator& evaluate, const SweepPoint& point) {
+  SweepRow failed;
+  failed.point = point;
+  failed.status = "failed";
   try {
     return evaluate(point);
   } catch (const std::exception& e) {
-    SweepRow row;
-    row.point = point;
-    row.status = "failed";
-    row.reason = e.what();
-    return row;
+    failed.reason = e.what();
   } catch (...) {
-    SweepRow row;
-    row.point = point;
-    row.status = "failed";
-    row.reason = "unknown exception";
-    return row;
+    failed.reason = "unknown exception";
   }
+  return failed;
 }
 
 std::vector<SweepRow> RunSweep(const std::vector<SweepPoint>& points, const PointEvaluator& evaluate, int threads,
