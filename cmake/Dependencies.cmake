@@ -24,3 +24,5 @@ endif()
 if(STAIRPLAN_BUILD_BENCH)
   find_package(benchmark REQUIRED CONFIG)
 endif()
+# Optional: `mpirun -np N stairplan sweep` (Open MPI, libopenmpi-dev); without it sweeps use threads and shards.
+find_package(MPI COMPONENTS CXX QUIET)

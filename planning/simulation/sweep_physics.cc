@@ -4,14 +4,22 @@
 #include <sstream>
 
 #include "planning/simulation/plan_executor.h"
+#include "planning/sweep/sweep_runner.h"
 
 namespace stairplan {
 namespace {
 
 std::string Quoted(const std::string& text) {
   std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
   return out + "\"";
+}
+
+double Real(const std::string& field) {
+  std::size_t used = 0;
+  const double v = std::stod(field, &used);
+  if (used != field.size()) throw std::invalid_argument("not a number");
+  return v;
 }
 
 }  // namespace
@@ -20,9 +28,10 @@ SweepPhysics::SweepPhysics(const SimSettings& settings, double clearance) : sett
   settings_.Validate();
 }
 
-void SweepPhysics::Record(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs,
-                          const PipelineResult& result) {
-  if (result.plan.status != PlanStatus::kOk) return;
+std::optional<PhysicsRow> SimulateSweepPoint(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs,
+                                             const PipelineResult& result, const SimSettings& settings,
+                                             double clearance) {
+  if (result.plan.status != PlanStatus::kOk) return std::nullopt;
   PhysicsRow row;
   row.index = point.index;
   std::ostringstream label;
@@ -35,10 +44,10 @@ void SweepPhysics::Record(const SweepPoint& point, const RobotModel& robot, cons
     row.validator_cause = std::string(ToString(v.kind)) + " " + v.leg + (v.detail.empty() ? "" : " " + v.detail);
   }
   try {
-    const SimulationOutcome o = Simulate(robot, stairs, result.plan, settings_);
+    const SimulationOutcome o = Simulate(robot, stairs, result.plan, settings);
     row.status = ToString(o.status);
     row.passed = o.Passed();
-    row.passed_with_clearance = o.PassedWithClearance(clearance_);
+    row.passed_with_clearance = o.PassedWithClearance(clearance);
     row.min_link_clearance_m = o.min_link_clearance_m;
     row.closest_link = o.closest_link;
     row.cause = o.FirstCause();
@@ -51,6 +60,53 @@ void SweepPhysics::Record(const SweepPoint& point, const RobotModel& robot, cons
     row.status = "error";
     row.cause = e.what();
   }
+  return row;
+}
+
+std::string PhysicsCsvHeader() {
+  return "index,point,validator,validator_cause,physics_status,physics_passed,physics_cause,landings,"
+         "max_landing_error_m,other_contacts,min_link_clearance_m,closest_link,passed_with_clearance,max_torque_ratio,"
+         "real_time_factor";
+}
+
+std::string PhysicsCsvLine(const PhysicsRow& r) {
+  std::ostringstream csv;
+  csv << r.index << "," << Quoted(r.label) << "," << r.validator << "," << Quoted(r.validator_cause) << ","
+      << r.status << "," << (r.passed ? 1 : 0) << "," << Quoted(r.cause) << "," << r.landings << ","
+      << r.max_landing_error_m << "," << r.other_contacts << "," << r.min_link_clearance_m << ","
+      << Quoted(r.closest_link) << "," << (r.passed_with_clearance ? 1 : 0) << "," << r.max_torque_ratio << ","
+      << r.real_time_factor;
+  return csv.str();
+}
+
+PhysicsRow PhysicsRowFromCsvLine(const std::string& line) {
+  const std::vector<std::string> f = CsvLineFields(line);
+  if (f.size() != 15) throw std::invalid_argument("not a physics row");
+  PhysicsRow r;
+  r.index = std::stoi(f[0]);
+  r.label = f[1];
+  r.validator = f[2];
+  r.validator_cause = f[3];
+  r.status = f[4];
+  r.passed = f[5] == "1";
+  r.cause = f[6];
+  r.landings = std::stoi(f[7]);
+  r.max_landing_error_m = Real(f[8]);
+  r.other_contacts = std::stoi(f[9]);
+  r.min_link_clearance_m = Real(f[10]);
+  r.closest_link = f[11];
+  r.passed_with_clearance = f[12] == "1";
+  r.max_torque_ratio = Real(f[13]);
+  r.real_time_factor = Real(f[14]);
+  return r;
+}
+
+void SweepPhysics::Record(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs,
+                          const PipelineResult& result) {
+  if (const auto row = SimulateSweepPoint(point, robot, stairs, result, settings_, clearance_)) Add(*row);
+}
+
+void SweepPhysics::Add(const PhysicsRow& row) {
   const std::lock_guard<std::mutex> lock(mutex_);
   rows_.push_back(row);
 }
@@ -63,18 +119,9 @@ std::vector<PhysicsRow> SweepPhysics::Rows() const {
 }
 
 std::string SweepPhysics::Csv() const {
-  std::ostringstream csv;
-  csv << "index,point,validator,validator_cause,physics_status,physics_passed,physics_cause,landings,"
-         "max_landing_error_m,other_contacts,min_link_clearance_m,closest_link,passed_with_clearance,max_torque_ratio,"
-         "real_time_factor\n";
-  for (const PhysicsRow& r : Rows()) {
-    csv << r.index << "," << Quoted(r.label) << "," << r.validator << "," << Quoted(r.validator_cause) << ","
-        << r.status << "," << (r.passed ? 1 : 0) << "," << Quoted(r.cause) << "," << r.landings << ","
-        << r.max_landing_error_m << "," << r.other_contacts << "," << r.min_link_clearance_m << ","
-        << Quoted(r.closest_link) << "," << (r.passed_with_clearance ? 1 : 0) << "," << r.max_torque_ratio << "," << r.real_time_factor
-        << "\n";
-  }
-  return csv.str();
+  std::string csv = PhysicsCsvHeader() + "\n";
+  for (const PhysicsRow& r : Rows()) csv += PhysicsCsvLine(r) + "\n";
+  return csv;
 }
 
 AgreementReport SweepPhysics::Agreement(bool with_clearance) const {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,19 @@ struct PhysicsRow {
   double real_time_factor = 0.0;
 };
 
+/// Simulates `result`'s plan when it has one (status ok); nothing for points without a plan. Never
+/// throws: a simulation that cannot run gives status "error" and the message as cause.
+std::optional<PhysicsRow> SimulateSweepPoint(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs,
+                                             const PipelineResult& result, const SimSettings& settings,
+                                             double clearance);
+
+/// The physics CSV's column header (without newline).
+std::string PhysicsCsvHeader();
+/// One row's CSV line, without newline.
+std::string PhysicsCsvLine(const PhysicsRow& row);
+/// A row from its CSV line; throws std::invalid_argument.
+PhysicsRow PhysicsRowFromCsvLine(const std::string& line);
+
 /// Collects physics rows from a sweep's worker threads.
 class SweepPhysics {
  public:
@@ -42,6 +56,11 @@ class SweepPhysics {
   /// Simulates `result`'s plan when it has one (status ok); points without a plan are skipped.
   /// Thread-safe; never throws (a failed simulation gives status "error").
   void Record(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs, const PipelineResult& result);
+  /// Adds a row computed elsewhere (another rank, a resumed run's file). Thread-safe.
+  void Add(const PhysicsRow& row);
+  /// The settings Record simulates with, and its clearance margin.
+  const SimSettings& settings() const { return settings_; }
+  double clearance() const { return clearance_; }
 
   /// Rows in point order.
   std::vector<PhysicsRow> Rows() const;

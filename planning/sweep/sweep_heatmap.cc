@@ -30,6 +30,7 @@ const char* StatusColour(const std::string& status) {
   if (status == "valid") return "#2ca02c";
   if (status == "invalid") return "#d62728";
   if (status == "infeasible") return "#7f7f7f";
+  if (status == "failed") return "#000000";
   return "#ffffff";
 }
 

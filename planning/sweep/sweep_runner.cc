@@ -30,24 +30,9 @@ std::string Quoted(const std::string& text) {
   return out + "\"";
 }
 
-// The point index: the first field of a data row.
-int RowIndex(const std::string& line, const std::string& file, int line_number) {
-  const std::size_t comma = line.find(',');
-  std::size_t used = 0;
-  int index = -1;
-  try {
-    index = std::stoi(line.substr(0, comma), &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (comma == std::string::npos || used != comma || index < 0) {
-    throw std::invalid_argument(file + ":" + std::to_string(line_number) + ": not a sweep row");
-  }
-  return index;
-}
+}  // namespace
 
-// The fields of one CSV line, quotes (with "" inside) removed.
-std::vector<std::string> CsvFields(const std::string& line) {
+std::vector<std::string> CsvLineFields(const std::string& line) {
   std::vector<std::string> fields(1);
   bool quoted = false;
   for (std::size_t i = 0; i < line.size(); ++i) {
@@ -65,6 +50,8 @@ std::vector<std::string> CsvFields(const std::string& line) {
   }
   return fields;
 }
+
+namespace {
 
 double CsvNumber(const std::string& field) {
   if (field.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -89,24 +76,34 @@ SweepRow RowFromFields(const std::vector<std::string>& f) {
   r.min_clearance_m = CsvNumber(f[9]);
   r.min_stability_margin_m = CsvNumber(f[10]);
   r.reason = f[11];
+  if (f.size() >= 14) {
+    r.plan_us = CsvNumber(f[12]);
+    r.validate_us = CsvNumber(f[13]);
+  }
   return r;
 }
 
 }  // namespace
 
+SweepRow SweepRowFromCsvLine(const std::string& line) {
+  const std::vector<std::string> fields = CsvLineFields(line);
+  if (fields.size() != 12 && fields.size() != 14) throw std::invalid_argument("not a sweep row");
+  return RowFromFields(fields);
+}
+
 std::vector<SweepRow> SweepRowsFromCsv(const std::string& text, const std::string& file) {
   std::istringstream in(text);
   std::string line;
-  if (!std::getline(in, line) || line.rfind(SweepCsvHeader(false), 0) != 0) {
-    throw std::invalid_argument(file + ":1: not a sweep CSV (no header)");
+  int number = 1;
+  while (std::getline(in, line) && line.rfind('#', 0) == 0) ++number;  // the manifest
+  if (line.rfind(SweepCsvHeader(false), 0) != 0) {
+    throw std::invalid_argument(file + ":" + std::to_string(number) + ": not a sweep CSV (no header)");
   }
   std::vector<SweepRow> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
+  for (++number; std::getline(in, line); ++number) {
     if (line.empty()) continue;
-    const std::vector<std::string> fields = CsvFields(line);
     try {
-      if (fields.size() < 12) throw std::invalid_argument("too few fields");
-      rows.push_back(RowFromFields(fields));
+      rows.push_back(SweepRowFromCsvLine(line));
     } catch (const std::exception&) {
       throw std::invalid_argument(file + ":" + std::to_string(number) + ": not a sweep row");
     }
@@ -114,8 +111,22 @@ std::vector<SweepRow> SweepRowsFromCsv(const std::string& text, const std::strin
   return rows;
 }
 
+SweepRow EvaluateGuarded(const PointEvaluator& evaluate, const SweepPoint& point) {
+  SweepRow failed;
+  failed.point = point;
+  failed.status = "failed";
+  try {
+    return evaluate(point);
+  } catch (const std::exception& e) {
+    failed.reason = e.what();
+  } catch (...) {
+    failed.reason = "unknown exception";
+  }
+  return failed;
+}
+
 std::vector<SweepRow> RunSweep(const std::vector<SweepPoint>& points, const PointEvaluator& evaluate, int threads,
-                               const Shard& shard, const SweepProgress& progress) {
+                               const Shard& shard, const SweepProgress& progress, const SweepRowSink& on_row) {
   std::vector<const SweepPoint*> mine;
   for (const SweepPoint& p : points) {
     if (shard.Holds(p.index)) mine.push_back(&p);
@@ -126,10 +137,11 @@ std::vector<SweepRow> RunSweep(const std::vector<SweepPoint>& points, const Poin
   int done = 0;
   const auto worker = [&] {
     for (std::size_t i = next++; i < mine.size(); i = next++) {
-      rows[i] = evaluate(*mine[i]);
-      if (progress) {
+      rows[i] = EvaluateGuarded(evaluate, *mine[i]);
+      if (progress || on_row) {
         const std::lock_guard<std::mutex> lock(progress_mutex);
-        progress(++done, static_cast<int>(mine.size()));
+        if (on_row) on_row(rows[i]);
+        if (progress) progress(++done, static_cast<int>(mine.size()));
       }
     }
   };
@@ -150,40 +162,17 @@ std::string SweepCsvHeader(bool with_times) {
 std::string SweepToCsv(const std::vector<SweepRow>& rows, bool with_times) {
   std::ostringstream out;
   out << SweepCsvHeader(with_times) << "\n";
-  for (const SweepRow& r : rows) {
-    out << r.point.index << "," << ToString(r.point.direction) << "," << r.point.steps << "," << Number(r.point.rise)
-        << "," << Number(r.point.run) << "," << Number(r.point.nosing) << "," << r.status << ","
-        << Number(r.cadence_s) << "," << r.footsteps << "," << Number(r.min_clearance_m) << ","
-        << Number(r.min_stability_margin_m) << "," << Quoted(r.reason);
-    if (with_times) out << "," << Number(r.plan_us) << "," << Number(r.validate_us);
-    out << "\n";
-  }
+  for (const SweepRow& r : rows) out << SweepCsvLine(r, with_times) << "\n";
   return out.str();
 }
 
-std::string MergeSweepCsv(const std::vector<std::pair<std::string, std::string>>& files_and_texts) {
-  std::string header;
-  std::map<int, std::string> rows;
-  for (const auto& [file, text] : files_and_texts) {
-    std::istringstream in(text);
-    std::string line;
-    if (!std::getline(in, line) || line.rfind("index,", 0) != 0) {
-      throw std::invalid_argument(file + ":1: not a sweep CSV (no header)");
-    }
-    if (header.empty()) header = line;
-    if (line != header) throw std::invalid_argument(file + ":1: header differs from the first file's");
-    for (int number = 2; std::getline(in, line); ++number) {
-      if (line.empty()) continue;
-      const int index = RowIndex(line, file, number);
-      if (!rows.emplace(index, line).second) {
-        throw std::invalid_argument(file + ":" + std::to_string(number) + ": point " + std::to_string(index) + " appears twice");
-      }
-    }
-  }
-  if (header.empty()) throw std::invalid_argument("sweep-merge: no input files");
+std::string SweepCsvLine(const SweepRow& r, bool with_times) {
   std::ostringstream out;
-  out << header << "\n";
-  for (const auto& [index, line] : rows) out << line << "\n";
+  out << r.point.index << "," << ToString(r.point.direction) << "," << r.point.steps << "," << Number(r.point.rise)
+      << "," << Number(r.point.run) << "," << Number(r.point.nosing) << "," << r.status << "," << Number(r.cadence_s)
+      << "," << r.footsteps << "," << Number(r.min_clearance_m) << "," << Number(r.min_stability_margin_m) << ","
+      << Quoted(r.reason);
+  if (with_times) out << "," << Number(r.plan_us) << "," << Number(r.validate_us);
   return out.str();
 }
 

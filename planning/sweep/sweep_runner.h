@@ -14,7 +14,9 @@ namespace stairplan {
 /// The outcome at one grid point.
 struct SweepRow {
   SweepPoint point;
-  std::string status;       ///< "valid", "invalid" (plan found, validation failed), "infeasible", "bad_stairs"
+  /// "valid", "invalid" (plan found, validation failed), "infeasible", "bad_stairs", or "failed"
+  /// (the evaluator threw; `reason` holds its message)
+  std::string status;
   std::string reason;       ///< the first violation or why there is no plan; empty when valid
   double cadence_s = 0.0;
   int footsteps = 0;
@@ -24,27 +26,38 @@ struct SweepRow {
   double validate_us = 0.0;
 };
 
-/// Plans and validates one point. Must be thread-safe and must not throw for any stairs.
+/// Plans and validates one point. Must be thread-safe; what it throws becomes a "failed" row.
 using PointEvaluator = std::function<SweepRow(const SweepPoint&)>;
 
 /// Called after each finished point with (done, total); from worker threads, serialised.
 using SweepProgress = std::function<void(int done, int total)>;
 
-/// Evaluates the points of `shard` on `threads` threads; rows are in point order.
+/// Called with each finished row as soon as it is known (before `progress`); serialised.
+using SweepRowSink = std::function<void(const SweepRow& row)>;
+
+/// Evaluates the points of `shard` on `threads` threads; rows are in point order. A point whose
+/// evaluation throws is a row of status "failed" with the message, and the sweep goes on.
 std::vector<SweepRow> RunSweep(const std::vector<SweepPoint>& points, const PointEvaluator& evaluate, int threads,
-                               const Shard& shard = {}, const SweepProgress& progress = nullptr);
+                               const Shard& shard = {}, const SweepProgress& progress = nullptr,
+                               const SweepRowSink& on_row = nullptr);
+
+/// `evaluate(point)`, or a row of status "failed" whose reason is what it threw.
+SweepRow EvaluateGuarded(const PointEvaluator& evaluate, const SweepPoint& point);
 
 /// The CSV header line (without newline); `with_times` adds plan_us and validate_us.
 std::string SweepCsvHeader(bool with_times);
 /// The CSV text of `rows` with header; byte-identical for identical results.
 std::string SweepToCsv(const std::vector<SweepRow>& rows, bool with_times);
+/// One row's CSV line, without newline.
+std::string SweepCsvLine(const SweepRow& row, bool with_times);
+/// The fields of a CSV line, quotes (and "" inside them) removed.
+std::vector<std::string> CsvLineFields(const std::string& line);
+/// A row from its CSV line (with or without the time columns); throws std::invalid_argument.
+SweepRow SweepRowFromCsvLine(const std::string& line);
 
-/// Merges shard CSVs into the CSV of the whole sweep. Throws std::invalid_argument naming the
-/// file when headers differ, a row is malformed, or a point index appears twice.
-std::string MergeSweepCsv(const std::vector<std::pair<std::string, std::string>>& files_and_texts);
-
-/// The rows of a sweep CSV (SweepToCsv's or a merge's; times ignored), so a merged sweep can be
-/// summarised. Throws std::invalid_argument naming `file` and the line when a row is malformed.
+/// The rows of a sweep CSV (SweepToCsv's or a merge's, '#' manifest lines skipped; times read when
+/// present), so a merged sweep can be summarised. Throws std::invalid_argument naming `file` and
+/// the line when a row is malformed.
 std::vector<SweepRow> SweepRowsFromCsv(const std::string& text, const std::string& file);
 
 /// A rise x run heatmap per direction with the building-code boxes drawn.

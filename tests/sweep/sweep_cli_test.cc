@@ -23,7 +23,8 @@ std::vector<std::vector<std::string>> Rows(const std::string& csv) {
   std::vector<std::vector<std::string>> rows;
   std::istringstream in(csv);
   std::string line;
-  std::getline(in, line);  // header
+  while (std::getline(in, line) && line.rfind('#', 0) == 0) {
+  }  // the manifest, then the header
   while (std::getline(in, line)) {
     std::vector<std::string> fields;
     std::istringstream fs(line);

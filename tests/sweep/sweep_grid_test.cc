@@ -4,6 +4,7 @@
 #include <set>
 
 #include "geometry/field_error.h"
+#include "planning/sweep/sweep_merge.h"
 #include "planning/sweep/sweep_runner.h"
 
 using namespace stairplan;
@@ -42,15 +43,17 @@ TEST_CASE("shards partition the points and a merge restores the order", "[sweep]
   for (int i = 0; i < 3; ++i) {
     const auto rows = RunSweep(points, fake, 2, Shard{i, 3});
     for (const auto& r : rows) CHECK(seen.insert(r.point.index).second);
-    parts.emplace_back("part" + std::to_string(i) + ".csv", SweepToCsv(rows, false));
+    const SweepManifest manifest = SweepManifest::Current(SweepTable::kPlans, grid, "fake", "", Shard{i, 3});
+    parts.emplace_back("part" + std::to_string(i) + ".csv", manifest.ToText() + SweepToCsv(rows, false));
   }
   CHECK(seen.size() == points.size());
-  CHECK(MergeSweepCsv(parts) == whole);
+  const std::string manifest = SweepManifest::Current(SweepTable::kPlans, grid, "fake", "", Shard{}).ToText();
+  CHECK(MergeSweepCsv(parts) == manifest + whole);
   // The merged CSV reads back into the same rows (what sweep-merge summarises).
   const std::vector<SweepRow> back = SweepRowsFromCsv(MergeSweepCsv(parts), "merged.csv");
   CHECK(SweepToCsv(back, false) == whole);
   CHECK_THROWS_WITH(SweepRowsFromCsv(SweepCsvHeader(false) + "\n3,up,x\n", "bad.csv"), Catch::Contains("bad.csv:2"));
   parts.push_back(parts.front());
-  CHECK_THROWS_WITH(MergeSweepCsv(parts), Catch::Contains("appears twice"));
+  CHECK_THROWS_WITH(MergeSweepCsv(parts), Catch::Contains("part0.csv: shard 0/3 given twice"));
   CHECK_THROWS_WITH(Shard::Parse("3/3", "--shard"), Catch::Contains("--shard"));
 }
