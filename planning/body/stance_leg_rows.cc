@@ -1,0 +1,76 @@
+#include "planning/body/stance_leg_rows.h"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/LU>
+
+namespace stairplan {
+namespace {
+
+// Below this |det J| (relative to the Jacobian's scale) the leg is at a singularity, stretched
+// straight: the joint rows would have unbounded coefficients and the reach row binds instead.
+constexpr double kSingularDet = 1e-6;
+
+// Normalises row r (its coefficients to unit length); an all-zero row is left free.
+void SetRow(StanceLegRows* rows, int r, const Eigen::Vector4d& a, double lo, double hi) {
+  const double norm = a.norm();
+  auto& row_a = rows->a[static_cast<std::size_t>(r)];
+  if (!(norm > 1e-12)) {
+    row_a.setZero();
+    rows->lo[static_cast<std::size_t>(r)] = -std::numeric_limits<double>::infinity();
+    rows->hi[static_cast<std::size_t>(r)] = std::numeric_limits<double>::infinity();
+    return;
+  }
+  row_a = a / norm;
+  rows->lo[static_cast<std::size_t>(r)] = lo / norm;
+  rows->hi[static_cast<std::size_t>(r)] = hi / norm;
+}
+
+}  // namespace
+
+StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, const Eigen::Vector3d& foot_W,
+                                 const BodyPose& pose, const Eigen::Vector3d& seed, const StanceLegMargins& margins) {
+  const double cy = std::cos(pose.yaw), sy = std::sin(pose.yaw), cp = std::cos(pose.pitch), sp = std::sin(pose.pitch);
+  // The foot relative to the body in the heading frame, then in the base frame (R = Rz Ry).
+  const Eigen::Vector3d rel_W = foot_W - pose.position_W;
+  const Eigen::Vector3d rel_H(cy * rel_W.x() + sy * rel_W.y(), -sy * rel_W.x() + cy * rel_W.y(), rel_W.z());
+  Eigen::Matrix3d ry_t;  // Ry(pitch)^T
+  ry_t << cp, 0.0, -sp, 0.0, 1.0, 0.0, sp, 0.0, cp;
+  Eigen::Matrix3d dry_t;  // d Ry(pitch)^T / d pitch
+  dry_t << -sp, 0.0, -cp, 0.0, 0.0, 0.0, cp, 0.0, -sp;
+  const Eigen::Vector3d foot_B = ry_t * rel_H;
+  // D: d foot_B / d (z, pitch, along, sideways); moving the body moves the foot the other way.
+  Eigen::Matrix<double, 3, 4> d;
+  d.col(kBodyZ) = -ry_t.col(2);
+  d.col(kBodyPitch) = dry_t * rel_H;
+  d.col(kBodyAlong) = -ry_t.col(0);
+  d.col(kBodySideways) = -ry_t.col(1);
+
+  StanceLegRows rows;
+  const IkResult ik = kin.SolveFootIk(foot_B, seed, ws);
+  rows.q = ik.q;
+  rows.reached = ik.ok();
+  // Joints: q(dv) = q + J^-1 (residual + D dv), the residual being what IK left (nonzero when the
+  // pose is out of reach or limits, so the rows then pull the body back to where it is reachable).
+  const Eigen::Matrix3d jac = kin.FootJacobian(ik.q, ws);
+  const double scale = jac.colwise().norm().prod();
+  if (std::abs(jac.determinant()) > kSingularDet * scale) {
+    const Eigen::Matrix3d jac_inv = jac.inverse();
+    const Eigen::Vector3d q_at = ik.q + jac_inv * (foot_B - kin.FootPosition(ik.q, ws));
+    const Eigen::Matrix<double, 3, 4> dq = jac_inv * d;
+    for (int j = 0; j < 3; ++j) {
+      SetRow(&rows, j, dq.row(j).transpose(), kin.lower()[j] + margins.joint - q_at[j], kin.upper()[j] - margins.joint - q_at[j]);
+    }
+  } else {
+    for (int j = 0; j < 3; ++j) SetRow(&rows, j, Eigen::Vector4d::Zero(), 0.0, 0.0);
+  }
+  // Reach: the hip-to-foot distance within the leg's range.
+  const Eigen::Vector3d span = foot_B - kin.hip_B();
+  const double length = span.norm();
+  const Eigen::Vector4d grad = length > 1e-9 ? Eigen::Vector4d((span / length).transpose() * d) : Eigen::Vector4d::Zero();
+  SetRow(&rows, 3, grad, kin.reach().lo + margins.reach - length, kin.reach().hi - margins.reach - length);
+  return rows;
+}
+
+}  // namespace stairplan

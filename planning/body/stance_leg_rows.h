@@ -1,0 +1,42 @@
+// The rows that keep one stance leg within reach and its joint limits, linearised around a body
+// pose with the leg's Jacobian: the foot stays on its contact point while the body moves, so the
+// foot's position in the base frame moves by D dv (D: its derivative in the body variables) and
+// the joints by J^-1 D dv. The body QP puts one such set per stance leg and knot into its rows.
+#pragma once
+
+#include <array>
+
+#include <Eigen/Core>
+
+#include "kinematics/body_pose.h"
+#include "kinematics/leg_kinematics.h"
+
+namespace stairplan {
+
+/// The body variables the rows are written in, as increments from the linearisation pose:
+/// height, pitch, and the displacement along the heading and sideways of it (yaw is fixed).
+enum BodyVariable { kBodyZ = 0, kBodyPitch = 1, kBodyAlong = 2, kBodySideways = 3 };
+
+/// lo <= a . dv <= hi for every row; rows 0-2 are the joints (hip abduction, flexion, knee), row 3
+/// the hip-to-foot distance. Each row's coefficients have unit length, so its bounds read as the
+/// distance dv may move in metres (or radians of pitch) before it binds.
+struct StanceLegRows {
+  static constexpr int kRows = 4;
+  std::array<Eigen::Vector4d, kRows> a{};
+  std::array<double, kRows> lo{}, hi{};
+  Eigen::Vector3d q = Eigen::Vector3d::Zero();  ///< the joints at the pose (IK; within limits)
+  bool reached = false;  ///< IK put the foot on its contact within the limits at the pose
+};
+
+/// Margins the rows keep inside the limits.
+struct StanceLegMargins {
+  double joint = 0.0;  ///< [rad]
+  double reach = 0.0;  ///< hip-to-foot distance [m]
+};
+
+/// Rows of leg `kin` whose foot origin stays at `foot_W` with the body at `pose` (its yaw a
+/// multiple of pi: the heading frame is the world's, turned). `seed` starts the IK. Allocation-free.
+StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, const Eigen::Vector3d& foot_W,
+                                 const BodyPose& pose, const Eigen::Vector3d& seed, const StanceLegMargins& margins);
+
+}  // namespace stairplan

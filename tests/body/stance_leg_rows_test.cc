@@ -1,0 +1,82 @@
+// The stance leg's linearised rows against exact IK: a small body move changes the joints and the
+// hip-to-foot distance as the rows predict (to second order), and the rows' bounds are the
+// distances to the limits.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "kinematics/builtin_robot.h"
+#include "kinematics/robot_kinematics.h"
+#include "planning/body/stance_leg_rows.h"
+
+using namespace stairplan;
+
+namespace {
+
+// The pose moved by dv in (z, pitch, along the heading, sideways).
+BodyPose MovedPose(const BodyPose& pose, const Eigen::Vector4d& dv) {
+  BodyPose moved = pose;
+  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+  moved.position_W += Eigen::Vector3d(c * dv[kBodyAlong] - s * dv[kBodySideways], s * dv[kBodyAlong] + c * dv[kBodySideways],
+                                      dv[kBodyZ]);
+  moved.pitch += dv[kBodyPitch];
+  return moved;
+}
+
+}  // namespace
+
+TEST_CASE("stance leg rows predict the joints and the reach of a moved body to second order", "[body][rows]") {
+  const RobotModel& robot = BuiltinRobot();
+  const RobotKinematics kinematics(robot);
+  RobotWorkspace ws(kinematics);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int leg = trial % 4;
+    const LegKinematics& kin = kinematics.leg(leg);
+    BodyPose pose;
+    pose.yaw = trial % 2 == 0 ? 0.0 : M_PI;
+    pose.pitch = 0.3 * unit(rng);
+    // A foot reachable from the nominal stance, moved a little.
+    pose.position_W = Eigen::Vector3d(0.1 * unit(rng), 0.05 * unit(rng), 0.05 * unit(rng));
+    const Eigen::Vector3d foot_W = pose.ToIsometry() * (kin.FootPosition(kin.nominal(), ws.leg(leg)) +
+                                                        Eigen::Vector3d(0.05 * unit(rng), 0.03 * unit(rng), 0.03 * unit(rng)));
+    const StanceLegRows rows = LinearizeStanceLeg(kin, ws.leg(leg), foot_W, pose, kin.nominal(), {});
+    if (!rows.reached) continue;
+    const Eigen::Vector4d dv = 0.01 * Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng));
+    const BodyPose moved = MovedPose(pose, dv);
+    const Eigen::Vector3d foot_B = moved.ToIsometry().inverse() * foot_W;
+    const IkResult ik = kin.SolveFootIk(foot_B, rows.q, ws.leg(leg));
+    if (!ik.ok()) continue;
+    for (int j = 0; j < 3; ++j) {
+      // Row j is (q_j - q_j(pose)) scaled by 1/|its coefficients|; the bound to the upper limit
+      // says where q_j is: hi = (upper - q_j) / norm, lo = (lower - q_j) / norm.
+      const double norm = (kin.upper()[j] - kin.lower()[j]) / (rows.hi[j] - rows.lo[j]);
+      const double predicted = rows.q[j] + norm * rows.a[j].dot(dv);
+      CHECK(std::abs(ik.q[j] - predicted) < 2e-3);
+      CHECK(std::abs(kin.upper()[j] - rows.q[j] - norm * rows.hi[j]) < 1e-6);
+    }
+    const double length = (foot_B - kin.hip_B()).norm();
+    const double length0 = (pose.ToIsometry().inverse() * foot_W - kin.hip_B()).norm();
+    const double reach_norm = (kin.reach().hi - kin.reach().lo) / (rows.hi[3] - rows.lo[3]);
+    CHECK(std::abs(length - (length0 + reach_norm * rows.a[3].dot(dv))) < 5e-4);
+    ++checked;
+  }
+  CHECK(checked > 100);
+}
+
+TEST_CASE("a foot beyond the leg's reach gives a reach row the pose breaks, pointing back", "[body][rows]") {
+  const RobotModel& robot = BuiltinRobot();
+  const RobotKinematics kinematics(robot);
+  RobotWorkspace ws(kinematics);
+  const LegKinematics& kin = kinematics.leg(0);
+  BodyPose pose;
+  // The foot straight below the hip, further than the leg reaches.
+  const Eigen::Vector3d foot_W = kin.hip_B() - Eigen::Vector3d(0.0, 0.0, kin.reach().hi + 0.05);
+  const StanceLegRows rows = LinearizeStanceLeg(kin, ws.leg(0), foot_W, pose, kin.nominal(), {});
+  CHECK_FALSE(rows.reached);
+  CHECK(rows.hi[3] < -0.04);  // the body must come down about 5 cm
+  CHECK(rows.a[3][kBodyZ] > 0.9);  // and lowering it is what shortens the leg most (pitch turns the hip too)
+}
