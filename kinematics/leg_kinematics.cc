@@ -234,6 +234,14 @@ void LegKinematics::BuildKneeTable(LegWorkspace& ws) {
     knee_distance_[static_cast<std::size_t>(i)] =
         (frames.back().translation() - frames[static_cast<std::size_t>(joint_segment_[1])].translation()).norm();
   }
+  extension_.lo = *std::min_element(knee_distance_.begin(), knee_distance_.end());
+  extension_.hi = *std::max_element(knee_distance_.begin(), knee_distance_.end());
+}
+
+Eigen::Vector3d LegKinematics::FlexionPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
+  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
+  ws.fk_->JntToCart(ws.q_, ws.frame_, joint_segment_[1] + 1);
+  return {ws.frame_.p.x(), ws.frame_.p.y(), ws.frame_.p.z()};
 }
 
 Eigen::Vector3d LegKinematics::AimedSeed(const Eigen::Vector3d& target, const Eigen::Vector3d& seed, LegWorkspace& ws) const {

@@ -63,6 +63,12 @@ class LegKinematics {
   /// Sampled range of hip-to-foot distance over the joint limits [m].
   const Interval1& reach() const { return reach_; }
 
+  /// Sampled range of the distance from the flexion joint (the second movable joint) to the foot
+  /// over the knee's limits: the leg's extension, whatever the other joints do [m].
+  const Interval1& extension() const { return extension_; }
+  /// The flexion joint's position at q.
+  Eigen::Vector3d FlexionPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+
   /// True when every joint is within [lower - tol, upper + tol].
   bool WithinLimits(const Eigen::Vector3d& q, double tol = 1e-9) const;
   /// q clamped into the limits.
@@ -107,6 +113,7 @@ class LegKinematics {
   int knee_segment_ = 0;
   Eigen::Vector3d lower_, upper_, nominal_, hip_B_;
   Interval1 reach_;
+  Interval1 extension_;
   std::array<int, 3> joint_segment_{};  // chain segment of each movable joint
   static constexpr int kKneeTable = 97;
   std::array<double, kKneeTable> knee_q_{}, knee_distance_{};  // foot distance from the flexion joint

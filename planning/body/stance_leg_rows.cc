@@ -11,6 +11,8 @@ namespace {
 // Below this |det J| (relative to the Jacobian's scale) the leg is at a singularity, stretched
 // straight: the joint rows would have unbounded coefficients and the reach row binds instead.
 constexpr double kSingularDet = 1e-6;
+// Step of the first joint for the flexion joint's derivative (forward difference) [rad].
+constexpr double kTurnStep = 1e-6;
 
 // Normalises row r (its coefficients to unit length); an all-zero row is left free.
 void SetRow(StanceLegRows* rows, int r, const Eigen::Vector4d& a, double lo, double hi) {
@@ -55,21 +57,35 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   // pose is out of reach or limits, so the rows then pull the body back to where it is reachable).
   const Eigen::Matrix3d jac = kin.FootJacobian(ik.q, ws);
   const double scale = jac.colwise().norm().prod();
-  if (std::abs(jac.determinant()) > kSingularDet * scale) {
+  const bool regular = std::abs(jac.determinant()) > kSingularDet * scale;
+  Eigen::Matrix<double, 3, 4> dq = Eigen::Matrix<double, 3, 4>::Zero();
+  if (regular) {
     const Eigen::Matrix3d jac_inv = jac.inverse();
     const Eigen::Vector3d q_at = ik.q + jac_inv * (foot_B - kin.FootPosition(ik.q, ws));
-    const Eigen::Matrix<double, 3, 4> dq = jac_inv * d;
+    dq = jac_inv * d;
     for (int j = 0; j < 3; ++j) {
       SetRow(&rows, j, dq.row(j).transpose(), kin.lower()[j] + margins.joint - q_at[j], kin.upper()[j] - margins.joint - q_at[j]);
     }
   } else {
     for (int j = 0; j < 3; ++j) SetRow(&rows, j, Eigen::Vector4d::Zero(), 0.0, 0.0);
   }
-  // Reach: the hip-to-foot distance within the leg's range.
-  const Eigen::Vector3d span = foot_B - kin.hip_B();
+  // Extension: the flexion joint to foot distance within the knee's range. (The distance from the
+  // hip's first joint is no bound: how far a leg reaches from there depends on the direction,
+  // through the offsets between the first two joints.) The flexion joint turns with the first
+  // joint, which moves it by d flex / d q0 times q0's change.
+  const Eigen::Vector3d flexion = kin.FlexionPosition(ik.q, ws);
+  const Eigen::Vector3d span = foot_B - flexion;
   const double length = span.norm();
-  const Eigen::Vector4d grad = length > 1e-9 ? Eigen::Vector4d((span / length).transpose() * d) : Eigen::Vector4d::Zero();
-  SetRow(&rows, 3, grad, kin.reach().lo + margins.reach - length, kin.reach().hi - margins.reach - length);
+  Eigen::Vector4d grad = Eigen::Vector4d::Zero();
+  if (length > 1e-9) {
+    const Eigen::Vector3d u = span / length;
+    grad = (u.transpose() * d).transpose();
+    if (regular) {
+      const Eigen::Vector3d turned = kin.FlexionPosition(ik.q + Eigen::Vector3d(kTurnStep, 0.0, 0.0), ws);
+      grad -= u.dot((turned - flexion) / kTurnStep) * dq.row(0).transpose();
+    }
+  }
+  SetRow(&rows, 3, grad, kin.extension().lo + margins.reach - length, kin.extension().hi - margins.reach - length);
   return rows;
 }
 

@@ -18,7 +18,7 @@ namespace stairplan {
 enum BodyVariable { kBodyZ = 0, kBodyPitch = 1, kBodyAlong = 2, kBodySideways = 3 };
 
 /// lo <= a . dv <= hi for every row; rows 0-2 are the joints (hip abduction, flexion, knee), row 3
-/// the hip-to-foot distance. Each row's coefficients have unit length, so its bounds read as the
+/// the leg's extension (flexion joint to foot). Each row's coefficients have unit length, so its bounds read as the
 /// distance dv may move in metres (or radians of pitch) before it binds.
 struct StanceLegRows {
   static constexpr int kRows = 4;
@@ -31,7 +31,7 @@ struct StanceLegRows {
 /// Margins the rows keep inside the limits.
 struct StanceLegMargins {
   double joint = 0.0;  ///< [rad]
-  double reach = 0.0;  ///< hip-to-foot distance [m]
+  double reach = 0.0;  ///< extension (flexion joint to foot distance) [m]
 };
 
 /// Rows of leg `kin` whose foot origin stays at `foot_W` with the body at `pose` (its yaw a

@@ -58,9 +58,9 @@ TEST_CASE("stance leg rows predict the joints and the reach of a moved body to s
       CHECK(std::abs(ik.q[j] - predicted) < 2e-3);
       CHECK(std::abs(kin.upper()[j] - rows.q[j] - norm * rows.hi[j]) < 1e-6);
     }
-    const double length = (foot_B - kin.hip_B()).norm();
-    const double length0 = (pose.ToIsometry().inverse() * foot_W - kin.hip_B()).norm();
-    const double reach_norm = (kin.reach().hi - kin.reach().lo) / (rows.hi[3] - rows.lo[3]);
+    const double length = (foot_B - kin.FlexionPosition(ik.q, ws.leg(leg))).norm();
+    const double length0 = (pose.ToIsometry().inverse() * foot_W - kin.FlexionPosition(rows.q, ws.leg(leg))).norm();
+    const double reach_norm = (kin.extension().hi - kin.extension().lo) / (rows.hi[3] - rows.lo[3]);
     CHECK(std::abs(length - (length0 + reach_norm * rows.a[3].dot(dv))) < 5e-4);
     ++checked;
   }
@@ -74,9 +74,9 @@ TEST_CASE("a foot beyond the leg's reach gives a reach row the pose breaks, poin
   const LegKinematics& kin = kinematics.leg(0);
   BodyPose pose;
   // The foot straight below the hip, further than the leg reaches.
-  const Eigen::Vector3d foot_W = kin.hip_B() - Eigen::Vector3d(0.0, 0.0, kin.reach().hi + 0.05);
+  const Eigen::Vector3d foot_W = kin.hip_B() - Eigen::Vector3d(0.0, 0.0, kin.model().max_reach + 0.05);
   const StanceLegRows rows = LinearizeStanceLeg(kin, ws.leg(0), foot_W, pose, kin.nominal(), {});
   CHECK_FALSE(rows.reached);
-  CHECK(rows.hi[3] < -0.04);  // the body must come down about 5 cm
+  CHECK(rows.hi[3] < -0.04);  // the body must come down at least 5 cm
   CHECK(rows.a[3][kBodyZ] > 0.9);  // and lowering it is what shortens the leg most (pitch turns the hip too)
 }
