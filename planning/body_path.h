@@ -12,7 +12,9 @@
 #include "geometry/staircase.h"
 #include "kinematics/body_pose.h"
 #include "kinematics/robot_model.h"
+#include "planning/com_model.h"
 #include "planning/plan.h"
+#include "planning/plan_timeline.h"
 #include "planning/swing_trajectory.h"
 
 namespace stairplan {
@@ -62,24 +64,6 @@ struct BodyPathSettings {
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
 };
-
-/// The centre of mass in the base frame at the robot's zero pose, legs lumped at their hips [m].
-Eigen::Vector3d ApproximateComOffset(const RobotModel& robot);
-
-/// Where each foot is at time t (contact points, legs in `legs` order), swing feet interpolated.
-std::vector<Eigen::Vector3d> FeetAt(const std::vector<std::string>& legs, const std::vector<Eigen::Vector3d>& initial,
-                                    const std::vector<Footstep>& footsteps, double t, std::vector<bool>* in_stance = nullptr);
-
-/// The body pose at time t, interpolated linearly between body samples.
-BodyPose BodyPoseAt(const std::vector<BodyState>& body, double t);
-
-/// The acceleration of the body's position at sample i (0 < i < size - 1), by finite differences
-/// over its neighbours [m/s^2]; zero where two samples share a time.
-Eigen::Vector3d BodyAccelerationAt(const std::vector<BodyState>& body, std::size_t i);
-
-/// The largest component of BodyAccelerationAt over all samples [m/s^2]: what a robot executing
-/// the plan must produce; 0 for fewer than three samples.
-double PeakBodyAcceleration(const std::vector<BodyState>& body);
 
 /// The body states for `footsteps` (sorted by touchdown) starting from `initial_feet`, facing `yaw`.
 std::vector<BodyState> BodyPathForFootsteps(const RobotModel& robot, const std::vector<std::string>& legs,

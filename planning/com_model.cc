@@ -42,4 +42,21 @@ Eigen::Vector3d ComModel::Com(const BodyPose& body, const std::array<Eigen::Vect
   return body.ToIsometry() * (mass > 0.0 ? Eigen::Vector3d(sum_B / mass) : Eigen::Vector3d::Zero());
 }
 
+Eigen::Vector3d ApproximateComOffset(const RobotModel& robot) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double mass = 0.0;
+  for (const LegModel& leg : robot.legs()) {
+    sum += leg.mass * leg.hip_B;
+    mass += leg.mass;
+  }
+  // Everything not in a leg is lumped at the base link's own centre of mass.
+  const double base_mass = std::max(0.0, robot.total_mass() - mass);
+  const urdf::LinkConstSharedPtr base = robot.urdf().getLink(robot.base_link());
+  if (base && base->inertial) {
+    const urdf::Vector3& p = base->inertial->origin.position;
+    sum += base_mass * Eigen::Vector3d(p.x, p.y, p.z);
+  }
+  return mass + base_mass > 0.0 ? Eigen::Vector3d(sum / (mass + base_mass)) : Eigen::Vector3d::Zero();
+}
+
 }  // namespace stairplan

@@ -9,6 +9,7 @@
 
 #include "kinematics/body_pose.h"
 #include "kinematics/robot_kinematics.h"
+#include "kinematics/robot_model.h"
 
 namespace stairplan {
 
@@ -32,5 +33,8 @@ class ComModel {
   Eigen::Vector3d base_com_B_ = Eigen::Vector3d::Zero();
   double total_mass_ = 0.0;
 };
+
+/// The centre of mass in the base frame at the robot's zero pose, legs lumped at their hips [m].
+Eigen::Vector3d ApproximateComOffset(const RobotModel& robot);
 
 }  // namespace stairplan

@@ -7,7 +7,8 @@
 
 #include <Eigen/Geometry>
 
-#include "planning/body_path.h"
+#include "planning/com_model.h"
+#include "planning/plan_timeline.h"
 #include "planning/simulation/body_reference.h"
 
 namespace stairplan {

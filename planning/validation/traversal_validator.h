@@ -11,8 +11,8 @@
 #include "collision/stance_check.h"
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
-#include "planning/body_path.h"
 #include "planning/plan.h"
+#include "planning/plan_timeline.h"
 #include "planning/swing_trajectory.h"
 #include "planning/com_model.h"
 
