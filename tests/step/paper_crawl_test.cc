@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "kinematics/robot_kinematics.h"
+#include "planning/plan_pipeline.h"
 #include "planning/step/paper_crawl.h"
 #include "sanitized.h"
 #include "test_paths.h"
@@ -111,4 +113,62 @@ TEST_CASE("paper crawl: a design that fails on the stairs is a status, not a pla
   CHECK(plan.status_reason.find("(10)") != std::string::npos);
   settings.max_leg_length = -1.0;
   CHECK_THROWS_AS(PlanPaperCrawl(robot, stairs, map, settings), std::invalid_argument);
+}
+
+namespace {
+
+// Where a hip stands, relative to the nose a leg climbs over, when that leg lifts off (Figure
+// 2(a)): on the line d above the edges, on the bisector of its two contacts a behind their noses.
+Eigen::Vector2d PaperHipFromNose(const GaitDesign& g, double a) {
+  const double u = 0.5 * g.cl - a * std::cos(g.phi);
+  return {-u * std::cos(g.phi) - g.d * std::sin(g.phi), -u * std::sin(g.phi) + g.d * std::cos(g.phi)};
+}
+
+}  // namespace
+
+TEST_CASE("paper crawl on the paper's three stairs: no d lets both feet pass their noses and land in the step regions", "[step][paper]") {
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
+  const RobotKinematics kinematics(robot);
+  const LegKinematics& leg = kinematics.leg(0);
+  const double lateral = leg.model().foot_zero_B.y() - leg.model().hip_B.y();  // the leg's plane beside its hip
+  const PaperCrawlSettings settings;
+  const PipelineOptions pipeline;  // the map `plan --planner paper` validates against
+  // The foot's centre where it passes the nose: the swing's clearance from the riser and above
+  // the tread, its sphere included.
+  const double pass = settings.body.swing.clearance + leg.model().foot_radius;
+  const auto hip_to_pass = [&](const GaitDesign& g, double a) {
+    const Eigen::Vector2d hip = PaperHipFromNose(g, a);
+    return std::sqrt(std::pow(-pass - hip.x(), 2) + std::pow(pass - hip.y(), 2) + lateral * lateral);
+  };
+  for (const auto& [run, rise] : {std::pair{0.27, 0.17}, std::pair{0.31, 0.175}, std::pair{0.28, 0.16}}) {
+    INFO(run << " x " << rise);
+    GaitDesignInput in;
+    in.run = run;
+    in.rise = rise;
+    in.body_length = 0.444;
+    const double cl = std::hypot(run, rise), sin_phi = rise / cl;
+    // The controller's d (a_min + a_max = W): the left feet lift at l_max with their hips so near
+    // the nose that the foot would pass closer to the hip than the folded leg reaches.
+    in.hip_clearance = 0.5 * ((MinLegLength(run, rise) - run) * sin_phi + std::sqrt(0.21 * 0.21 - 0.25 * cl * cl));
+    const GaitDesign centred = DesignGait(in);
+    REQUIRE(centred.feasible);
+    CHECK(hip_to_pass(centred, centred.a_max) < leg.reach().lo);
+    // The paper's simulation's d = H / 2 leaves that foot room, but its right feet then stand so
+    // near the nose that they are off the step regions.
+    in.hip_clearance = 0.5 * rise;
+    const GaitDesign paper = DesignGait(in);
+    REQUIRE(paper.feasible);
+    CHECK(hip_to_pass(paper, paper.a_max) > leg.reach().lo);
+    StairSpec spec;
+    spec.steps = 3;
+    spec.rise = rise;
+    spec.run = run;
+    spec.nosing = 0.0;
+    const Staircase stairs(spec);
+    const ConstrainedMap map = BuildPipelineMap(robot, stairs, pipeline);
+    const Eigen::Vector2d right_foot(stairs.edges()[0].x_nose + paper.a_min, leg.model().foot_zero_B.y());
+    const int stair = map.StairAt(right_foot);
+    REQUIRE(stair == 1);
+    CHECK_FALSE(map.InStepRegion(stair, right_foot));
+  }
 }
