@@ -10,6 +10,7 @@
 #include "kinematics/robot_kinematics.h"
 #include "planning/plan_pipeline.h"
 #include "planning/step/paper_crawl.h"
+#include "planning/swing_trajectory.h"
 #include "sanitized.h"
 #include "test_paths.h"
 
@@ -18,16 +19,23 @@ using namespace stairplan;
 namespace {
 
 // Three steps: two treads carry the periodic pattern; the plan's cost grows with the flight.
-Staircase PaperFlight() {
+Staircase PaperFlight(double rise = 0.17, double run = 0.27) {
   StairSpec spec;
   spec.steps = 3;
-  spec.rise = 0.17;
-  spec.run = 0.27;
+  spec.rise = rise;
+  spec.run = run;
   spec.nosing = 0.0;
   return Staircase(spec);
 }
 
 bool IsRightLeg(const std::string& leg) { return leg[0] == 'R'; }
+
+// Where a hip stands, relative to the nose a leg climbs over, when that leg lifts off (Figure
+// 2(a)): on the line d above the edges, on the bisector of its two contacts a behind their noses.
+Eigen::Vector2d PaperHipFromNose(const GaitDesign& g, double a) {
+  const double u = 0.5 * g.cl - a * std::cos(g.phi);
+  return {-u * std::cos(g.phi) - g.d * std::sin(g.phi), -u * std::sin(g.phi) + g.d * std::cos(g.phi)};
+}
 
 }  // namespace
 
@@ -115,16 +123,39 @@ TEST_CASE("paper crawl: a design that fails on the stairs is a status, not a pla
   CHECK_THROWS_AS(PlanPaperCrawl(robot, stairs, map, settings), std::invalid_argument);
 }
 
-namespace {
-
-// Where a hip stands, relative to the nose a leg climbs over, when that leg lifts off (Figure
-// 2(a)): on the line d above the edges, on the bisector of its two contacts a behind their noses.
-Eigen::Vector2d PaperHipFromNose(const GaitDesign& g, double a) {
-  const double u = 0.5 * g.cl - a * std::cos(g.phi);
-  return {-u * std::cos(g.phi) - g.d * std::sin(g.phi), -u * std::sin(g.phi) + g.d * std::cos(g.phi)};
+TEST_CASE("the paper crawl's climbing swings reach their riser low and keep clear of it", "[step][paper]") {
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
+  const Staircase stairs = PaperFlight();
+  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
+  const PaperCrawlSettings settings;
+  const Plan plan = PlanPaperCrawl(robot, stairs, map, settings);
+  REQUIRE(plan.status == PlanStatus::kOk);
+  const double radius = robot.legs().front().foot_radius;
+  const double margin = settings.body.swing.clearance + radius;
+  int climbs = 0;
+  for (const Footstep& f : plan.footsteps) {
+    CHECK(f.swing_approach_share >= 0.0);
+    CHECK(f.swing_approach_share < 1.0);
+    if (f.position_W.z() <= f.from_W.z() + 1e-6) continue;
+    ++climbs;
+    const SwingTrajectory swing(f.from_W, f.position_W, f.swing_apex_z, settings.body.swing, f.swing_approach_share);
+    // The riser it climbs: the first edge ahead of the foothold it leaves.
+    double riser = f.position_W.x();
+    for (const StairEdge& e : stairs.edges()) {
+      if (e.x_nose > f.from_W.x()) riser = std::min(riser, e.x_nose);
+    }
+    const Eigen::Vector3d top = swing.At(settings.body.swing.lift_fraction);
+    CHECK(top.x() == Approx(riser - margin).margin(1e-9));
+    CHECK(top.z() == Approx(f.swing_apex_z));
+    // The foot's sphere keeps clear of the riser and its nose until it lowers onto the tread.
+    for (int i = 0; i <= 100; ++i) {
+      const double s = i / 100.0 * (1.0 - settings.body.swing.lower_fraction);
+      const Eigen::Vector3d p = swing.At(s);
+      if (p.x() + radius >= riser) CHECK(p.z() >= f.position_W.z() + settings.body.swing.clearance - 1e-9);
+    }
+  }
+  CHECK(climbs >= 4);
 }
-
-}  // namespace
 
 TEST_CASE("paper crawl on the paper's three stairs: no d lets both feet pass their noses and land in the step regions", "[step][paper]") {
   const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
@@ -159,12 +190,7 @@ TEST_CASE("paper crawl on the paper's three stairs: no d lets both feet pass the
     const GaitDesign paper = DesignGait(in);
     REQUIRE(paper.feasible);
     CHECK(hip_to_pass(paper, paper.a_max) > leg.reach().lo);
-    StairSpec spec;
-    spec.steps = 3;
-    spec.rise = rise;
-    spec.run = run;
-    spec.nosing = 0.0;
-    const Staircase stairs(spec);
+    const Staircase stairs = PaperFlight(rise, run);
     const ConstrainedMap map = BuildPipelineMap(robot, stairs, pipeline);
     const Eigen::Vector2d right_foot(stairs.edges()[0].x_nose + paper.a_min, leg.model().foot_zero_B.y());
     const int stair = map.StairAt(right_foot);

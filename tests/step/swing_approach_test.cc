@@ -1,5 +1,6 @@
 // Swings that travel low before they rise (Footstep::swing_approach_share, the 2012 paper's
-// swing): their path, their round trip through plan.json, and the paper crawl's use of them.
+// swing): their path and their round trip through plan.json (the paper crawl's use of them:
+// paper_crawl_test.cc).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -8,9 +9,7 @@
 
 #include "planning/plan_json.h"
 #include "planning/plan_json_reader.h"
-#include "planning/step/paper_crawl.h"
 #include "planning/swing_trajectory.h"
-#include "test_paths.h"
 
 using namespace stairplan;
 
@@ -44,45 +43,6 @@ TEST_CASE("a swing with an approach share travels low first, then rises, then cr
   CHECK((approach.At(1.0) - to).norm() == Approx(0.0).margin(1e-12));
   CHECK_THROWS_AS(SwingTrajectory(from, to, apex, settings, 1.0), std::invalid_argument);
   CHECK_THROWS_AS(SwingTrajectory(from, to, apex, settings, -0.1), std::invalid_argument);
-}
-
-TEST_CASE("the paper crawl's climbing swings reach their riser low and keep clear of it", "[swing][paper]") {
-  const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
-  StairSpec spec;
-  spec.steps = 2;
-  spec.rise = 0.17;
-  spec.run = 0.27;
-  spec.nosing = 0.0;
-  const Staircase stairs(spec);
-  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
-  const PaperCrawlSettings settings;
-  const Plan plan = PlanPaperCrawl(robot, stairs, map, settings);
-  REQUIRE(plan.status == PlanStatus::kOk);
-  const double radius = robot.legs().front().foot_radius;
-  const double margin = settings.body.swing.clearance + radius;
-  int climbs = 0;
-  for (const Footstep& f : plan.footsteps) {
-    CHECK(f.swing_approach_share >= 0.0);
-    CHECK(f.swing_approach_share < 1.0);
-    if (f.position_W.z() <= f.from_W.z() + 1e-6) continue;
-    ++climbs;
-    const SwingTrajectory swing(f.from_W, f.position_W, f.swing_apex_z, settings.body.swing, f.swing_approach_share);
-    // The riser it climbs: the first edge ahead of the foothold it leaves.
-    double riser = f.position_W.x();
-    for (const StairEdge& e : stairs.edges()) {
-      if (e.x_nose > f.from_W.x()) riser = std::min(riser, e.x_nose);
-    }
-    const Eigen::Vector3d top = swing.At(settings.body.swing.lift_fraction);
-    CHECK(top.x() == Approx(riser - margin).margin(1e-9));
-    CHECK(top.z() == Approx(f.swing_apex_z));
-    // The foot's sphere keeps clear of the riser and its nose until it lowers onto the tread.
-    for (int i = 0; i <= 100; ++i) {
-      const double s = i / 100.0 * (1.0 - settings.body.swing.lower_fraction);
-      const Eigen::Vector3d p = swing.At(s);
-      if (p.x() + radius >= riser) CHECK(p.z() >= f.position_W.z() + settings.body.swing.clearance - 1e-9);
-    }
-  }
-  CHECK(climbs >= 4);
 }
 
 TEST_CASE("plan.json keeps a swing's approach share and refuses one out of range", "[swing][paper]") {
