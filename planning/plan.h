@@ -25,6 +25,11 @@ struct Footstep {
   bool in_step_region = false;
   /// Top of the swing's contact-point path [m]; NaN: derived from the stairs (SwingTrajectory).
   double swing_apex_z = std::numeric_limits<double>::quiet_NaN();
+  /// Share of the horizontal travel the foot makes low over its old foothold before it rises, in
+  /// [0, 1): 0 lifts it straight up first (SwingTrajectory); more carries it under the hip to the
+  /// riser first (the 2012 paper's swing: a hip barely above the upper tread cannot lift the foot
+  /// behind it to the nose's height, and passes it forward below, then up).
+  double swing_approach_share = 0.0;
 };
 
 /// The body (base frame origin) at one instant. Pitch is about the body's y axis, right-hand

@@ -104,6 +104,8 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
                          {"x", f.position_W.x()}, {"y", f.position_W.y()}, {"z", f.position_W.z()},
                          {"stair_index", f.stair_index}, {"in_step_region", f.in_step_region},
                          {"swing_apex_z", std::isfinite(f.swing_apex_z) ? nlohmann::json(f.swing_apex_z) : nlohmann::json(nullptr)}});
+    // Only the swings that need it carry it: plans of the lift-first swing stay as they were.
+    if (f.swing_approach_share > 0.0) footsteps.back()["swing_approach_share"] = f.swing_approach_share;
   }
   nlohmann::json initial = nlohmann::json::array();
   for (std::size_t i = 0; i < plan.initial_feet_W.size(); ++i) {

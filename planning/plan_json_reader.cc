@@ -65,6 +65,10 @@ Footstep ReadFootstep(const Reader& r, const json& node, const std::string& path
   f.position_W = r.Point(node, path);
   if (node.contains("from")) f.from_W = r.Point(r.At(node, "from", path), path + "from.");
   if (node.contains("swing_apex_z") && !node.at("swing_apex_z").is_null()) f.swing_apex_z = r.Number(node, "swing_apex_z", path);
+  if (node.contains("swing_approach_share")) {
+    f.swing_approach_share = r.Number(node, "swing_approach_share", path);
+    if (!(f.swing_approach_share >= 0.0 && f.swing_approach_share < 1.0)) r.Fail(path + "swing_approach_share", "must be in [0, 1)");
+  }
   if (node.contains("stair_index")) {
     // Checked before the cast: a double outside int's range is undefined behaviour (UBSan).
     const double index = r.Number(node, "stair_index", path);

@@ -39,22 +39,29 @@ SwingTrajectory::SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vec
 }
 
 SwingTrajectory::SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, double apex_z,
-                                 const SwingSettings& settings)
-    : from_(from_W), to_(to_W), apex_z_(apex_z), settings_(settings) {
+                                 const SwingSettings& settings, double approach_share)
+    : from_(from_W), to_(to_W), apex_z_(apex_z), approach_share_(approach_share), settings_(settings) {
   settings_.Validate();
   if (!std::isfinite(apex_z) || !from_W.allFinite() || !to_W.allFinite()) {
     throw std::invalid_argument("SwingTrajectory: non-finite footholds or apex");
   }
+  if (!(approach_share >= 0.0 && approach_share < 1.0)) throw std::invalid_argument("SwingTrajectory: approach_share must be in [0, 1)");
 }
 
 Eigen::Vector3d SwingTrajectory::At(double s) const {
   s = std::clamp(s, 0.0, 1.0);
   const double rise_end = settings_.lift_fraction, lower_start = 1.0 - settings_.lower_fraction;
-  // Horizontal travel only between the rise and the descent, so the foot never sweeps a nosing.
-  const double travel = SmoothStep((s - rise_end) / (lower_start - rise_end));
+  // Horizontal travel beyond approach_share only between the rise and the descent, so the foot
+  // never sweeps a nosing. The approach takes the first half of the rise, low over the foothold
+  // it leaves (a tenth of the rise); the second half rises straight up.
+  const double u = s / rise_end;
+  const double approach = approach_share_ > 0.0 ? SmoothStep(2.0 * u) : 0.0;
+  const double climb = approach_share_ > 0.0 ? 0.1 * approach + 0.9 * SmoothStep(2.0 * u - 1.0) : SmoothStep(u);
+  const double travel = s <= rise_end ? approach_share_ * approach
+                                      : approach_share_ + (1.0 - approach_share_) * SmoothStep((s - rise_end) / (lower_start - rise_end));
   Eigen::Vector3d p = from_ + travel * (to_ - from_);
   if (s <= rise_end) {
-    p.z() = from_.z() + SmoothStep(s / rise_end) * (apex_z_ - from_.z());
+    p.z() = from_.z() + climb * (apex_z_ - from_.z());
   } else if (s >= lower_start) {
     p.z() = apex_z_ + SmoothStep((s - lower_start) / settings_.lower_fraction) * (to_.z() - apex_z_);
   } else {
@@ -94,7 +101,7 @@ std::vector<Eigen::Vector3d> FeetAlongSwings(const std::vector<std::string>& leg
                                              const SwingSettings& settings, std::vector<bool>* in_stance) {
   const auto along_swing = [&](const Footstep& f, double phase) {
     const SwingTrajectory swing = std::isfinite(f.swing_apex_z)
-                                      ? SwingTrajectory(f.from_W, f.position_W, f.swing_apex_z, settings)
+                                      ? SwingTrajectory(f.from_W, f.position_W, f.swing_apex_z, settings, f.swing_approach_share)
                                       : SwingTrajectory(f.from_W, f.position_W, stairs, settings);
     return swing.At(phase);
   };

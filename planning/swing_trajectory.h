@@ -32,9 +32,10 @@ class SwingTrajectory {
  public:
   SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, const Staircase& stairs,
                   const SwingSettings& settings = {});
-  /// A swing with its apex given (as a plan states it).
+  /// A swing with its apex given (as a plan states it), making `approach_share` of its horizontal
+  /// travel low before it rises (Footstep::swing_approach_share; 0: it rises first).
   SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, double apex_z,
-                  const SwingSettings& settings = {});
+                  const SwingSettings& settings = {}, double approach_share = 0.0);
 
   /// The foot's contact point at phase s in [0, 1] (clamped).
   Eigen::Vector3d At(double s) const;
@@ -44,6 +45,7 @@ class SwingTrajectory {
  private:
   Eigen::Vector3d from_, to_;
   double apex_z_ = 0.0;
+  double approach_share_ = 0.0;
   SwingSettings settings_;
 };
 

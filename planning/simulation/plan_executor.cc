@@ -182,7 +182,7 @@ void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touchin
         leg.swing = std::isfinite(f.swing_apex_z)
                         ? std::make_unique<SwingTrajectory>(leg.foothold_W, f.position_W,
                                                             std::max(f.swing_apex_z, leg.foothold_W.z() + settings_.swing.min_lift),
-                                                            settings_.swing)
+                                                            settings_.swing, f.swing_approach_share)
                         : std::make_unique<SwingTrajectory>(leg.foothold_W, f.position_W, stairs_, settings_.swing);
       }
     }

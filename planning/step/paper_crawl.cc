@@ -50,6 +50,20 @@ GaitDesignInput PaperDesignInput(const RobotModel& robot, const std::array<Paper
   return input;
 }
 
+// The share of a swing's horizontal travel the foot makes low before it rises (Footstep::
+// swing_approach_share): up to `margin` before the first solid above the foothold it leaves (the
+// riser it climbs). With l_max 21 cm on 17 cm risers the hip at lift-off is barely above the upper
+// tread (that is what l_min means), so a foot lifted behind it could not reach the nose's height.
+double ApproachShare(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, const Staircase& stairs, double margin) {
+  const double travel = to_W.x() - from_W.x();
+  if (travel <= 0.0) return 0.0;
+  double edge = to_W.x();
+  for (const Box3& box : stairs.Solids()) {
+    if (box.max.z() > from_W.z() + 1e-6 && box.max.x() > from_W.x() && box.min.x() < edge) edge = std::max(box.min.x(), from_W.x());
+  }
+  return std::clamp((edge - margin - from_W.x()) / travel, 0.0, 0.9);
+}
+
 Plan PaperInfeasible(Plan plan, const std::string& reason) {
   plan.status = PlanStatus::kInfeasible;
   plan.status_reason = reason;
@@ -141,6 +155,8 @@ Plan PlanPaperCrawl(const RobotModel& robot, const Staircase& stairs, const Cons
   for (std::size_t r = 0; r < 4; ++r) plan.initial_feet_W[static_cast<std::size_t>(legs[r].robot_index)] = foothold(r, start[r]);
   // Climb until the hind feet stand on the top landing.
   const double end = std::max(lift_time(0, steps - 1), lift_time(1, steps - 1)) + settings.swing_duration;
+  // The rising foot keeps its swing clearance from the riser, sphere included.
+  const double approach_margin = settings.body.swing.clearance + robot.legs().front().foot_radius;
   for (std::size_t r = 0; r < 4; ++r) {
     for (int j = start[r]; lift_time(r, j) <= end; ++j) {
       Footstep step;
@@ -153,6 +169,7 @@ Plan PlanPaperCrawl(const RobotModel& robot, const Staircase& stairs, const Cons
       step.stair_index = map.StairAt(step.position_W.head<2>());
       step.in_step_region = step.stair_index >= 0 && map.InStepRegion(step.stair_index, step.position_W.head<2>());
       step.swing_apex_z = SwingTrajectory(step.from_W, step.position_W, stairs, settings.body.swing).apex_z();
+      step.swing_approach_share = ApproachShare(step.from_W, step.position_W, stairs, approach_margin);
       plan.footsteps.push_back(step);
     }
   }

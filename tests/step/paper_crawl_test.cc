@@ -7,7 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "kinematics/robot_kinematics.h"
+#include "planning/plan_pipeline.h"
 #include "planning/step/paper_crawl.h"
+#include "planning/swing_trajectory.h"
 #include "sanitized.h"
 #include "test_paths.h"
 
@@ -16,16 +19,53 @@ using namespace stairplan;
 namespace {
 
 // Three steps: two treads carry the periodic pattern; the plan's cost grows with the flight.
-Staircase PaperFlight() {
+Staircase PaperFlight(double rise = 0.17, double run = 0.27) {
   StairSpec spec;
   spec.steps = 3;
-  spec.rise = 0.17;
-  spec.run = 0.27;
+  spec.rise = rise;
+  spec.run = run;
   spec.nosing = 0.0;
   return Staircase(spec);
 }
 
 bool IsRightLeg(const std::string& leg) { return leg[0] == 'R'; }
+
+// Where a hip stands, relative to the nose a leg climbs over, when that leg lifts off (Figure
+// 2(a)): on the line d above the edges, on the bisector of its two contacts a behind their noses.
+Eigen::Vector2d PaperHipFromNose(const GaitDesign& g, double a) {
+  const double u = 0.5 * g.cl - a * std::cos(g.phi);
+  return {-u * std::cos(g.phi) - g.d * std::sin(g.phi), -u * std::sin(g.phi) + g.d * std::cos(g.phi)};
+}
+
+// The climbing swings travel low to their riser, rise there and keep clear of it (the paper's
+// swing, Footstep::swing_approach_share); returns how many swings climb.
+int CheckClimbingSwings(const RobotModel& robot, const Staircase& stairs, const Plan& plan, const PaperCrawlSettings& settings) {
+  const double radius = robot.legs().front().foot_radius;
+  const double margin = settings.body.swing.clearance + radius;
+  int climbs = 0;
+  for (const Footstep& f : plan.footsteps) {
+    CHECK(f.swing_approach_share >= 0.0);
+    CHECK(f.swing_approach_share < 1.0);
+    if (f.position_W.z() <= f.from_W.z() + 1e-6) continue;
+    ++climbs;
+    const SwingTrajectory swing(f.from_W, f.position_W, f.swing_apex_z, settings.body.swing, f.swing_approach_share);
+    // The riser it climbs: the first edge ahead of the foothold it leaves.
+    double riser = f.position_W.x();
+    for (const StairEdge& e : stairs.edges()) {
+      if (e.x_nose > f.from_W.x()) riser = std::min(riser, e.x_nose);
+    }
+    const Eigen::Vector3d top = swing.At(settings.body.swing.lift_fraction);
+    CHECK(top.x() == Approx(riser - margin).margin(1e-9));
+    CHECK(top.z() == Approx(f.swing_apex_z));
+    // The foot's sphere keeps clear of the riser and its nose until it lowers onto the tread.
+    for (int i = 0; i <= 100; ++i) {
+      const double s = i / 100.0 * (1.0 - settings.body.swing.lower_fraction);
+      const Eigen::Vector3d p = swing.At(s);
+      if (p.x() + radius >= riser) CHECK(p.z() >= f.position_W.z() + settings.body.swing.clearance - 1e-9);
+    }
+  }
+  return climbs;
+}
 
 }  // namespace
 
@@ -72,6 +112,7 @@ TEST_CASE("paper crawl: footholds at a_min / a_max, the paper's order and timing
       CHECK(f.position_W.x() - nose == Approx(at_min ? g.a_min : g.a_max).margin(1e-9));
     }
     CHECK(on_treads >= 4 * (stairs.steps() - 1));
+    CHECK(CheckClimbingSwings(robot, stairs, plan, settings) >= 4 * stairs.steps());
 
     std::vector<Footstep> by_liftoff = plan.footsteps;
     std::sort(by_liftoff.begin(), by_liftoff.end(), [](const Footstep& a, const Footstep& b) { return a.t_liftoff < b.t_liftoff; });
@@ -111,4 +152,46 @@ TEST_CASE("paper crawl: a design that fails on the stairs is a status, not a pla
   CHECK(plan.status_reason.find("(10)") != std::string::npos);
   settings.max_leg_length = -1.0;
   CHECK_THROWS_AS(PlanPaperCrawl(robot, stairs, map, settings), std::invalid_argument);
+}
+
+TEST_CASE("paper crawl on the paper's three stairs: no d lets both feet pass their noses and land in the step regions", "[step][paper]") {
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
+  const RobotKinematics kinematics(robot);
+  const LegKinematics& leg = kinematics.leg(0);
+  const double lateral = leg.model().foot_zero_B.y() - leg.model().hip_B.y();  // the leg's plane beside its hip
+  const PaperCrawlSettings settings;
+  const PipelineOptions pipeline;  // the map `plan --planner paper` validates against
+  // The foot's centre where it passes the nose: the swing's clearance from the riser and above
+  // the tread, its sphere included.
+  const double pass = settings.body.swing.clearance + leg.model().foot_radius;
+  const auto hip_to_pass = [&](const GaitDesign& g, double a) {
+    const Eigen::Vector2d hip = PaperHipFromNose(g, a);
+    return std::sqrt(std::pow(-pass - hip.x(), 2) + std::pow(pass - hip.y(), 2) + lateral * lateral);
+  };
+  for (const auto& [run, rise] : {std::pair{0.27, 0.17}, std::pair{0.31, 0.175}, std::pair{0.28, 0.16}}) {
+    INFO(run << " x " << rise);
+    GaitDesignInput in;
+    in.run = run;
+    in.rise = rise;
+    in.body_length = 0.444;
+    const double cl = std::hypot(run, rise), sin_phi = rise / cl;
+    // The controller's d (a_min + a_max = W): the left feet lift at l_max with their hips so near
+    // the nose that the foot would pass closer to the hip than the folded leg reaches.
+    in.hip_clearance = 0.5 * ((MinLegLength(run, rise) - run) * sin_phi + std::sqrt(0.21 * 0.21 - 0.25 * cl * cl));
+    const GaitDesign centred = DesignGait(in);
+    REQUIRE(centred.feasible);
+    CHECK(hip_to_pass(centred, centred.a_max) < leg.reach().lo);
+    // The paper's simulation's d = H / 2 leaves that foot room, but its right feet then stand so
+    // near the nose that they are off the step regions.
+    in.hip_clearance = 0.5 * rise;
+    const GaitDesign paper = DesignGait(in);
+    REQUIRE(paper.feasible);
+    CHECK(hip_to_pass(paper, paper.a_max) > leg.reach().lo);
+    const Staircase stairs = PaperFlight(rise, run);
+    const ConstrainedMap map = BuildPipelineMap(robot, stairs, pipeline);
+    const Eigen::Vector2d right_foot(stairs.edges()[0].x_nose + paper.a_min, leg.model().foot_zero_B.y());
+    const int stair = map.StairAt(right_foot);
+    REQUIRE(stair == 1);
+    CHECK_FALSE(map.InStepRegion(stair, right_foot));
+  }
 }
