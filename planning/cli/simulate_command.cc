@@ -1,4 +1,5 @@
-// `stairplan simulate plan.json`: execute a plan in MuJoCo on the stairs it names and print a
+// `stairplan simulate plan.json`: execute a plan in MuJoCo on the stairs it names (or on others,
+// --stairs, as `robustness` does) and print a
 // summary of the physics outcome, or with --json the outcome as JSON (exit 0 when the robot got
 // there cleanly, 3 when it did not).
 #include <csignal>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "planning/cli/cli_common.h"
+#include "planning/cli/stair_flags.h"
 #include "planning/json_version.h"
 #include "planning/plan_json_reader.h"
 #include "planning/simulation/plan_executor.h"
@@ -74,10 +76,12 @@ int RunSimulate(const std::vector<std::string>& args) {
   CLI::App app("Execute a plan in MuJoCo and report what happened", "simulate");
   std::string path, robot_path, frames_dir, video, out, trace;
   std::vector<std::string> overrides;
+  StairFlags true_stairs;
   double frame_ms = 100.0, friction = 0.8, video_speed = 1.0;
   bool print_json = false;
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
+  app.add_option("--stairs", true_stairs.file, "Stairs YAML to execute on instead of the plan's own (stairs that differ from the model)");
   app.add_option("--video", video, "Render the run with MuJoCo's renderer offscreen (EGL) into this mp4 (ffmpeg)");
   app.add_option("--frames", frames_dir, "Render the run into this directory as PNGs, one every --frame-ms");
   app.add_option("--video-speed", video_speed, "Playback speed of --video against the plan's clock (default 1)")
@@ -97,7 +101,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   return Guarded("simulate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
     const RobotModel robot = LoadPlanRobot(file, robot_path);
-    const Staircase stairs(file.stairs);
+    const Staircase stairs = true_stairs.file.empty() ? Staircase(file.stairs) : ResolveStairs(true_stairs);
     if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--frames");
     const bool rendering = !video.empty() || !frames_dir.empty();
     if (rendering && frame_option->count() == 0) frame_ms = 40.0;
