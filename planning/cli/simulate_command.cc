@@ -78,7 +78,8 @@ int RunSimulate(const std::vector<std::string>& args) {
   std::vector<std::string> overrides;
   StairFlags true_stairs;
   double frame_ms = 100.0, friction = 0.8, video_speed = 1.0;
-  bool print_json = false;
+  bool print_json = false, no_responses = false;
+  std::string impacts = "torque_residual";
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
   app.add_option("--stairs", true_stairs.file, "Stairs YAML to execute on instead of the plan's own (stairs that differ from the model)");
@@ -96,6 +97,11 @@ int RunSimulate(const std::vector<std::string>& args) {
   app.add_option("--set", overrides,
                  "Override a simulation setting, name=value (e.g. kp_per_kg=10; time_scale=3 replays 3x slower than planned)");
   app.add_option("--trace", trace, "Write a CSV of the base (measured and planned) every --frame-ms");
+  app.add_option("--impacts", impacts,
+                 "How impacts are detected: torque_residual (joint torques against the model, default), contacts "
+                 "(MuJoCo's contact list) or none")
+      ->check(CLI::IsMember({"torque_residual", "contacts", "none"}));
+  app.add_flag("--no-responses", no_responses, "Detect and record impacts but do not answer them");
   app.add_flag("--json", print_json, "Print the outcome as JSON (the --out file's contents) instead of the summary");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("simulate", [&] {
@@ -107,6 +113,10 @@ int RunSimulate(const std::vector<std::string>& args) {
     if (rendering && frame_option->count() == 0) frame_ms = 40.0;
     SimSettings settings;
     settings.world.friction = friction;
+    settings.impact.source = impacts == "none" ? ImpactSource::kNone
+                             : impacts == "contacts" ? ImpactSource::kContacts
+                                                     : ImpactSource::kTorqueResidual;
+    settings.impact.respond = !no_responses;
     const bool record = rendering || !trace.empty() || frame_option->count() > 0;
     settings.frame_interval = record ? frame_ms / 1000.0 : 0.0;
     for (const std::string& o : overrides) {
@@ -157,6 +167,11 @@ int RunSimulate(const std::vector<std::string>& args) {
                 << outcome.max_torque_ratio * 100 << "% of the limit; time_scale " << outcome.time_scale
                 << ", plan ZMP margin " << outcome.plan_zmp_margin_m * 1000 << " mm; real-time factor "
                 << outcome.real_time_factor << "\n";
+      for (const ImpactRecord& e : outcome.impacts) {
+        if (e.kind == ImpactKind::kTouchdown || e.kind == ImpactKind::kLiftoffScuff) continue;  // the routine ones
+        std::cout << "  impact t=" << e.t << " s  " << e.leg << "  " << ToString(e.kind) << " -> " << ToString(e.response)
+                  << " (" << ToString(e.source) << ")\n";
+      }
       if (!out.empty()) std::cout << "  wrote: " << out << "\n";
     }
     return outcome.Passed() ? kExitOk : kExitInfeasible;

@@ -1,0 +1,26 @@
+#include "planning/simulation/physics_robustness.h"
+
+#include "planning/simulation/plan_executor.h"
+
+namespace stairplan {
+
+PhysicsRobustnessReport EvaluatePhysicsRobustness(const RobotModel& robot, const StairSpec& nominal, const Plan& plan,
+                                                  const RobustnessSettings& settings, const SimSettings& sim) {
+  PhysicsRobustnessReport report;
+  report.trials = settings.trials;
+  SimSettings answering = sim;
+  answering.impact.respond = true;
+  SimSettings recording = sim;
+  recording.impact.respond = false;
+  report.nominal_ok = Simulate(robot, Staircase(nominal), plan, answering).Passed() ? 1 : 0;
+  for (const StairSpec& spec : PerturbedStaircases(nominal, settings)) {
+    const Staircase stairs(spec);
+    const SimulationOutcome with = Simulate(robot, stairs, plan, answering);
+    report.with_responses_ok += with.Passed() ? 1 : 0;
+    for (const ImpactRecord& e : with.impacts) report.trips += e.kind == ImpactKind::kTrip ? 1 : 0;
+    report.without_responses_ok += Simulate(robot, stairs, plan, recording).Passed() ? 1 : 0;
+  }
+  return report;
+}
+
+}  // namespace stairplan
