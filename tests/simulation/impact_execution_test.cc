@@ -126,3 +126,60 @@ TEST_CASE("MuJoCo's contact list finds the same trips as the torque residual", "
   }
 }
 
+
+
+// Seed 000 [0058] and [0068]: a body carried too low drives knees into the stairs. 6 cm low, the
+// front shank glances a nosing as it swings up the flight: no reaction. 14 cm low, the first hind
+// swing's knee, behind its hip, meets the riser: the knee moves forward (the body still ends on the
+// stairs: no response saves a plan that puts the body there).
+TEST_CASE("knees driven into the stairs are detected, classified and answered; the log names time, leg, kind and response",
+          "[simulation][impact]") {
+  const RobotModel& robot = BuiltinRobot();
+  StairSpec spec;
+  spec.steps = 2;
+  PipelineOptions options;
+  options.crawl.shift_duration = 0.6;
+  const Plan nominal = RunPipeline(robot, Staircase(spec), options).plan;
+  const auto lowered = [&](double dz) {
+    Plan plan = nominal;
+    for (BodyState& b : plan.body) b.z -= dz;
+    return plan;
+  };
+  const auto first_of = [](const SimulationOutcome& o, ImpactKind kind) {
+    return std::find_if(o.impacts.begin(), o.impacts.end(), [&](const ImpactRecord& e) { return e.kind == kind; });
+  };
+
+  SimSettings contacts;
+  contacts.impact.source = ImpactSource::kContacts;
+  const SimulationOutcome glancing = Simulate(robot, Staircase(spec), lowered(0.06), contacts);
+  INFO("6 cm low: " << ImpactLog(glancing));
+  const auto knee = first_of(glancing, ImpactKind::kKneeGlancingTerrain);
+  REQUIRE(knee != glancing.impacts.end());
+  CHECK(knee->response == ResponseKind::kProceed);
+  CHECK(knee->link.find("shank") != std::string::npos);
+  CHECK(knee->leg.size() == 2u);
+  // The contact the log names is the one the outcome lists on a nosing.
+  const auto shank = std::find_if(glancing.other_contacts.begin(), glancing.other_contacts.end(),
+                                  [&](const LinkContact& c) { return c.link == knee->link; });
+  REQUIRE(shank != glancing.other_contacts.end());
+  CHECK(shank->stair_geom.find("nosing") != std::string::npos);
+  CHECK(knee->t == Approx(shank->t_first).margin(1e-9));
+
+  for (const ImpactSource source : {ImpactSource::kContacts, ImpactSource::kTorqueResidual}) {
+    INFO(ToString(source));
+    SimSettings settings;
+    settings.impact.source = source;
+    const SimulationOutcome low = Simulate(robot, Staircase(spec), lowered(0.14), settings);
+    INFO("14 cm low: " << ImpactLog(low));
+    const auto behind = first_of(low, ImpactKind::kKneeBehindBody);
+    REQUIRE(behind != low.impacts.end());
+    CHECK(behind->response == ResponseKind::kMoveKneeForward);
+    CHECK(behind->leg[1] == 'H');
+    // Found at the step MuJoCo first shows the shank on the stairs, torques or contacts alike.
+    const auto hind_shank = std::find_if(low.other_contacts.begin(), low.other_contacts.end(),
+                                         [&](const LinkContact& c) { return c.link == behind->leg + "_shank"; });
+    REQUIRE(hind_shank != low.other_contacts.end());
+    CHECK(behind->t - hind_shank->t_first <= 0.030);
+    CHECK(behind->t >= hind_shank->t_first - 1e-9);
+  }
+}
