@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 
 #include "geometry/field_error.h"
 
@@ -18,17 +17,12 @@ const char* ToString(ImpactSource source) {
 }
 
 void ImpactDetectionSettings::Validate() const {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!std::isfinite(v) || v < lo || v > hi) {
-      throw FieldError(std::string("impact.") + name, "out of range (got " + std::to_string(v) + ")");
-    }
-  };
-  check("force_threshold", force_threshold, 1e-3, 10.0);
-  check("scuff_phase", scuff_phase, 0.0, 1.0);
-  check("min_reswing_time", min_reswing_time, 0.0, 5.0);
-  check("retract_distance", retract_distance, 0.0, 0.5);
-  check("leg_strike_distance", leg_strike_distance, 0.0, 0.5);
-  check("near_stairs", near_stairs, 0.0, 0.5);
+  RequireInRange("impact.force_threshold", force_threshold, 1e-3, 10.0);
+  RequireInRange("impact.scuff_phase", scuff_phase, 0.0, 1.0);
+  RequireInRange("impact.min_reswing_time", min_reswing_time, 0.0, 5.0);
+  RequireInRange("impact.leg_strike_distance", leg_strike_distance, 0.0, 0.5);
+  RequireInRange("impact.near_stairs", near_stairs, 0.0, 0.5);
+  RequireInRange("impact.retract_distance", retract_distance, 0.0, 0.5);
   response.Validate();
 }
 

@@ -434,7 +434,12 @@ bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
     const int body = m->geom_bodyid[robot_geom];
     const bool touching = con.dist <= 0.0;  // farther ones are only within the detection margin
     const int owner = body_leg_[static_cast<std::size_t>(body)];
-    if (touching && owner >= 0) legs_[static_cast<std::size_t>(owner)].link_touching = true;
+    if (touching && owner >= 0) {
+      // The ground truth the detectors' latency is measured against: when this contact began.
+      LegState& leg = legs_[static_cast<std::size_t>(owner)];
+      if (!leg.stance && !leg.link_touching && !leg.was_touching) leg.t_first_contact = tp;
+      leg.link_touching = true;
+    }
     bool foot = false;
     for (std::size_t i = 0; i < legs_.size(); ++i) {
       if (legs_[i].foot_body == body) {
@@ -474,11 +479,7 @@ bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
       outcome_.cause = cause.str();
     }
   }
-  // The ground truth the detectors' latency is measured against: when this contact began.
-  for (LegState& leg : legs_) {
-    if (!leg.stance && leg.link_touching && !leg.was_touching) leg.t_first_contact = tp;
-    leg.was_touching = leg.link_touching;
-  }
+  for (LegState& leg : legs_) leg.was_touching = leg.link_touching;
   return fallen_;
 }
 
