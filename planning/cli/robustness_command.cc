@@ -64,7 +64,9 @@ int RunRobustness(const std::vector<std::string>& args) {
                             {"worst_cumulative_run_error_m", report.worst_cumulative_run_error}};
       if (simulate) {
         out["simulated"] = {{"nominal_ok", physics.nominal_ok == 1}, {"with_responses_ok", physics.with_responses_ok},
-                            {"without_responses_ok", physics.without_responses_ok}, {"trips", physics.trips}};
+                            {"without_responses_ok", physics.without_responses_ok},
+                            {"with_responses_fell", physics.with_responses_fell},
+                            {"without_responses_fell", physics.without_responses_fell}, {"trips", physics.trips}};
       }
       std::cout << StampVersion(out).dump(2) << "\n";
     } else {
@@ -76,7 +78,8 @@ int RunRobustness(const std::vector<std::string>& args) {
       if (simulate) {
         std::cout << "  in MuJoCo: nominal " << (physics.nominal_ok ? "passed" : "FAILED") << "; open loop with impact responses "
                   << physics.with_responses_ok << "/" << physics.trials << " passed, without " << physics.without_responses_ok
-                  << "/" << physics.trials << " (" << physics.trips << " trips answered)\n";
+                  << "/" << physics.trials << " (" << physics.trips << " trips answered); fell " << physics.with_responses_fell
+                  << " times with responses, " << physics.without_responses_fell << " without\n";
       }
     }
     return kExitOk;

@@ -17,8 +17,11 @@ PhysicsRobustnessReport EvaluatePhysicsRobustness(const RobotModel& robot, const
     const Staircase stairs(spec);
     const SimulationOutcome with = Simulate(robot, stairs, plan, answering);
     report.with_responses_ok += with.Passed() ? 1 : 0;
+    report.with_responses_fell += with.status == SimStatus::kFall ? 1 : 0;
     for (const ImpactRecord& e : with.impacts) report.trips += e.kind == ImpactKind::kTrip ? 1 : 0;
-    report.without_responses_ok += Simulate(robot, stairs, plan, recording).Passed() ? 1 : 0;
+    const SimulationOutcome without = Simulate(robot, stairs, plan, recording);
+    report.without_responses_ok += without.Passed() ? 1 : 0;
+    report.without_responses_fell += without.status == SimStatus::kFall ? 1 : 0;
   }
   return report;
 }
