@@ -52,7 +52,10 @@ int RunRobustness(const std::vector<std::string>& args) {
     PhysicsRobustnessReport physics;
     try {
       report = EvaluateRobustness(robot, nominal.spec(), options, settings);
-      if (simulate) physics = EvaluatePhysicsRobustness(robot, nominal.spec(), RunPipeline(robot, nominal, options).plan, settings);
+      if (simulate) {
+        physics = EvaluatePhysicsRobustness(robot, nominal.spec(), RunPipeline(robot, nominal, options).plan,
+                                            PerturbedStaircases(nominal.spec(), settings));
+      }
     } catch (const FieldError& e) {
       std::string flag = e.field();
       std::replace(flag.begin(), flag.end(), '_', '-');

@@ -5,15 +5,15 @@
 namespace stairplan {
 
 PhysicsRobustnessReport EvaluatePhysicsRobustness(const RobotModel& robot, const StairSpec& nominal, const Plan& plan,
-                                                  const RobustnessSettings& settings, const SimSettings& sim) {
+                                                  const std::vector<StairSpec>& perturbed, const SimSettings& sim) {
   PhysicsRobustnessReport report;
-  report.trials = settings.trials;
+  report.trials = static_cast<int>(perturbed.size());
   SimSettings answering = sim;
   answering.impact.respond = true;
   SimSettings recording = sim;
   recording.impact.respond = false;
   report.nominal_ok = Simulate(robot, Staircase(nominal), plan, answering).Passed() ? 1 : 0;
-  for (const StairSpec& spec : PerturbedStaircases(nominal, settings)) {
+  for (const StairSpec& spec : perturbed) {
     const Staircase stairs(spec);
     const SimulationOutcome with = Simulate(robot, stairs, plan, answering);
     report.with_responses_ok += with.Passed() ? 1 : 0;

@@ -3,9 +3,11 @@
 // seed 000 [0053]-[0068] buy is counted on the same stairs.
 #pragma once
 
+#include <vector>
+
+#include "geometry/staircase.h"
 #include "kinematics/robot_model.h"
 #include "planning/plan.h"
-#include "planning/robustness.h"
 #include "planning/simulation/sim_settings.h"
 
 namespace stairplan {
@@ -22,9 +24,10 @@ struct PhysicsRobustnessReport {
   int trips = 0;                 ///< trips detected over the runs with responses
 };
 
-/// Executes `plan` (planned on `nominal`) on PerturbedStaircases(nominal, settings) with `sim`'s
-/// impact detection, with and without responses. A run passes when SimulationOutcome::Passed().
+/// Executes `plan` (planned on `nominal`) on each of `perturbed` (the robustness command's
+/// PerturbedStaircases) with `sim`'s impact detection, with and without responses. A run passes
+/// when SimulationOutcome::Passed().
 PhysicsRobustnessReport EvaluatePhysicsRobustness(const RobotModel& robot, const StairSpec& nominal, const Plan& plan,
-                                                  const RobustnessSettings& settings, const SimSettings& sim = {});
+                                                  const std::vector<StairSpec>& perturbed, const SimSettings& sim = {});
 
 }  // namespace stairplan
