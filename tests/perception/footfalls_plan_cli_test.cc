@@ -41,6 +41,13 @@ TEST_CASE("footfalls --stairs-out, plan --stairs: plans that validate on the tru
     INFO(valid.out << valid.err);
     CHECK(valid.code == 0);
   }
+  // plan --footfalls plans on a staircase of the log directly: the third, walked down.
+  const StairplanRun direct =
+      RunStairplan(dir, "plan --footfalls " + dir + "/walk.csv --staircase 3 --nosing 0.02 --out " + dir + "/direct");
+  INFO(direct.out << direct.err);
+  REQUIRE(direct.code == 0);
+  CHECK(RunStairplan(dir, "validate " + dir + "/direct/plan.json --stairs " + dir + "/true_2.yaml").code == 0);
+  CHECK(RunStairplan(dir, "plan --footfalls " + dir + "/walk.csv --staircase 5 --out " + dir + "/none").code == 3);
   // The check has teeth: the first flight's plan (rise 0.17) on the second flight's stairs (0.15) is invalid.
   const StairplanRun wrong = RunStairplan(dir, "validate " + dir + "/plan_0/plan.json --stairs " + dir + "/true_1.yaml");
   INFO(wrong.out);
