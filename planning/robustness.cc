@@ -8,24 +8,22 @@
 namespace stairplan {
 namespace {
 
+double NominalRun(const StairSpec& nominal, int i) {
+  return nominal.runs.empty() ? nominal.run : nominal.runs[static_cast<std::size_t>(i)];
+}
+
 // One staircase with every rise and run perturbed; errors that make nonsense are redrawn.
-StairSpec Perturbed(const StairSpec& nominal, const RobustnessSettings& s, std::mt19937& rng, double* run_error) {
+StairSpec Perturbed(const StairSpec& nominal, const RobustnessSettings& s, std::mt19937& rng) {
   std::normal_distribution<double> rise_error(0.0, s.sigma_rise), run_err(0.0, s.sigma_run);
   const Staircase base(nominal);
   for (int attempt = 0; attempt < 100; ++attempt) {
     StairSpec spec = nominal;
     spec.rises.clear();
     spec.runs.clear();
-    double sum = 0.0;
     for (int i = 0; i < nominal.steps; ++i) spec.rises.push_back(base.rise(i) + rise_error(rng));
-    for (int i = 0; i + 1 < nominal.steps; ++i) {
-      const double e = run_err(rng);
-      sum += e;
-      spec.runs.push_back((nominal.runs.empty() ? nominal.run : nominal.runs[static_cast<std::size_t>(i)]) + e);
-    }
+    for (int i = 0; i + 1 < nominal.steps; ++i) spec.runs.push_back(NominalRun(nominal, i) + run_err(rng));
     try {
       spec.Validate();
-      *run_error = sum;
       return spec;
     } catch (const std::invalid_argument&) {
     }
@@ -64,6 +62,14 @@ Plan PlanOnTrueStairs(const Plan& nominal, const Staircase& true_stairs, const C
   return plan;
 }
 
+std::vector<StairSpec> PerturbedStaircases(const StairSpec& nominal, const RobustnessSettings& settings) {
+  settings.Validate();
+  std::mt19937 rng(settings.seed);
+  std::vector<StairSpec> out;
+  for (int trial = 0; trial < settings.trials; ++trial) out.push_back(Perturbed(nominal, settings, rng));
+  return out;
+}
+
 RobustnessReport EvaluateRobustness(const RobotModel& robot, const StairSpec& nominal, const PipelineOptions& options,
                                     const RobustnessSettings& settings) {
   settings.Validate();
@@ -72,12 +78,12 @@ RobustnessReport EvaluateRobustness(const RobotModel& robot, const StairSpec& no
   RobustnessReport report;
   report.trials = settings.trials;
   report.nominal_valid = planned.validated && planned.validation.ok ? 1 : 0;
-  std::mt19937 rng(settings.seed);
   PipelineOptions no_validation = options;
   no_validation.validate = false;
-  for (int trial = 0; trial < settings.trials; ++trial) {
+  for (const StairSpec& spec : PerturbedStaircases(nominal, settings)) {
+    const Staircase stairs(spec);
     double run_error = 0.0;
-    const Staircase stairs(Perturbed(nominal, settings, rng, &run_error));
+    for (int i = 0; i + 1 < nominal.steps; ++i) run_error += spec.runs[static_cast<std::size_t>(i)] - NominalRun(nominal, i);
     report.worst_cumulative_run_error = std::max(report.worst_cumulative_run_error, std::abs(run_error));
     const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
     report.open_loop_ok += Valid(robot, stairs, map, PlanOnTrueStairs(planned.plan, stairs, map), options) ? 1 : 0;

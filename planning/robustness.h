@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "kinematics/robot_model.h"
 #include "planning/plan_pipeline.h"
@@ -28,6 +29,10 @@ struct RobustnessReport {
   int replanned_ok = 0;   ///< trials where a plan made on the true stairs is valid
   double worst_cumulative_run_error = 0.0;  ///< largest |sum of run errors| over the trials [m]
 };
+
+/// The perturbed staircases EvaluateRobustness draws for `settings` (same seed, same order), so that
+/// other judges (the physics check) run on the same stairs.
+std::vector<StairSpec> PerturbedStaircases(const StairSpec& nominal, const RobustnessSettings& settings);
 
 /// The nominal plan moved onto `true_stairs`: footholds keep x and y and take the true height.
 Plan PlanOnTrueStairs(const Plan& nominal, const Staircase& true_stairs, const ConstrainedMap& true_map);

@@ -39,10 +39,10 @@ std::string StairsPath(const std::string& path, std::size_t i) {
 }
 
 // The staircase as the YAML `plan --stairs` reads, traversed as it was walked.
-std::string StairsYaml(const FootfallStaircase& s, const std::string& csv_path, std::size_t i) {
+std::string StairsYaml(const FootfallStaircase& s, const std::string& csv_path, std::size_t i, double nosing) {
   StairSpec spec;
   try {
-    spec = s.model.ToStaircase(s.traversal).spec();
+    spec = s.model.ToStaircase(s.traversal, nosing).spec();
   } catch (const std::invalid_argument& e) {
     throw NoSolution("staircase " + std::to_string(i + 1) + " cannot be written as stairs YAML: " + e.what());
   }
@@ -57,6 +57,7 @@ int RunFootfalls(const std::vector<std::string>& args) {
   CLI::App app("Find the staircases a robot walked from its footfalls (CSV columns t,leg,x,y,z)", "footfalls");
   std::string path, stairs_out;
   bool json = false;
+  double nosing = 0.0;
   FootfallStairsSettings settings;
   app.add_option("file", path, "Footfall CSV with the header t,leg,x,y,z")->required();
   app.add_option("--min-rise", settings.min_rise, "Smallest riser height [m] (default 0.08)");
@@ -66,6 +67,10 @@ int RunFootfalls(const std::vector<std::string>& args) {
   app.add_option("--stairs-out", stairs_out,
                  "Write each staircase as the YAML that `stairplan plan --stairs` reads: the first to this file, the "
                  "others beside it with _1, _2... before the extension (F.yaml, F_1.yaml, ...); exit 3 when none is found");
+  app.add_option("--nosing", nosing,
+                 "Nosing of the stairs written by --stairs-out [m]: footfalls find the walking edges but cannot see "
+                 "the overhang, which a plan must clear (default 0)")
+      ->check(CLI::Range(0.0, 0.1));
   app.add_flag("--json", json, "Print JSON (key staircases) instead of the summary");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("footfalls", [&] {
@@ -77,7 +82,7 @@ int RunFootfalls(const std::vector<std::string>& args) {
     const std::vector<Footfall> footfalls = ReadFootfallCsv(path);
     const std::vector<FootfallStaircase> found = StairsFromFootfalls(footfalls, settings);
     std::vector<std::string> yamls, written;  // every file made before any is written
-    for (std::size_t i = 0; i < found.size() && !stairs_out.empty(); ++i) yamls.push_back(StairsYaml(found[i], path, i));
+    for (std::size_t i = 0; i < found.size() && !stairs_out.empty(); ++i) yamls.push_back(StairsYaml(found[i], path, i, nosing));
     for (std::size_t i = 0; i < yamls.size(); ++i) {
       written.push_back(StairsPath(stairs_out, i));
       WriteFileAtomically(written.back(), yamls[i]);

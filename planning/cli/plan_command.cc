@@ -3,6 +3,8 @@
 #include <iostream>
 #include <optional>
 
+#include "geometry/footfall.h"
+#include "geometry/footfall_stairs.h"
 #include "geometry/point_cloud.h"
 #include "geometry/stair_perception.h"
 #include "geometry/stair_spec_yaml.h"
@@ -25,6 +27,8 @@ struct PlanOptions {
   std::optional<int> horizon;
   std::string nlp;
   std::string cloud;
+  std::string footfalls;
+  int staircase = 1;
   std::string out = "stairplan-out";
   std::vector<std::string> set;
   bool json = false;
@@ -40,6 +44,11 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
   app.add_option("--nlp", o.nlp, "Refine the QP body with the exact NLP: ipopt or nlopt (implies --body qp)");
   app.add_option("--cloud", o.cloud,
                  "Plan on the stairs perceived in this point cloud (PLY, PCD or XYZ; the stairs flags are ignored)");
+  app.add_option("--footfalls", o.footfalls,
+                 "Plan on a staircase found in this footfall CSV (t,leg,x,y,z), traversed as it was walked; "
+                 "--nosing gives the overhang footfalls cannot see (default 0), the other stairs flags are ignored");
+  app.add_option("--staircase", o.staircase, "Which staircase of --footfalls, in walking order (default 1)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--planner", o.planner,
                  "crawl: the step planner picks the cadence, feet at step-region centres (default); "
                  "step: the step planner's own footsteps; "
@@ -101,6 +110,22 @@ void SetBodyOptions(const PlanOptions& o, PipelineOptions& options) {
   options.body = qp ? BodySource::kRecedingHorizonQp : BodySource::kQuasiStaticPath;
   if (o.horizon) options.body_qp.knots = *o.horizon;
   options.body_nlp = o.nlp;
+}
+
+// Staircase `index` (1-based) of those a footfall log walked, as the YAML `footfalls --stairs-out`
+// writes it.
+Staircase FootfallStaircaseAt(const std::string& path, int index, double nosing) {
+  const std::vector<FootfallStaircase> found = StairsFromFootfalls(ReadFootfallCsv(path));
+  if (index > static_cast<int>(found.size())) {
+    throw NoSolution(path + ": --staircase " + std::to_string(index) + ": the footfalls walked " +
+                     std::to_string(found.size()) + " staircases");
+  }
+  const FootfallStaircase& s = found[static_cast<std::size_t>(index - 1)];
+  try {
+    return s.model.ToStaircase(s.traversal, nosing);
+  } catch (const std::invalid_argument& e) {
+    throw NoSolution(path + ": staircase " + std::to_string(index) + " cannot be planned on: " + e.what());
+  }
 }
 
 // The stairs and their constrained map as perceived from a cloud, in the stairs' own frame.
@@ -169,6 +194,7 @@ int RunPlan(const std::vector<std::string>& args) {
     PipelineOptions options;
     options.facing = ParseFacing(o.facing);
     const bool paper = o.planner == "paper" || o.planner == "paper-alt";
+    if (!o.cloud.empty() && !o.footfalls.empty()) throw BadInput("--footfalls: plans on footfalls or on --cloud, not both");
     if (paper && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     try {
       if (!paper) options.footsteps = ParseFootstepSource(o.planner);
@@ -180,7 +206,9 @@ int RunPlan(const std::vector<std::string>& args) {
     const RobotModel robot = LoadRobot(o.robot);
     std::optional<CloudStairs> perceived;
     if (!o.cloud.empty()) perceived = PerceiveCloud(o.cloud, o.stairs, options.facing);
-    const Staircase stairs = perceived ? perceived->stairs : ResolveStairs(o.stairs);
+    const Staircase stairs = perceived              ? perceived->stairs
+                             : !o.footfalls.empty() ? FootfallStaircaseAt(o.footfalls, o.staircase, o.stairs.nosing.value_or(0.0))
+                                                    : ResolveStairs(o.stairs);
     const double load_us = MicrosSince(t0);
     if (perceived) AddPipelineRobotRegions(robot, stairs, options, perceived->map);
     PipelineResult result = paper ? PaperCrawlResult(robot, stairs, options, o.planner == "paper-alt")

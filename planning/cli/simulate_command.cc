@@ -1,4 +1,5 @@
-// `stairplan simulate plan.json`: execute a plan in MuJoCo on the stairs it names and print a
+// `stairplan simulate plan.json`: execute a plan in MuJoCo on the stairs it names (or on others,
+// --stairs, as `robustness` does) and print a
 // summary of the physics outcome, or with --json the outcome as JSON (exit 0 when the robot got
 // there cleanly, 3 when it did not).
 #include <csignal>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "planning/cli/cli_common.h"
+#include "planning/cli/stair_flags.h"
 #include "planning/json_version.h"
 #include "planning/plan_json_reader.h"
 #include "planning/simulation/plan_executor.h"
@@ -74,10 +76,13 @@ int RunSimulate(const std::vector<std::string>& args) {
   CLI::App app("Execute a plan in MuJoCo and report what happened", "simulate");
   std::string path, robot_path, frames_dir, video, out, trace;
   std::vector<std::string> overrides;
+  StairFlags true_stairs;
   double frame_ms = 100.0, friction = 0.8, video_speed = 1.0;
-  bool print_json = false;
+  bool print_json = false, no_responses = false;
+  std::string impacts = "torque_residual";
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
+  app.add_option("--stairs", true_stairs.file, "Stairs YAML to execute on instead of the plan's own (stairs that differ from the model)");
   app.add_option("--video", video, "Render the run with MuJoCo's renderer offscreen (EGL) into this mp4 (ffmpeg)");
   app.add_option("--frames", frames_dir, "Render the run into this directory as PNGs, one every --frame-ms");
   app.add_option("--video-speed", video_speed, "Playback speed of --video against the plan's clock (default 1)")
@@ -92,17 +97,26 @@ int RunSimulate(const std::vector<std::string>& args) {
   app.add_option("--set", overrides,
                  "Override a simulation setting, name=value (e.g. kp_per_kg=10; time_scale=3 replays 3x slower than planned)");
   app.add_option("--trace", trace, "Write a CSV of the base (measured and planned) every --frame-ms");
+  app.add_option("--impacts", impacts,
+                 "How impacts are detected: torque_residual (joint torques against the model, default), contacts "
+                 "(MuJoCo's contact list) or none")
+      ->check(CLI::IsMember({"torque_residual", "contacts", "none"}));
+  app.add_flag("--no-responses", no_responses, "Detect and record impacts but do not answer them");
   app.add_flag("--json", print_json, "Print the outcome as JSON (the --out file's contents) instead of the summary");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("simulate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
     const RobotModel robot = LoadPlanRobot(file, robot_path);
-    const Staircase stairs(file.stairs);
+    const Staircase stairs = true_stairs.file.empty() ? Staircase(file.stairs) : ResolveStairs(true_stairs);
     if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--frames");
     const bool rendering = !video.empty() || !frames_dir.empty();
     if (rendering && frame_option->count() == 0) frame_ms = 40.0;
     SimSettings settings;
     settings.world.friction = friction;
+    settings.impact.source = impacts == "none" ? ImpactSource::kNone
+                             : impacts == "contacts" ? ImpactSource::kContacts
+                                                     : ImpactSource::kTorqueResidual;
+    settings.impact.respond = !no_responses;
     const bool record = rendering || !trace.empty() || frame_option->count() > 0;
     settings.frame_interval = record ? frame_ms / 1000.0 : 0.0;
     for (const std::string& o : overrides) {
@@ -153,6 +167,11 @@ int RunSimulate(const std::vector<std::string>& args) {
                 << outcome.max_torque_ratio * 100 << "% of the limit; time_scale " << outcome.time_scale
                 << ", plan ZMP margin " << outcome.plan_zmp_margin_m * 1000 << " mm; real-time factor "
                 << outcome.real_time_factor << "\n";
+      for (const ImpactRecord& e : outcome.impacts) {
+        if (e.kind == ImpactKind::kTouchdown || e.kind == ImpactKind::kLiftoffScuff) continue;  // the routine ones
+        std::cout << "  impact t=" << e.t << " s  " << e.leg << "  " << ToString(e.kind) << " -> " << ToString(e.response)
+                  << " (" << ToString(e.source) << ")\n";
+      }
       if (!out.empty()) std::cout << "  wrote: " << out << "\n";
     }
     return outcome.Passed() ? kExitOk : kExitInfeasible;

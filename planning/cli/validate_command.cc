@@ -1,11 +1,15 @@
-// `stairplan validate plan.json`: replay a plan through the validator on the stairs it names.
+// `stairplan validate plan.json`: replay a plan through the validator on the stairs it names, or
+// with --stairs on other stairs (the true ones of stairs the plan only estimated): there the feet
+// land on the true surface under their planned footholds, as `robustness` replays plans.
 #include <iostream>
 
 #include "planning/cli/cli_common.h"
+#include "planning/cli/stair_flags.h"
 #include "planning/json_version.h"
 #include "planning/plan_json.h"
 #include "planning/plan_json_reader.h"
 #include "planning/plan_pipeline.h"
+#include "planning/robustness.h"
 
 namespace stairplan::cli {
 namespace {
@@ -13,19 +17,22 @@ namespace {
 int RunValidate(const std::vector<std::string>& args) {
   CLI::App app("Validate a plan: reach, joint limits, clearances, stability, step regions", "validate");
   std::string path, robot_path;
+  StairFlags true_stairs;
   bool json = false;
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
+  app.add_option("--stairs", true_stairs.file, "Stairs YAML to validate on instead of the plan's own (e.g. the true stairs)");
   app.add_flag("--json", json, "Print the validation report as JSON");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("validate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
     const RobotModel robot = LoadPlanRobot(file, robot_path);
-    const Staircase stairs(file.stairs);
+    const Staircase stairs = true_stairs.file.empty() ? Staircase(file.stairs) : ResolveStairs(true_stairs);
     const PipelineOptions options = OptionsForPlan(file.plan);
     const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
     TraversalValidator validator(robot, stairs, map, options.validation);
-    const ValidationReport report = validator.Validate(file.plan);
+    const ValidationReport report =
+        validator.Validate(true_stairs.file.empty() ? file.plan : PlanOnTrueStairs(file.plan, stairs, map));
     if (json) {
       nlohmann::json out = ValidationToJson(report);
       std::cout << StampVersion(out).dump(2) << "\n";

@@ -134,6 +134,7 @@ const char* ToString(ImpactKind kind) {
     case ImpactKind::kThighAgainstBody: return "thigh_against_body";
     case ImpactKind::kLiftoffScuff: return "liftoff_scuff";
     case ImpactKind::kKneeGlancingTerrain: return "knee_glancing_terrain";
+    case ImpactKind::kIpsilateralStrike: return "ipsilateral_strike";
   }
   return "unknown";
 }
@@ -196,6 +197,8 @@ ImpactResponse RespondToImpact(const ImpactEvent& event, const ConstrainedMap& m
       return Simple(ResponseKind::kProceed, event, "liftoff scuff: the rising foot clears it");
     case ImpactKind::kKneeGlancingTerrain:
       return Simple(ResponseKind::kProceed, event, "knee glanced the terrain: no reaction");
+    case ImpactKind::kIpsilateralStrike:
+      return Simple(ResponseKind::kProceed, event, "foot struck the leg on its own side: the legs part as the swing goes on");
   }
   return Simple(ResponseKind::kProceed, event, "unknown impact");
 }

@@ -22,6 +22,7 @@ enum class ImpactKind {
   kThighAgainstBody,       ///< the thigh touched the body ([0066])
   kLiftoffScuff,           ///< the foot scuffed the tread at liftoff ([0067])
   kKneeGlancingTerrain,    ///< the knee glanced a tread or nosing while swinging ([0068])
+  kIpsilateralStrike,      ///< the swing foot struck the other leg of its own side ([0053]: front and hind legs)
 };
 
 /// How to react.

@@ -1,9 +1,12 @@
 #include "planning/simulation/plan_executor.h"
 
 #include <algorithm>
+#include <limits>
+#include <optional>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include <Eigen/Dense>
 #include <mujoco/mujoco.h>
@@ -32,6 +35,8 @@ struct PlanExecutor::LegState {
   std::array<double, 3> effort{};
   int foot_body = -1;
   int foot_geom = -1;                       // the foot's sphere geom, -1 when it has none
+  int knee_body = -1;                       // the body whose origin is the knee joint
+  int hip_body = -1;                        // ... the hip joint
   double foot_radius = 0.0;
   bool stance = true;
   Eigen::Vector3d foothold_W = Eigen::Vector3d::Zero();  // where the stance foot stands
@@ -45,6 +50,18 @@ struct PlanExecutor::LegState {
   Eigen::Vector3d qd_target_prev = Eigen::Vector3d::Zero();
   bool has_target = false;
   double t_switch = -1e9;                   // plan time of the last liftoff or touchdown [s]
+  double swing_t0 = 0.0, swing_t1 = 1.0;    // the swing's timing; a response re-times it [s, plan time]
+  double swing_apex = 0.0;                  // the current swing's apex height [m]
+  Eigen::Vector3d swing_target_W = Eigen::Vector3d::Zero();
+  std::optional<ImpactKind> foot_impact;    // this step's classification of the foot's external force
+  double foot_force = 0.0;                  // its magnitude [N]
+  double t_first_contact = -1.0;            // the contact list's start of this swing's latest contact [s]
+  bool link_touching = false;               // any link of this leg touches the stairs in the contact list
+  bool was_touching = false;                // ... did at the previous step
+  double t_recorded = -1e9;                 // the last impact recorded in this swing [s]
+  double t_responded = -1e9;                // the last response carried out in this swing [s]
+  bool scuffed = false;                     // a liftoff scuff was recorded in this swing
+  int responses = 0;                        // responses in this swing
 };
 
 PlanExecutor::PlanExecutor(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const Plan& plan,
@@ -98,6 +115,21 @@ PlanExecutor::PlanExecutor(const RobotModel& robot, const Staircase& stairs, con
     std::sort(leg_steps_[static_cast<std::size_t>(i)].begin(), leg_steps_[static_cast<std::size_t>(i)].end(),
               [&](int a, int b) { return plan.footsteps[static_cast<std::size_t>(a)].t_liftoff <
                                          plan.footsteps[static_cast<std::size_t>(b)].t_liftoff; });
+  }
+  stair_geom_.assign(static_cast<std::size_t>(m->ngeom), false);
+  for (int g = 0; g < m->ngeom; ++g) {
+    const char* name = mj_id2name(m, mjOBJ_GEOM, g);
+    stair_geom_[static_cast<std::size_t>(g)] = name != nullptr && std::string(name).rfind("stair_", 0) == 0;
+  }
+  body_leg_.assign(static_cast<std::size_t>(m->nbody), -1);
+  for (std::size_t i = 0; i < legs_.size(); ++i) {
+    body_leg_[static_cast<std::size_t>(legs_[i].foot_body)] = static_cast<int>(i);
+    for (std::size_t j = 0; j < 3; ++j) {
+      const int joint = mj_name2id(m, mjOBJ_JOINT, kinematics_.leg(legs_[i].kin).model().joint_names[j].c_str());
+      if (joint >= 0) body_leg_[static_cast<std::size_t>(m->jnt_bodyid[joint])] = static_cast<int>(i);
+      if (joint >= 0 && j == 2) legs_[i].knee_body = m->jnt_bodyid[joint];
+      if (joint >= 0 && j == 0) legs_[i].hip_body = m->jnt_bodyid[joint];
+    }
   }
   for (const Footstep& f : plan.footsteps) {
     if (std::find(plan.legs.begin(), plan.legs.end(), f.leg) == plan.legs.end()) {
@@ -178,20 +210,33 @@ void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touchin
         leg.step = steps[static_cast<std::size_t>(leg.next)];
         ++leg.next;
         leg.t_switch = tp;
+        leg.swing_t0 = f.t_liftoff;
+        leg.swing_t1 = f.t_touchdown;
+        leg.swing_target_W = f.position_W;
+        leg.t_first_contact = -1.0;
+        leg.t_recorded = -1e9;
+        leg.t_responded = -1e9;
+        leg.scuffed = false;
+        leg.responses = 0;
+        leg.foot_impact.reset();
         // The swing starts where the foot really is, and ends where the plan says.
         leg.swing = std::isfinite(f.swing_apex_z)
                         ? std::make_unique<SwingTrajectory>(leg.foothold_W, f.position_W,
                                                             std::max(f.swing_apex_z, leg.foothold_W.z() + settings_.swing.min_lift),
                                                             settings_.swing, f.swing_approach_share)
                         : std::make_unique<SwingTrajectory>(leg.foothold_W, f.position_W, stairs_, settings_.swing);
+        leg.swing_apex = leg.swing->apex_z();
       }
     }
     if (leg.stance) continue;
     const Footstep& f = plan_.footsteps[static_cast<std::size_t>(leg.step)];
-    const double duration = std::max(f.t_touchdown - f.t_liftoff, 1e-6);
-    const double phase = (tp - f.t_liftoff) / duration;
-    const bool late_out = tp - f.t_touchdown > settings_.late_descent_max / std::max(settings_.late_descent_speed, 1e-6) + 0.1;
-    const bool touched = phase >= settings_.touchdown_phase && foot_touching[i];
+    const double phase = SwingPhase(leg, tp);
+    const bool late_out = tp - leg.swing_t1 > settings_.late_descent_max / std::max(settings_.late_descent_speed, 1e-6) + 0.1;
+    // Touchdown as the detector sees it ([0055]): an upward force from the touchdown phase on;
+    // without a detector, any foot contact then.
+    const bool touched = phase >= settings_.touchdown_phase &&
+                         (settings_.impact.source == ImpactSource::kNone ? static_cast<bool>(foot_touching[i])
+                                                                         : leg.foot_impact == ImpactKind::kTouchdown);
     if (!touched && !late_out) continue;
     FootLanding landing;
     landing.leg = leg.name;
@@ -206,6 +251,23 @@ void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touchin
                              std::abs(map_.stair(landing.stair).z - landing.landed_W.z()) < 0.02 &&
                              map_.InStepRegion(landing.stair, landing.landed_W.head<2>(), 1e-6);
     outcome_.landings.push_back(landing);
+    if (touched && settings_.impact.source != ImpactSource::kNone) {
+      ImpactRecord record;
+      record.t = tp;
+      record.t_contact = leg.t_first_contact;
+      record.t_planned = f.t_touchdown;
+      record.leg = leg.name;
+      record.kind = ImpactKind::kTouchdown;
+      record.source = settings_.impact.source;
+      record.response = ResponseKind::kClassifyStance;
+      record.link = world_->model()->names + world_->model()->name_bodyadr[leg.foot_body];
+      record.swing_phase = phase;
+      record.force_n = leg.foot_force;
+      const double early = f.t_touchdown - tp;
+      record.reason = std::abs(early) < 0.02 ? "touchdown on time"
+                      : (early > 0.0 ? "touchdown early by " : "touchdown late by ") + std::to_string(std::abs(early)) + " s";
+      outcome_.impacts.push_back(record);
+    }
     leg.stance = true;
     leg.t_switch = tp;
     leg.step = -1;
@@ -251,11 +313,10 @@ void PlanExecutor::Control(double tp) {
     LegWorkspace& lws = ws_.leg(leg.kin);
     Eigen::Vector3d contact = leg.foothold_W;
     if (!leg.stance && leg.swing) {
-      const Footstep& f = plan_.footsteps[static_cast<std::size_t>(leg.step)];
-      const double phase = (tp - f.t_liftoff) / std::max(f.t_touchdown - f.t_liftoff, 1e-6);
+      const double phase = SwingPhase(leg, tp);
       contact = leg.swing->At(phase);
       if (phase > 1.0) {  // late: keep lowering until the foot finds the stairs
-        contact.z() -= std::min(settings_.late_descent_speed * (tp - f.t_touchdown), settings_.late_descent_max);
+        contact.z() -= std::min(settings_.late_descent_speed * (tp - leg.swing_t1), settings_.late_descent_max);
       }
     }
     const BodyPose pose = aim_pose(leg);
@@ -353,6 +414,7 @@ void PlanExecutor::Control(double tp) {
 
 bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
   std::fill(foot_touching.begin(), foot_touching.end(), false);
+  for (LegState& leg : legs_) leg.link_touching = false;
   const mjModel* m = world_->model();
   const mjData* d = world_->data();
   const int base = base_body_;
@@ -362,11 +424,22 @@ bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
     const char* n2 = mj_id2name(m, mjOBJ_GEOM, con.geom2);
     const bool s1 = n1 != nullptr && std::string(n1).rfind("stair_", 0) == 0;
     const bool s2 = n2 != nullptr && std::string(n2).rfind("stair_", 0) == 0;
-    if (s1 == s2) continue;
+    if (!s1 && !s2) {
+      RobotContact(tp, con);
+      continue;
+    }
+    if (s1 && s2) continue;
     const int robot_geom = s1 ? con.geom2 : con.geom1;
     const std::string stair = s1 ? n1 : n2;
     const int body = m->geom_bodyid[robot_geom];
     const bool touching = con.dist <= 0.0;  // farther ones are only within the detection margin
+    const int owner = body_leg_[static_cast<std::size_t>(body)];
+    if (touching && owner >= 0) {
+      // The ground truth the detectors' latency is measured against: when this contact began.
+      LegState& leg = legs_[static_cast<std::size_t>(owner)];
+      if (!leg.stance && !leg.link_touching && !leg.was_touching) leg.t_first_contact = tp;
+      leg.link_touching = true;
+    }
     bool foot = false;
     for (std::size_t i = 0; i < legs_.size(); ++i) {
       if (legs_[i].foot_body == body) {
@@ -376,6 +449,13 @@ bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
     }
     if (foot) continue;
     const std::string link = mj_id2name(m, mjOBJ_BODY, body);
+    if (touching && owner >= 0 && settings_.impact.source == ImpactSource::kContacts && !legs_[static_cast<std::size_t>(owner)].stance) {
+      const LegState& leg = legs_[static_cast<std::size_t>(owner)];
+      const int hip = m->body_parentid[m->body_parentid[leg.foot_body]];
+      const Eigen::Vector3d hip_W(d->xpos[3 * hip], d->xpos[3 * hip + 1], d->xpos[3 * hip + 2]);
+      const Eigen::Vector3d at(con.pos[0], con.pos[1], con.pos[2]);
+      Respond(static_cast<std::size_t>(owner), ClassifyLegLinkOnStairs(at, hip_W, MeasuredPose().yaw), tp, link, 0.0);
+    }
     if (con.dist < outcome_.min_link_clearance_m) {
       outcome_.min_link_clearance_m = con.dist;
       outcome_.closest_link = link + " to " + stair;
@@ -399,7 +479,224 @@ bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
       outcome_.cause = cause.str();
     }
   }
+  for (LegState& leg : legs_) leg.was_touching = leg.link_touching;
   return fallen_;
+}
+
+void PlanExecutor::RobotContact(double tp, const mjContact& con) {
+  if (settings_.impact.source != ImpactSource::kContacts || con.dist > 0.0) return;
+  const mjModel* m = world_->model();
+  const int b1 = m->geom_bodyid[con.geom1], b2 = m->geom_bodyid[con.geom2];
+  const int l1 = body_leg_[static_cast<std::size_t>(b1)], l2 = body_leg_[static_cast<std::size_t>(b2)];
+  for (const auto& [mine, other, body, other_body] : {std::tuple{l1, l2, b1, b2}, std::tuple{l2, l1, b2, b1}}) {
+    if (mine < 0 || legs_[static_cast<std::size_t>(mine)].stance) continue;
+    const LegState& leg = legs_[static_cast<std::size_t>(mine)];
+    const std::string link = mj_id2name(m, mjOBJ_BODY, body);
+    if (other < 0 && (other_body == base_body_ || m->body_parentid[other_body] == 0)) {
+      Respond(static_cast<std::size_t>(mine), ImpactKind::kThighAgainstBody, tp, link, 0.0);
+    } else if (other >= 0 && other != mine) {
+      const LegState& contra = legs_[static_cast<std::size_t>(other)];  // contralateral or not
+      const ImpactKind kind =
+          contra.name[0] == leg.name[0]
+              ? ImpactKind::kIpsilateralStrike
+              : ClassifyContralateral(FootContactPoint(leg), FootContactPoint(contra), leg.name[0] == 'L', MeasuredPose().yaw);
+      Respond(static_cast<std::size_t>(mine), kind, tp, link, 0.0);
+    }
+  }
+}
+
+double PlanExecutor::SwingPhase(const LegState& leg, double tp) const {
+  return (tp - leg.swing_t0) / std::max(leg.swing_t1 - leg.swing_t0, 1e-6);
+}
+
+Eigen::Vector3d PlanExecutor::FootForce(const LegState& leg) {
+  const mjModel* m = world_->model();
+  const mjData* d = world_->data();
+  if (settings_.impact.source == ImpactSource::kContacts) {
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();
+    for (int c = 0; c < d->ncon; ++c) {
+      const mjContact& con = d->contact[c];
+      const bool first = m->geom_bodyid[con.geom1] == leg.foot_body;
+      if (!first && m->geom_bodyid[con.geom2] != leg.foot_body) continue;
+      if (!stair_geom_[static_cast<std::size_t>(first ? con.geom2 : con.geom1)]) continue;  // legs on legs: RobotContact
+      mjtNum local[6];
+      mj_contactForce(m, d, c, local);
+      // The contact frame's rows are its normal (from geom1 to geom2) and two tangents.
+      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(con.frame);
+      const Eigen::Vector3d on_geom2 = frame.transpose() * Eigen::Vector3d(local[0], local[1], local[2]);
+      total += first ? Eigen::Vector3d(-on_geom2) : on_geom2;
+    }
+    return total;
+  }
+  // J^T f = tau_ext on the leg's joints; f in the base frame, by damped least squares: near a
+  // straight leg the force along it moves no joint and is not seen.
+  const LegKinematics& kin = kinematics_.leg(leg.kin);
+  Eigen::Vector3d q, tau;
+  for (int j = 0; j < 3; ++j) {
+    q(j) = d->qpos[leg.qpos[static_cast<std::size_t>(j)]];
+    tau(j) = residual_->at(leg.dof[static_cast<std::size_t>(j)]);
+  }
+  const Eigen::Matrix3d jac = kin.FootJacobian(q, ws_.leg(leg.kin));
+  const Eigen::Vector3d f_B = (jac * jac.transpose() + 1e-4 * Eigen::Matrix3d::Identity()).ldlt().solve(jac * tau);
+  return MeasuredPose().ToIsometry().linear() * f_B;
+}
+
+void PlanExecutor::DetectFootImpacts(double tp) {
+  if (settings_.impact.source == ImpactSource::kNone) return;
+  const double threshold = settings_.impact.force_threshold * mass_ * 9.81;
+  for (std::size_t i = 0; i < legs_.size(); ++i) {
+    LegState& leg = legs_[i];
+    leg.foot_impact.reset();
+    if (leg.stance || !leg.swing) continue;
+    const Eigen::Vector3d force = FootForce(leg);
+    leg.foot_force = force.norm();
+    const double phase = SwingPhase(leg, tp);
+    const Eigen::Vector3d dir = leg.swing_target_W - leg.swing->At(0.0);
+    leg.foot_impact = ClassifySwingFootForce(force, dir, phase, settings_.touchdown_phase, threshold, settings_.impact.scuff_phase);
+    if (!leg.foot_impact) continue;
+    if (settings_.impact.source == ImpactSource::kTorqueResidual && leg.foot_impact != ImpactKind::kTouchdown) {
+      // The residual does not say what the foot hit: the robot's own kinematics tell a strike on
+      // another leg's shank from a trip on the stairs (a foot pushed up late in its swing has landed).
+      if (const int struck = LegNearFoot(i); struck >= 0) {
+        const LegState& other = legs_[static_cast<std::size_t>(struck)];
+        leg.foot_impact = other.name[0] == leg.name[0]
+                              ? ImpactKind::kIpsilateralStrike
+                              : ClassifyContralateral(FootContactPoint(leg), FootContactPoint(other), leg.name[0] == 'L',
+                                                      MeasuredPose().yaw);
+        Respond(i, *leg.foot_impact, tp, "foot", leg.foot_force);
+        continue;
+      }
+    }
+    if (settings_.impact.source == ImpactSource::kTorqueResidual && leg.foot_impact != ImpactKind::kTouchdown &&
+        Clearance(FootContactPoint(leg), dir) > settings_.impact.near_stairs) {
+      // The foot is clear of the stairs: what was hit is higher up the leg. A knee near the stairs
+      // hit them; otherwise the thigh met the body.
+      const mjData* d = world_->data();
+      const auto position = [&](int body) { return Eigen::Vector3d(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]); };
+      const Eigen::Vector3d knee = position(leg.knee_body);
+      const bool knee_on_stairs = Clearance(knee, dir) < settings_.impact.near_stairs;
+      leg.foot_impact = knee_on_stairs ? ClassifyLegLinkOnStairs(knee, position(leg.hip_body), MeasuredPose().yaw)
+                                       : ImpactKind::kThighAgainstBody;
+      Respond(i, *leg.foot_impact, tp, knee_on_stairs ? "knee" : "thigh", leg.foot_force);
+      continue;
+    }
+    if (leg.foot_impact == ImpactKind::kLiftoffScuff && !leg.scuffed) {
+      leg.scuffed = true;
+      Respond(i, ImpactKind::kLiftoffScuff, tp, "foot", leg.foot_force);
+    } else if (leg.foot_impact == ImpactKind::kTrip) {
+      Respond(i, ImpactKind::kTrip, tp, "foot", leg.foot_force);
+    }
+  }
+}
+
+double PlanExecutor::Clearance(const Eigen::Vector3d& p_W, const Eigen::Vector3d& ahead_W) const {
+  Eigen::Vector3d dir = ahead_W;
+  dir.z() = 0.0;
+  if (dir.norm() > 1e-9) dir.normalize();
+  double top = -std::numeric_limits<double>::infinity();
+  for (const double s : {-1.0, 0.0, 1.0}) {
+    const Eigen::Vector3d q = p_W + s * settings_.impact.near_stairs * dir;
+    const double z = stairs_.HeightAt(q.x(), q.y());
+    if (std::isfinite(z)) top = std::max(top, z);
+  }
+  return p_W.z() - top;
+}
+
+int PlanExecutor::LegNearFoot(std::size_t i) const {
+  const mjData* d = const_cast<MujocoWorld&>(*world_).data();
+  const LegState& leg = legs_[i];
+  const Eigen::Vector3d foot = FootContactPoint(leg) + Eigen::Vector3d(0.0, 0.0, leg.foot_radius);
+  const auto position = [&](int body) { return Eigen::Vector3d(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]); };
+  for (std::size_t k = 0; k < legs_.size(); ++k) {
+    const LegState& other = legs_[k];
+    if (k == i || other.knee_body < 0) continue;
+    const Eigen::Vector3d other_foot = FootContactPoint(other) + Eigen::Vector3d(0.0, 0.0, other.foot_radius);
+    if (DistanceToSegment(foot, position(other.knee_body), other_foot) < leg.foot_radius + settings_.impact.leg_strike_distance) {
+      return static_cast<int>(k);
+    }
+  }
+  return -1;
+}
+
+void PlanExecutor::Reswing(LegState& leg, double tp, const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W,
+                           double apex_z) {
+  leg.swing = std::make_unique<SwingTrajectory>(from_W, to_W, apex_z, settings_.swing);
+  leg.swing_apex = apex_z;
+  leg.swing_target_W = to_W;
+  leg.swing_t1 = std::max(leg.swing_t1, tp + settings_.impact.min_reswing_time);
+  leg.swing_t0 = tp;
+}
+
+void PlanExecutor::Respond(std::size_t i, ImpactKind kind, double tp, const std::string& link, double force) {
+  LegState& leg = legs_[i];
+  // One answer per impact: a foot pressed on an obstacle is the same impact until the response
+  // has had time to act.
+  constexpr double kRefractory = 0.1;
+  constexpr int kMaxResponses = 3;
+  if (tp - leg.t_recorded < kRefractory || tp - leg.t_responded < kRefractory) return;
+  leg.t_recorded = tp;
+  const BodyPose body = MeasuredPose();
+  ImpactEvent event;
+  event.kind = kind;
+  event.leg = leg.name;
+  event.swing_phase = std::clamp(SwingPhase(leg, tp), 0.0, 1.0);
+  event.body_yaw = body.yaw;
+  event.target_W = leg.swing_target_W;
+  event.target_stair = map_.StairAt(event.target_W.head<2>());
+  event.swing_foot_W = FootContactPoint(leg);
+  for (const LegState& other : legs_) {
+    if (other.name[1] == leg.name[1] && other.name[0] != leg.name[0]) event.contralateral_foot_W = FootContactPoint(other);
+  }
+  const ImpactResponse response = RespondToImpact(event, map_, settings_.impact.response);
+  ImpactRecord record;
+  record.t = tp;
+  record.t_contact = leg.t_first_contact;
+  record.leg = leg.name;
+  record.kind = kind;
+  record.source = settings_.impact.source;
+  record.response = response.kind;
+  record.link = link;
+  record.swing_phase = event.swing_phase;
+  record.force_n = force;
+  record.reason = response.reason;
+  outcome_.impacts.push_back(record);
+  if (!settings_.impact.respond || leg.responses >= kMaxResponses || response.kind == ResponseKind::kProceed ||
+      response.kind == ResponseKind::kClassifyStance) {
+    return;
+  }
+  leg.t_responded = tp;
+  ++leg.responses;
+  const Eigen::Vector3d foot = event.swing_foot_W;
+  Eigen::Vector3d back = leg.swing_target_W - foot;
+  back.z() = 0.0;
+  back = back.norm() > 1e-9 ? Eigen::Vector3d(-back.normalized()) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d retracted = foot + settings_.impact.retract_distance * back;
+  switch (response.kind) {
+    case ResponseKind::kElevateFoot:  // draw back, lift higher than what stopped it, go on to the target
+      Reswing(leg, tp, retracted, leg.swing_target_W, std::max(leg.swing_apex, foot.z()) + response.extra_swing_height);
+      break;
+    case ResponseKind::kTouchdownNow: {  // go down where the foot is, clear of what it hit
+      Eigen::Vector3d down = retracted;
+      down.z() = response.target_W.z();  // the tread under the foot in the map
+      Reswing(leg, tp, retracted, down, retracted.z());
+      leg.swing_t1 = tp + 0.5 * settings_.impact.min_reswing_time;
+      break;
+    }
+    case ResponseKind::kMoveKneeForward: {
+      const Eigen::Vector3d forward(std::cos(body.yaw), std::sin(body.yaw), 0.0);
+      Reswing(leg, tp, foot + response.knee_forward * forward, leg.swing_target_W, leg.swing_apex);
+      break;
+    }
+    case ResponseKind::kAdjustStep:
+    case ResponseKind::kAdjustStepRisky:
+    case ResponseKind::kUntangle: {
+      const Eigen::Vector3d from = response.waypoints_W.empty() ? foot : response.waypoints_W.front();
+      Reswing(leg, tp, from, response.target_W, std::max(leg.swing_apex, response.target_W.z() + settings_.swing.min_lift));
+      break;
+    }
+    default:
+      break;
+  }
 }
 
 void PlanExecutor::MeasureSlip(double tp) {
@@ -487,6 +784,7 @@ SimulationOutcome PlanExecutor::Run(const FrameCallback& on_frame) {
   }
   const double t_final = plan_.duration() + settings_.hold_time / settings_.time_scale;
   std::vector<bool> touching(legs_.size(), false);
+  residual_ = std::make_unique<TorqueResidual>(world_->model(), world_->data());
   double next_frame = -settings_.settle_time / settings_.time_scale;
   while (!fallen_) {
     const double tp = PlanTime();
@@ -500,7 +798,9 @@ SimulationOutcome PlanExecutor::Run(const FrameCallback& on_frame) {
     Control(tp);
     world_->Step();
     ++outcome_.sim_steps;
+    residual_->Update(world_->model(), world_->data());
     if (CheckContacts(PlanTime(), touching)) break;
+    if (PlanTime() >= 0.0) DetectFootImpacts(PlanTime());
     // From the plan's start on: while settling the feet find the treads.
     if (PlanTime() >= 0.0) MeasureSlip(PlanTime());
     Judge(PlanTime());

@@ -4,7 +4,10 @@
 // torques of their contact forces: the wrench that moves the body as planned (acceleration fed
 // forward, feedback on the base pose) distributed over the stance feet by a small QP. Touchdown
 // is driven by contact (seed 000 [0055]): a swinging foot that touches the stairs in the second
-// half of its swing becomes a stance foot where it touched.
+// half of its swing becomes a stance foot where it touched. Impacts (seed 000 [0053]-[0068]) are
+// detected from the joint-torque residual or from MuJoCo's contact list, classified, answered with
+// RespondToImpact's response (a tripped foot draws back and lifts higher, or goes down at once),
+// and recorded in the outcome.
 #pragma once
 
 #include <array>
@@ -20,6 +23,9 @@
 #include "planning/simulation/sim_outcome.h"
 #include "planning/simulation/sim_settings.h"
 #include "planning/simulation/stance_force_qp.h"
+#include "planning/simulation/torque_residual.h"
+
+struct mjContact_;
 
 namespace stairplan {
 
@@ -59,6 +65,24 @@ class PlanExecutor {
   double LoadShare(const LegState& leg, double tp) const;
   /// The whole robot's rotational inertia about its centre of mass, world frame [kg m^2].
   Eigen::Matrix3d CompositeInertia() const;
+  /// Classifies each swing foot's external force (torque residual or contact forces) into
+  /// leg.foot_impact and answers trips and scuffs.
+  void DetectFootImpacts(double tp);
+  /// A contact between two robot links (source kContacts): a swing leg on its contralateral leg,
+  /// a thigh on the body.
+  void RobotContact(double tp, const mjContact_& con);
+  /// The world's force on a swing leg's foot [N]: from the torque residual or the contact list.
+  Eigen::Vector3d FootForce(const LegState& leg);
+  /// RespondToImpact for `kind` on swing leg `i`, carried out and recorded.
+  void Respond(std::size_t i, ImpactKind kind, double tp, const std::string& link, double force);
+  /// The swing of leg `leg` replaced from now: from `from_W` to `to_W` over the apex, ending no
+  /// earlier than min_reswing_time from now.
+  void Reswing(LegState& leg, double tp, const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, double apex_z);
+  double SwingPhase(const LegState& leg, double tp) const;
+  /// Height of `p_W` above the stairs under it and a little either way along `ahead_W` [m].
+  double Clearance(const Eigen::Vector3d& p_W, const Eigen::Vector3d& ahead_W) const;
+  /// The other leg whose shank (knee to foot) swing leg `i`'s foot is against, -1 for none.
+  int LegNearFoot(std::size_t i) const;
   void RecordFrame(double tp);
   void Judge(double tp);
 
@@ -76,6 +100,9 @@ class PlanExecutor {
   double kp_ = 0.0, kd_ = 0.0;
   StanceForceQp force_qp_;
   std::vector<double> full_inertia_;  // MuJoCo's mass matrix, nv x nv, sized once
+  std::vector<bool> stair_geom_;      // per MuJoCo geom: part of the stairs
+  std::vector<int> body_leg_;         // per MuJoCo body: the index in legs_ of the leg it belongs to, -1 otherwise
+  std::unique_ptr<TorqueResidual> residual_;
   SimulationOutcome outcome_;
   bool fallen_ = false;
   bool running_ = false;  // false while placing the robot: targets only, no torques

@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "planning/simulation/impact_record.h"
+
 namespace stairplan {
 
 /// How a run ended.
@@ -79,6 +81,7 @@ struct SimulationOutcome {
   double max_height_error = 0.0;   ///< largest |z - planned z| of the base [m]
   std::vector<FootLanding> landings;
   std::vector<LinkContact> other_contacts;  ///< legs (not feet) and the body against the stairs
+  std::vector<ImpactRecord> impacts;        ///< every impact detected and the response carried out, in time order
   /// Smallest distance of a robot link other than a foot to the stairs seen over the run [m]
   /// (negative: penetration); the detection margin (MjcfSettings::detect_margin) when none came closer.
   double min_link_clearance_m = 0.0;

@@ -42,6 +42,20 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
                                    {"max_depth_m", c.max_depth},
                                    {"steps", c.steps}});
   }
+  j["impacts"] = nlohmann::json::array();
+  for (const ImpactRecord& e : o.impacts) {
+    j["impacts"].push_back({{"t", e.t},
+                            {"t_contact", e.t_contact},
+                            {"t_planned", e.t_planned},
+                            {"leg", e.leg},
+                            {"kind", ToString(e.kind)},
+                            {"source", ToString(e.source)},
+                            {"response", ToString(e.response)},
+                            {"link", e.link},
+                            {"swing_phase", e.swing_phase},
+                            {"force_n", e.force_n},
+                            {"reason", e.reason}});
+  }
   j["min_link_clearance_m"] = o.min_link_clearance_m;
   j["closest_link"] = o.closest_link;
   j["torques"] = nlohmann::json::array();

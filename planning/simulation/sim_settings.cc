@@ -38,6 +38,7 @@ void SimSettings::Validate() const {
   check("fall_angle", fall_angle, 0.01, 3.2);
   check("goal_tolerance", goal_tolerance, 1e-4, 10.0);
   check("frame_interval", frame_interval, 0.0, 100.0);
+  impact.Validate();
 }
 
 void SimSettings::Set(const std::string& name, double value) {
@@ -56,7 +57,11 @@ void SimSettings::Set(const std::string& name, double value) {
       {"stance.friction_use", &stance.friction_use}, {"stance.torque_use", &stance.torque_use},
       {"stance.min_normal", &stance.min_normal},
       {"stance.force_weight", &stance.force_weight}, {"stance.moment_weight", &stance.moment_weight},
-      {"stance.regularization", &stance.regularization}};
+      {"stance.regularization", &stance.regularization},
+      {"impact.force_threshold", &impact.force_threshold}, {"impact.min_reswing_time", &impact.min_reswing_time},
+      {"impact.retract_distance", &impact.retract_distance},
+      {"impact.elevate_height", &impact.response.elevate_height},
+      {"impact.early_swing_phase", &impact.response.early_swing_phase}};
   const auto it = fields.find(name);
   if (it == fields.end()) throw FieldError(name, "no such simulation setting");
   *it->second = value;

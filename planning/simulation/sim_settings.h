@@ -6,6 +6,7 @@
 #include <string>
 
 #include "kinematics/leg_ik.h"
+#include "planning/simulation/impact_detection.h"
 #include "planning/simulation/mjcf_writer.h"
 #include "planning/simulation/stance_force_qp.h"
 #include "planning/swing_trajectory.h"
@@ -58,6 +59,9 @@ struct SimSettings {
   double touchdown_phase = 0.5;      ///< a foot contact counts as touchdown from this swing phase on
   double late_descent_speed = 0.2;   ///< a foot late for touchdown keeps lowering at this speed [m/s]
   double late_descent_max = 0.05;    ///< ... by at most this much [m]
+
+  /// Impact detection and the responses to impacts (seed 000 [0053]-[0068]).
+  ImpactDetectionSettings impact;
 
   // Judgement.
   double fall_angle = 0.6;           ///< roll, or pitch away from the plan's, beyond this is a fall [rad]

@@ -134,6 +134,7 @@ TEST_CASE("liftoff scuff: proceed", "[impact]") {
 TEST_CASE("knee glancing the terrain: proceed", "[impact]") {
   const Scene scene;
   CHECK(RespondToImpact(scene.Event(ImpactKind::kKneeGlancingTerrain), scene.map).kind == ResponseKind::kProceed);
+  CHECK(RespondToImpact(scene.Event(ImpactKind::kIpsilateralStrike), scene.map).kind == ResponseKind::kProceed);
 }
 
 TEST_CASE("impact responses reject non-finite input", "[impact]") {

@@ -2,6 +2,10 @@
 // errors the open-loop plan fails on some of them while replanning still finds valid plans.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "kinematics/builtin_robot.h"
 #include "planning/robustness.h"
 #include "sanitized.h"
@@ -51,4 +55,29 @@ TEST_CASE("a footstep moved onto perturbed stairs takes the true height", "[robu
   const Plan moved = PlanOnTrueStairs(plan, truth, map);
   CHECK(moved.footsteps[0].position_W.z() == Approx(0.18));
   CHECK(moved.footsteps[0].stair_index == 1);
+}
+
+TEST_CASE("the perturbed staircases are drawn from the seed: the same for every judge that asks", "[robustness]") {
+  RobustnessSettings settings;
+  settings.sigma_rise = 0.01;
+  settings.sigma_run = 0.03;
+  settings.trials = 20;
+  const StairSpec nominal;
+  const std::vector<StairSpec> a = PerturbedStaircases(nominal, settings);
+  const std::vector<StairSpec> b = PerturbedStaircases(nominal, settings);
+  REQUIRE(a.size() == 20u);
+  REQUIRE(b.size() == 20u);
+  double max_rise_error = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    CHECK(a[i].rises == b[i].rises);
+    CHECK(a[i].runs == b[i].runs);
+    REQUIRE(a[i].rises.size() == static_cast<std::size_t>(nominal.steps));
+    REQUIRE(a[i].runs.size() == static_cast<std::size_t>(nominal.steps - 1));
+    for (double rise : a[i].rises) max_rise_error = std::max(max_rise_error, std::abs(rise - nominal.rise));
+  }
+  // 140 draws of sigma 1 cm: some beyond 1 cm, none beyond 5 sigma.
+  CHECK(max_rise_error > 0.01);
+  CHECK(max_rise_error < 0.05);
+  settings.seed = 2;
+  CHECK(PerturbedStaircases(nominal, settings)[0].rises != a[0].rises);
 }

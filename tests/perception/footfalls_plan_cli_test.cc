@@ -1,0 +1,55 @@
+// Footfalls to plans through files (issue #26, acceptance 4): the footfall log of the four-flight
+// loop the perception tests walk gives stairs YAML (`footfalls --stairs-out`), `plan --stairs`
+// plans each flight on what the footfalls found, and `validate --stairs` replays each plan on the
+// flight's true stairs. The footfalls find the walking edges but not the nosing under them: the
+// user gives it (--nosing, the loop's 2 cm); without it a plan's shank meets a nosing going down.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <string>
+
+#include "geometry/footfall.h"
+#include "geometry/stair_spec_yaml.h"
+#include "perception/footfall_scenes.h"
+#include "sanitized.h"
+#include "test_paths.h"
+
+using namespace stairplan;
+using namespace stairplan::testing;
+
+TEST_CASE("footfalls --stairs-out, plan --stairs: plans that validate on the true stairs", "[cli][perception][footfalls]") {
+  const std::string dir = MakeTempDir("footfalls-plan");
+  const std::vector<PlacedFlight> loop = TwoUpTwoDownLoop();
+  FootfallWalkSettings walk;
+  walk.sigma = 0.01;
+  std::ofstream(dir + "/walk.csv") << FootfallCsv(WalkFootfalls(loop, walk));
+  const StairplanRun found = RunStairplan(dir, "footfalls " + dir + "/walk.csv --nosing 0.02 --stairs-out " + dir + "/found.yaml");
+  INFO(found.out << found.err);
+  REQUIRE(found.code == 0);
+  const char* found_files[4] = {"found.yaml", "found_1.yaml", "found_2.yaml", "found_3.yaml"};
+  // Under the sanitizers one flight up and one down; all four otherwise.
+  const std::size_t stride = FullOrSanitized<std::size_t>(1, 2);
+  for (std::size_t i = 0; i < loop.size(); i += stride) {
+    INFO("flight " << i);
+    const std::string truth = dir + "/true_" + std::to_string(i) + ".yaml";
+    std::ofstream(truth) << StairSpecToYaml(loop[i].stairs.spec());
+    const std::string out = dir + "/plan_" + std::to_string(i);
+    const StairplanRun plan = RunStairplan(dir, "plan --stairs " + dir + "/" + found_files[i] + " --out " + out);
+    INFO(plan.out << plan.err);
+    REQUIRE(plan.code == 0);
+    const StairplanRun valid = RunStairplan(dir, "validate " + out + "/plan.json --stairs " + truth);
+    INFO(valid.out << valid.err);
+    CHECK(valid.code == 0);
+  }
+  // plan --footfalls plans on a staircase of the log directly: the third, walked down.
+  const StairplanRun direct =
+      RunStairplan(dir, "plan --footfalls " + dir + "/walk.csv --staircase 3 --nosing 0.02 --out " + dir + "/direct");
+  INFO(direct.out << direct.err);
+  REQUIRE(direct.code == 0);
+  CHECK(RunStairplan(dir, "validate " + dir + "/direct/plan.json --stairs " + dir + "/true_2.yaml").code == 0);
+  CHECK(RunStairplan(dir, "plan --footfalls " + dir + "/walk.csv --staircase 5 --out " + dir + "/none").code == 3);
+  // The check has teeth: the first flight's plan (rise 0.17) on the second flight's stairs (0.15) is invalid.
+  const StairplanRun wrong = RunStairplan(dir, "validate " + dir + "/plan_0/plan.json --stairs " + dir + "/true_1.yaml");
+  INFO(wrong.out);
+  CHECK(wrong.code == 3);
+}
