@@ -98,6 +98,10 @@ class ActiveSetQpSolver final : public Solver {
   SolveStatus Run(bool regularized, int* outer_iterations);
   // The Goldfarb-Idnani loop from a dual-feasible start.
   SolveStatus Iterate();
+  // Iterative refinement on the final active set against the original H and g: the residuals of
+  // the active set's KKT system, corrected through the kept factorisation.
+  double ActiveResiduals();
+  void Refine();
   // Factorisation updates.
   void ComputeStepVector(int k, double sigma);  // d_ = J' (sigma n_k)
   bool AddConstraint(int k, int side);
@@ -150,6 +154,8 @@ class ActiveSetQpSolver final : public Solver {
   // Vectors of size n or m.
   Eigen::VectorXd x_, g_eff_, x_prox_, d_, z_, r_, tmp_, hx_;
   Eigen::VectorXd ax_, row_norm_;
+  // Refinement: KKT residuals (dual, then per active constraint) and the point they belong to.
+  Eigen::VectorXd dual_residual_, active_residual_, saved_x_, saved_u_;
 
   int iterations_ = 0;
   std::chrono::steady_clock::time_point deadline_;
