@@ -27,9 +27,8 @@ constexpr double kSingularPivot = 1e-9;
 constexpr double kUnboundedNorm = 1e15;
 // Restarts (closed-form re-solves on the final active set) allowed to polish one solve.
 constexpr int kMaxPolish = 5;
-// Refinement steps per solve, and the KKT residual below which none is taken: absolute, as the
-// residuals users judge a solution by (qpbenchmark's) are.
-constexpr int kMaxRefine = 3;
+// The KKT residual below which no refinement step is taken: absolute, as the residuals users
+// judge a solution by (qpbenchmark's) are.
 constexpr double kRefineFloor = 1e-12;
 
 // Givens rotation of columns (i, j) of M: col_i <- c col_i + s col_j, col_j <- -s col_i + c col_j.
@@ -59,6 +58,7 @@ void ActiveSetQpSettings::Validate() const {
   if (!(proximal_weight > 0)) fail("proximal_weight");
   if (!(proximal_tol > 0 && proximal_tol < 1)) fail("proximal_tol");
   if (!(proximal_objective_tol > 0 && proximal_objective_tol < 1)) fail("proximal_objective_tol");
+  if (refinement_steps < 0) fail("refinement_steps");
 }
 
 void ActiveSetQpSolver::SetWarmStart(const ActiveSet& active_set) {
@@ -522,7 +522,7 @@ SolveStatus ActiveSetQpSolver::Run(bool regularized, int* outer_iterations) {
     }
     if (outer + 1 == settings_.max_outer_iterations) status = SolveStatus::kIterationLimit;
   }
-  if (status == SolveStatus::kSolved) Refine();
+  if (status == SolveStatus::kSolved && settings_.refinement_steps > 0) Refine();
   *outer_iterations = outer;
   return status;
 }
@@ -553,7 +553,7 @@ void ActiveSetQpSolver::Refine() {
   // factorisation is of H + rho I: the correction is then an approximate one, kept only while it
   // lowers the residuals.
   double error = ActiveResiduals();
-  for (int step = 0; step < kMaxRefine && error > kRefineFloor; ++step) {
+  for (int step = 0; step < settings_.refinement_steps && error > kRefineFloor; ++step) {
     saved_x_ = x_;
     saved_u_.head(q_) = u_.head(q_);
     const int q = q_;

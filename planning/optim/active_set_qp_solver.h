@@ -55,6 +55,13 @@ struct ActiveSetQpSettings {
   /// ... or when the remaining dual residual rho |x_{k+1} - x_k| times (1 + |x|_inf) is below
   /// proximal_objective_tol * (1 + |objective|): it can no longer move the objective noticeably.
   double proximal_objective_tol = 1e-10;
+  /// Iterative-refinement steps on the final active set (each kept only if it lowers the KKT
+  /// residuals below their value before it; none once they are below 1e-12). Each costs about
+  /// two products with the n x n factor: off for per-cycle use; kHighAccuracyRefinementSteps for
+  /// qpbenchmark's 1e-9 absolute residuals on badly scaled problems.
+  int refinement_steps = 0;
+  /// refinement_steps for qpbenchmark-style accuracy (`qp bench`).
+  static constexpr int kHighAccuracyRefinementSteps = 3;
   /// Start each solve from the previous solve's active set and factorisation.
   bool warm_start = true;
   /// Throws std::invalid_argument naming the offending field.
