@@ -206,28 +206,16 @@ void ActiveSetQpSolver::ComputeStepVector(int k, double sigma) {
 }
 
 bool ActiveSetQpSolver::AddConstraint(int k, int side) {
-  // d_ = J'(sigma n_k) must be current. One Householder reflection P of J's free columns
-  // q..reach-1 maps d(q..reach-1) onto its first entry (d is zero beyond reach): J2 <- J2 P costs
-  // two products with the n x (reach - q) block, two thirds of a Givens sweep's work, and runs
-  // through Eigen's vectorised kernels instead of one column pair at a time.
+  // d_ = J'(sigma n_k) must be current. Rotate d(q+1..n-1) into d(q) (and J alike).
   const double norm_d = d_.norm();
-  int reach = n_;
-  while (reach > q_ + 1 && d_[reach - 1] == 0.0) --reach;
-  const int width = reach - q_;
-  if (width > 1) {
-    auto v = d_.segment(q_, width);
-    const double alpha = v.norm();
-    if (alpha > 0.0) {
-      // v <- d2 + sign(d_q) |d2| e_0, P = I - 2 v v' / (v'v): P d2 = -sign(d_q) |d2| e_0.
-      const double head = v[0] >= 0.0 ? -alpha : alpha;
-      v[0] -= head;
-      const double beta = 2.0 / v.squaredNorm();
-      auto block = J_.middleCols(q_, width);
-      z_.noalias() = block * v;
-      block.noalias() -= (beta * z_) * v.transpose();
-      v.setZero();
-      v[0] = head;
-    }
+  for (int j = n_ - 1; j > q_; --j) {
+    const double a = d_[j - 1], b = d_[j];
+    if (b == 0.0) continue;
+    const double h = std::sqrt(a * a + b * b);  // no overflow at our magnitudes; hypot is slow
+    const double c = a / h, s = b / h;
+    d_[j - 1] = h;
+    d_[j] = 0.0;
+    RotateColumns(J_, j - 1, j, c, s);
   }
   if (!(std::abs(d_[q_]) > kDependencyTol * norm_d)) return false;
   R_.col(q_).head(q_ + 1) = d_.head(q_ + 1);
