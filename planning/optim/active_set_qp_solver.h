@@ -56,7 +56,7 @@ struct ActiveSetQpSettings {
   /// proximal_objective_tol * (1 + |objective|): it can no longer move the objective noticeably.
   double proximal_objective_tol = 1e-10;
   /// Iterative-refinement steps on the final active set (each kept only if it lowers the KKT
-  /// residuals below their value before it; none once they are below 1e-12). Each costs about
+  /// residuals; none once they are below 1e-12 absolute). Each costs about
   /// two products with the n x n factor: off for per-cycle use; kHighAccuracyRefinementSteps for
   /// qpbenchmark's 1e-9 absolute residuals on badly scaled problems.
   int refinement_steps = 0;
