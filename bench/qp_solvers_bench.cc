@@ -41,7 +41,11 @@ std::vector<std::string> Solvers() {
 // can cycle on the body QP, which is a failed sample, not a benchmark that never ends.
 SolverFactory Factory(const std::string& name) {
   const double limit_s = Smoke() ? 1.0 : 10.0;
-  return [name, limit_s] { return MakeSolver(name, limit_s); };
+  return [name, limit_s] {
+    std::unique_ptr<Solver> solver = MakeSolver(name, limit_s);
+    UseBenchmarkAccuracy(solver.get());
+    return solver;
+  };
 }
 
 std::string SharedDir() { return STAIRPLAN_SHARED_DIR; }

@@ -121,7 +121,11 @@ class Bench {
  private:
   bool Wanted(SolveRegime r) const { return std::find(o_.regimes.begin(), o_.regimes.end(), r) != o_.regimes.end(); }
   optim::SolverFactory Factory(const std::string& name) const {
-    return [this, name] { return MakeNamedSolver(name, "--solvers", o_.time_limit_s); };
+    return [this, name] {
+      std::unique_ptr<optim::Solver> solver = MakeNamedSolver(name, "--solvers", o_.time_limit_s);
+      optim::UseBenchmarkAccuracy(solver.get());
+      return solver;
+    };
   }
   void RunFile(const BenchCase& c);
   void RunSequence(const BenchCase& c);

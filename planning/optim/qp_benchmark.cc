@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "planning/optim/active_set_qp_solver.h"
+
 namespace stairplan::optim {
 namespace {
 
@@ -71,6 +73,12 @@ bool QpSample::SolvedWithin(double tolerance) const {
 void QpMeasureSettings::Validate() const {
   if (max_repeats < 1) throw std::invalid_argument("QpMeasureSettings::max_repeats must be at least 1");
   if (!(min_total_us >= 0)) throw std::invalid_argument("QpMeasureSettings::min_total_us must be >= 0");
+}
+
+void UseBenchmarkAccuracy(Solver* solver) {
+  if (auto* ours = dynamic_cast<ActiveSetQpSolver*>(solver)) {
+    ours->settings().refinement_steps = ActiveSetQpSettings::kHighAccuracyRefinementSteps;
+  }
 }
 
 QpSample MeasureCold(const SolverFactory& make, const Program& program, const QpMeasureSettings& settings) {

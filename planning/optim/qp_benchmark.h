@@ -53,6 +53,11 @@ struct QpMeasureSettings {
   void Validate() const;
 };
 
+/// The accuracy options a benchmark runs `solver` with: ours refines its final active set
+/// (ActiveSetQpSettings::kHighAccuracyRefinementSteps) to meet qpbenchmark's 1e-9 absolute
+/// residuals; the references keep their defaults. Its cost is in the measured times.
+void UseBenchmarkAccuracy(Solver* solver);
+
 /// Cold: each repeat solves `program` with a fresh solver from `make` (no guess beyond the
 /// program's own). The outcome is the first solve's; the time is the median of the repeats.
 QpSample MeasureCold(const SolverFactory& make, const Program& program, const QpMeasureSettings& settings);

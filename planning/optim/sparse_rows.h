@@ -33,6 +33,12 @@ class SparseRows {
     }
     return sum;
   }
+  /// y += alpha a_k (row k of A, as a column).
+  void AddRow(int k, double alpha, Eigen::VectorXd* y) const {
+    for (int e = start_[static_cast<std::size_t>(k)]; e < start_[static_cast<std::size_t>(k) + 1]; ++e) {
+      (*y)[column_[static_cast<std::size_t>(e)]] += alpha * value_[static_cast<std::size_t>(e)];
+    }
+  }
   /// y = A x.
   void Multiply(const Eigen::VectorXd& x, Eigen::VectorXd* y) const;
   /// y += A' u.

@@ -246,6 +246,7 @@ void BindSolvers(py::module_& m) {
       .def_readwrite("max_outer_iterations", &optim::ActiveSetQpSettings::max_outer_iterations)
       .def_readwrite("time_limit_s", &optim::ActiveSetQpSettings::time_limit_s)
       .def_readwrite("feasibility_tol", &optim::ActiveSetQpSettings::feasibility_tol)
+      .def_readwrite("refinement_steps", &optim::ActiveSetQpSettings::refinement_steps)
       .def_readwrite("warm_start", &optim::ActiveSetQpSettings::warm_start);
   py::class_<optim::IpoptSettings>(m, "IpoptSettings")
       .def(py::init<>())

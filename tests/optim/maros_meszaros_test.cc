@@ -12,6 +12,7 @@
 
 #include "planning/optim/active_set_qp_solver.h"
 #include "planning/optim/ipopt_solver.h"
+#include "planning/optim/qp_residuals.h"
 #include "planning/optim/qps_reader.h"
 #include "test_paths.h"
 
@@ -85,4 +86,31 @@ TEST_CASE("Maros-Meszaros: the active-set solver reaches the published optima", 
               failed.empty() ? "none" : failed.c_str());
   INFO("failures: " << failed);
   CHECK(passed >= 30);
+}
+
+// The residuals qpbenchmark judges by are absolute: on DUALC1 and DUALC2 (9 and 7 variables, 215
+// and 229 rows, |g| ~ 1e6) the Givens-updated factors leave a dual residual of 2e-9 to 3e-8, and
+// the refinement on the final active set brings it below 1e-9, where CLP gets too.
+TEST_CASE("Maros-Meszaros: refinement brings DUALC1 and DUALC2 to 1e-9 residuals", "[conformance]") {
+  const std::string dir = SharedPath("data/qp/maros_meszaros");
+  if (dir.empty()) {
+    WARN("Maros-Meszaros refinement skipped: ../shared not found");
+    return;
+  }
+  for (const char* name : {"DUALC1", "DUALC2"}) {
+    const QpsProblem q = ReadQpsFile(dir + "/" + name + ".SIF");
+    ActiveSetQpSettings settings;
+    settings.refinement_steps = ActiveSetQpSettings::kHighAccuracyRefinementSteps;
+    ActiveSetQpSolver refined(settings);
+    const SolveResult r = refined.Solve(q.program);
+    INFO(name);
+    REQUIRE(r.status == SolveStatus::kSolved);
+    const QpResiduals residuals = ComputeQpResiduals(q.program, r);
+    CHECK(residuals.primal < 1e-9);
+    CHECK(residuals.dual < 1e-9);
+    CHECK(residuals.gap < 1e-9);
+    // Refinement moves the answer within rounding: the unrefined solve's objective.
+    ActiveSetQpSolver plain;
+    CHECK(std::abs(plain.Solve(q.program).objective - r.objective) <= 1e-9 * std::abs(r.objective));
+  }
 }

@@ -83,6 +83,7 @@ class ActiveSetQpSettings:
     max_outer_iterations: int
     time_limit_s: float
     feasibility_tol: float
+    refinement_steps: int
     warm_start: bool
 
 class IpoptSettings:
