@@ -46,107 +46,111 @@ bool HasKind(const ValidationReport& r, ViolationKind kind, const std::string& l
   return false;
 }
 
+// The default climb, planned once for all the cases below: they are sections of one test, so one
+// process plans it (seconds in the normal build, a quarter of a minute under the sanitizers).
+Scenario& DefaultClimb() {
+  static Scenario scenario(TravelDirection::kUp, Facing::kForward);
+  return scenario;
+}
+
 }  // namespace
 
-TEST_CASE("the validator passes the default plan", "[validator]") {
-  Scenario s(TravelDirection::kUp, Facing::kForward);
-  REQUIRE(s.result.plan.status == PlanStatus::kOk);
-  const ValidationReport r = s.Validate(s.result.plan);
-  INFO(Describe(r));
-  CHECK(r.ok);
-  CHECK(r.violations.empty());
-  CHECK(r.min_clearance_m > 0.005);
-  CHECK(r.min_stability_margin_m > 0.01);
-  CHECK(r.samples > 1000);
-}
-
-TEST_CASE("a foot moved off its step region is caught", "[validator]") {
-  Scenario s(TravelDirection::kUp, Facing::kForward);
-  Plan plan = s.result.plan;
-  Footstep& step = plan.footsteps.at(13);  // a foot landing on a tread mid-flight
-  const StairSurface& tread = s.stairs.surface(step.stair_index);
-  step.position_W.x() = tread.x_end - 0.01;  // under the nosing above: a collision region
-  const ValidationReport r = s.Validate(plan);
-  INFO(Describe(r));
-  CHECK_FALSE(r.ok);
-  CHECK(HasKind(r, ViolationKind::kFootOutsideStepRegion, step.leg));
-}
-
-TEST_CASE("a body lowered into the stairs is caught", "[validator]") {
-  Scenario s(TravelDirection::kUp, Facing::kForward);
-  Plan plan = s.result.plan;
-  for (BodyState& b : plan.body) {
-    if (b.t > 8.0 && b.t < 9.0) b.z -= 0.40;
+TEST_CASE("the validator passes the default plan and catches planted faults in it", "[validator]") {
+  Scenario& s = DefaultClimb();
+  SECTION("the validator passes the default plan") {
+    REQUIRE(s.result.plan.status == PlanStatus::kOk);
+    const ValidationReport r = s.Validate(s.result.plan);
+    INFO(Describe(r));
+    CHECK(r.ok);
+    CHECK(r.violations.empty());
+    CHECK(r.min_clearance_m > 0.005);
+    CHECK(r.min_stability_margin_m > 0.01);
+    CHECK(r.samples > 1000);
   }
-  const ValidationReport r = s.Validate(plan);
-  INFO(Describe(r));
-  CHECK_FALSE(r.ok);
-  CHECK(HasKind(r, ViolationKind::kBodyCollision, "body"));
-  // When: the collision inside the lowered stretch (the drop into it is also a body_acceleration,
-  // reported at the sample before it).
-  for (const Violation& v : r.violations) {
-    if (v.kind != ViolationKind::kBodyCollision) continue;
-    CHECK(v.t > 8.0);
-    CHECK(v.t < 9.0);
-  }
-}
 
-TEST_CASE("a body that jumps between its samples is caught, though every instant of it is fine", "[validator]") {
-  Scenario s(TravelDirection::kUp, Facing::kForward);
-  CHECK_FALSE(HasKind(s.result.validation, ViolationKind::kBodyAcceleration, "body"));
-  Plan plan = s.result.plan;
-  // 2 cm up from one sample on: a step the interpolated instants pass, 8 m/s^2 at 20 Hz samples,
-  // too little to flag; 8 cm (32 m/s^2) is a jump.
-  const auto raise = [&](double dz) {
-    Plan p = plan;
-    for (BodyState& b : p.body) {
-      if (b.t > 8.02) b.z += dz;
+  SECTION("a foot moved off its step region is caught") {
+    Plan plan = s.result.plan;
+    Footstep& step = plan.footsteps.at(13);  // a foot landing on a tread mid-flight
+    const StairSurface& tread = s.stairs.surface(step.stair_index);
+    step.position_W.x() = tread.x_end - 0.01;  // under the nosing above: a collision region
+    const ValidationReport r = s.Validate(plan);
+    INFO(Describe(r));
+    CHECK_FALSE(r.ok);
+    CHECK(HasKind(r, ViolationKind::kFootOutsideStepRegion, step.leg));
+  }
+
+  SECTION("a body lowered into the stairs is caught") {
+    Plan plan = s.result.plan;
+    for (BodyState& b : plan.body) {
+      if (b.t > 8.0 && b.t < 9.0) b.z -= 0.40;
     }
-    return s.Validate(p);
-  };
-  const ValidationReport small = raise(0.02);
-  INFO(Describe(small));
-  CHECK_FALSE(HasKind(small, ViolationKind::kBodyAcceleration, "body"));
-  const ValidationReport jump = raise(0.08);
-  INFO(Describe(jump));
-  CHECK_FALSE(jump.ok);
-  REQUIRE(HasKind(jump, ViolationKind::kBodyAcceleration, "body"));
-  for (const Violation& v : jump.violations) {
-    if (v.kind != ViolationKind::kBodyAcceleration) continue;
-    CHECK(v.t == Approx(8.0).margin(0.06));
-    CHECK(v.value > 19.62);
-    CHECK(v.detail == "along z");
+    const ValidationReport r = s.Validate(plan);
+    INFO(Describe(r));
+    CHECK_FALSE(r.ok);
+    CHECK(HasKind(r, ViolationKind::kBodyCollision, "body"));
+    // When: the collision inside the lowered stretch (the drop into it is also a body_acceleration,
+    // reported at the sample before it).
+    for (const Violation& v : r.violations) {
+      if (v.kind != ViolationKind::kBodyCollision) continue;
+      CHECK(v.t > 8.0);
+      CHECK(v.t < 9.0);
+    }
   }
-}
 
-TEST_CASE("a hind knee driven into a riser is caught", "[validator]") {
-  // The hind knees point back; pitching the body nose-up lowers the hips behind and drives the
-  // hind shanks' tops (the knees) into the nosing of the riser below them.
-  Scenario s(TravelDirection::kUp, Facing::kForward);
-  Plan plan = s.result.plan;
-  for (BodyState& b : plan.body) {
-    if (b.t > 8.0 && b.t < 10.0) b.pitch -= 0.35;
+  SECTION("a body that jumps between its samples is caught, though every instant of it is fine") {
+    CHECK_FALSE(HasKind(s.result.validation, ViolationKind::kBodyAcceleration, "body"));
+    Plan plan = s.result.plan;
+    // 2 cm up from one sample on: a step the interpolated instants pass, 8 m/s^2 at 20 Hz samples,
+    // too little to flag; 8 cm (32 m/s^2) is a jump.
+    const auto raise = [&](double dz) {
+      Plan p = plan;
+      for (BodyState& b : p.body) {
+        if (b.t > 8.02) b.z += dz;
+      }
+      return s.Validate(p);
+    };
+    const ValidationReport small = raise(0.02);
+    INFO(Describe(small));
+    CHECK_FALSE(HasKind(small, ViolationKind::kBodyAcceleration, "body"));
+    const ValidationReport jump = raise(0.08);
+    INFO(Describe(jump));
+    CHECK_FALSE(jump.ok);
+    REQUIRE(HasKind(jump, ViolationKind::kBodyAcceleration, "body"));
+    for (const Violation& v : jump.violations) {
+      if (v.kind != ViolationKind::kBodyAcceleration) continue;
+      CHECK(v.t == Approx(8.0).margin(0.06));
+      CHECK(v.value > 19.62);
+      CHECK(v.detail == "along z");
+    }
   }
-  const ValidationReport r = s.Validate(plan);
-  INFO(Describe(r));
-  CHECK_FALSE(r.ok);
-  bool hind_link_hit = false;
-  for (const Violation& v : r.violations) {
-    const bool hind = v.leg == "LH" || v.leg == "RH";
-    const bool leg_link = v.detail.find("shank") != std::string::npos || v.detail.find("thigh") != std::string::npos;
-    if (v.kind == ViolationKind::kStairCollision && hind && leg_link) hind_link_hit = true;
-  }
-  CHECK(hind_link_hit);
-}
 
-TEST_CASE("a swing too low to clear a nosing is caught", "[validator]") {
-  Scenario s(TravelDirection::kUp, Facing::kForward);
-  Plan plan = s.result.plan;
-  Footstep& step = plan.footsteps.at(12);
-  REQUIRE(step.position_W.z() > step.from_W.z());  // a step up onto the next tread
-  step.swing_apex_z = step.from_W.z() + 0.03;      // never rises to the tread it climbs to
-  const ValidationReport r = s.Validate(plan);
-  INFO(Describe(r));
-  CHECK_FALSE(r.ok);
-  CHECK(HasKind(r, ViolationKind::kStairCollision, step.leg));
+  SECTION("a hind knee driven into a riser is caught") {
+    // The hind knees point back; pitching the body nose-up lowers the hips behind and drives the
+    // hind shanks' tops (the knees) into the nosing of the riser below them.
+    Plan plan = s.result.plan;
+    for (BodyState& b : plan.body) {
+      if (b.t > 8.0 && b.t < 10.0) b.pitch -= 0.35;
+    }
+    const ValidationReport r = s.Validate(plan);
+    INFO(Describe(r));
+    CHECK_FALSE(r.ok);
+    bool hind_link_hit = false;
+    for (const Violation& v : r.violations) {
+      const bool hind = v.leg == "LH" || v.leg == "RH";
+      const bool leg_link = v.detail.find("shank") != std::string::npos || v.detail.find("thigh") != std::string::npos;
+      if (v.kind == ViolationKind::kStairCollision && hind && leg_link) hind_link_hit = true;
+    }
+    CHECK(hind_link_hit);
+  }
+
+  SECTION("a swing too low to clear a nosing is caught") {
+    Plan plan = s.result.plan;
+    Footstep& step = plan.footsteps.at(12);
+    REQUIRE(step.position_W.z() > step.from_W.z());  // a step up onto the next tread
+    step.swing_apex_z = step.from_W.z() + 0.03;      // never rises to the tread it climbs to
+    const ValidationReport r = s.Validate(plan);
+    INFO(Describe(r));
+    CHECK_FALSE(r.ok);
+    CHECK(HasKind(r, ViolationKind::kStairCollision, step.leg));
+  }
 }
