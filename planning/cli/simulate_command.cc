@@ -35,6 +35,8 @@ int RunSimulate(const std::vector<std::string>& args) {
   double frame_ms = 100.0, friction = 0.8;
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
+  RobotFlags robot_flags;
+  AddRobotFlags(app, robot_flags);
   app.add_option("--video-frames", frames_dir, "Write an SVG side view every --frame-ms into this directory");
   app.add_option("--frame-ms", frame_ms, "Interval between frames [ms] (default 100)")->check(CLI::Range(1.0, 10000.0));
   app.add_option("--friction", friction, "Sliding friction of every contact (default 0.8)")->check(CLI::Range(0.0, 10.0));
@@ -45,7 +47,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("simulate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
-    const RobotModel robot = LoadPlanRobot(file, robot_path);
+    const RobotModel robot = LoadPlanRobot(file, robot_path, robot_flags);
     const Staircase stairs(file.stairs);
     if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--video-frames");
     SimSettings settings;

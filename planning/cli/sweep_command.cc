@@ -94,6 +94,8 @@ int RunSweepCommand(const std::vector<std::string>& args) {
   app.add_option("--direction", o.directions, "up, down or up,down (default up)");
   app.add_option("--facing", o.facing, "forward or backward (default forward)");
   app.add_option("--robot", o.robot, "Robot URDF (default: the built-in stairbot)");
+  RobotFlags robot_flags;
+  AddRobotFlags(app, robot_flags);
   app.add_option("--threads", o.threads, "Worker threads (default 1); the output does not depend on it")
       ->check(CLI::Range(1, 256));
   app.add_option("--shard", o.shard, "Compute only shard i of N (i/N); join with sweep-merge");
@@ -114,7 +116,7 @@ int RunSweepCommand(const std::vector<std::string>& args) {
     } catch (const FieldError& e) {
       throw BadInput(e.what());
     }
-    const RobotModel robot = LoadRobot(o.robot);
+    const RobotModel robot = LoadRobot(o.robot, robot_flags);
     const std::vector<SweepPoint> points = EnumeratePoints(grid);
     const bool terminal = isatty(STDERR_FILENO) != 0;
     const auto start = std::chrono::steady_clock::now();
