@@ -65,7 +65,7 @@ Eigen::Vector3d ClosestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3
 
 }  // namespace
 
-ConvexHull ComputeConvexHull(const std::vector<Eigen::Vector3d>& points, const std::string& name) {
+MeshHull ComputeConvexHull(const std::vector<Eigen::Vector3d>& points, const std::string& name) {
   if (points.size() < 4) {
     throw std::invalid_argument(name + ": " + std::to_string(points.size()) + " vertices span no volume; a convex hull needs 4");
   }
@@ -79,7 +79,7 @@ ConvexHull ComputeConvexHull(const std::vector<Eigen::Vector3d>& points, const s
   char options[] = "qhull Qt";
   const int exit_code = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False, options,
                                      nullptr, errors.get());
-  ConvexHull hull;
+  MeshHull hull;
   if (exit_code == 0) {
     std::vector<int> index_of(points.size(), -1);
     facetT* facet;
@@ -117,7 +117,7 @@ ConvexHull ComputeConvexHull(const std::vector<Eigen::Vector3d>& points, const s
   return hull;
 }
 
-double HullExcess(const ConvexHull& hull, const std::vector<Eigen::Vector3d>& vertices,
+double HullExcess(const MeshHull& hull, const std::vector<Eigen::Vector3d>& vertices,
                   const std::vector<std::array<int, 3>>& triangles, double spacing) {
   if (!(spacing > 0.0)) throw std::invalid_argument("HullExcess: spacing must be positive");
   const auto distance_to_mesh = [&](const Eigen::Vector3d& p) {

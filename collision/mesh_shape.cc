@@ -13,7 +13,7 @@
 namespace stairplan {
 namespace {
 
-std::shared_ptr<const fcl::CollisionGeometryd> MakeConvex(const ConvexHull& hull, const Eigen::Vector3d& centre) {
+std::shared_ptr<const fcl::CollisionGeometryd> MakeConvex(const MeshHull& hull, const Eigen::Vector3d& centre) {
   auto vertices = std::make_shared<std::vector<Eigen::Vector3d>>();
   for (const Eigen::Vector3d& v : hull.vertices) vertices->push_back(v - centre);
   auto faces = std::make_shared<std::vector<int>>();
@@ -45,7 +45,7 @@ MeshShape BuildShape(const TriangleMesh& mesh, MeshCollision collision) {
   const Eigen::Vector3d lo = mesh.Min(), hi = mesh.Max();
   shape.centre = 0.5 * (lo + hi);
   shape.size = hi - lo;
-  const ConvexHull hull = ComputeConvexHull(mesh.vertices, mesh.file);
+  const MeshHull hull = ComputeConvexHull(mesh.vertices, mesh.file);
   for (const Eigen::Vector3d& v : hull.vertices) {
     shape.hull_vertices.push_back(v - shape.centre);
     shape.bounding_radius = std::max(shape.bounding_radius, (v - shape.centre).norm());
