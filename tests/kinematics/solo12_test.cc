@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <random>
 
 #include "kinematics/robot_kinematics.h"
@@ -36,15 +37,22 @@ MeshSettings WithPackages(const std::string& packages) {
   return settings;
 }
 
-}  // namespace
-
-TEST_CASE("Solo 12 loads with its package path: legs found and named", "[solo12]") {
+// Solo 12 loaded with its package path; empty (with a WARN) when ../shared is absent.
+std::optional<RobotModel> LoadSolo() {
   const Solo solo = SoloFiles();
   if (solo.urdf.empty()) {
     WARN("Solo 12 skipped: ../shared not found");
-    return;
+    return std::nullopt;
   }
-  const RobotModel robot = RobotModel::FromUrdfFile(solo.urdf, {}, WithPackages(solo.packages));
+  return RobotModel::FromUrdfFile(solo.urdf, {}, WithPackages(solo.packages));
+}
+
+}  // namespace
+
+TEST_CASE("Solo 12 loads with its package path: legs found and named", "[solo12]") {
+  const std::optional<RobotModel> solo = LoadSolo();
+  if (!solo) return;
+  const RobotModel& robot = *solo;
   CHECK(robot.meshes().size() == 17);  // base, and per leg shoulder, upper leg, lower leg, foot
   REQUIRE(robot.legs().size() == 4);
   const char* feet[4][2] = {{"LF", "FL_FOOT"}, {"RF", "FR_FOOT"}, {"LH", "HL_FOOT"}, {"RH", "HR_FOOT"}};
@@ -65,12 +73,9 @@ TEST_CASE("Solo 12 loads with its package path: legs found and named", "[solo12]
 }
 
 TEST_CASE("Solo 12's forward kinematics match its joint origins and axes", "[solo12]") {
-  const Solo solo = SoloFiles();
-  if (solo.urdf.empty()) {
-    WARN("Solo 12 skipped: ../shared not found");
-    return;
-  }
-  const RobotModel robot = RobotModel::FromUrdfFile(solo.urdf, {}, WithPackages(solo.packages));
+  const std::optional<RobotModel> solo = LoadSolo();
+  if (!solo) return;
+  const RobotModel& robot = *solo;
   const stairplan::RobotKinematics kinematics(robot);
   stairplan::RobotWorkspace ws(kinematics);
   std::mt19937 rng(21);
@@ -92,12 +97,9 @@ TEST_CASE("Solo 12's forward kinematics match its joint origins and axes", "[sol
 }
 
 TEST_CASE("Solo 12's mesh feet touch down at their lowest point along the leg", "[solo12]") {
-  const Solo solo = SoloFiles();
-  if (solo.urdf.empty()) {
-    WARN("Solo 12 skipped: ../shared not found");
-    return;
-  }
-  const RobotModel robot = RobotModel::FromUrdfFile(solo.urdf, {}, WithPackages(solo.packages));
+  const std::optional<RobotModel> solo = LoadSolo();
+  if (!solo) return;
+  const RobotModel& robot = *solo;
   const stairplan::RobotKinematics kinematics(robot);
   stairplan::RobotWorkspace ws(kinematics);
   for (int l = 0; l < 4; ++l) {
