@@ -95,4 +95,10 @@ class StanceChecker {
 Eigen::Vector3d FootOriginForContact(const LegModel& leg, const Eigen::Vector3d& contact_W,
                                      const Eigen::Matrix3d& foot_rotation_W);
 
+/// IK of `leg` for its foot to rest on `contact_W` with the body at `body_W`: solved with the
+/// foot turned as the body, then (when the contact is offset from the foot origin) re-aimed three
+/// times with the foot's orientation from the previous solution, from `seed`.
+IkResult SolveContactIk(const LegKinematics& leg, const Eigen::Vector3d& contact_W, const Eigen::Isometry3d& body_W,
+                        const Eigen::Vector3d& seed, LegWorkspace& ws, const IkSettings& settings = {});
+
 }  // namespace stairplan

@@ -4,14 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include <urdf_model/model.h>
 
+#include "kinematics/leg_kinematics.h"
 #include "kinematics/urdf_pose.h"
+#include "kinematics/urdf_to_kdl.h"
 
 namespace stairplan {
 namespace {
@@ -136,6 +140,7 @@ LegModel BuildLeg(const LinkPtr& base, const LinkPtr& foot) {
   leg.foot_link = foot->name;
   leg.foot_radius = SphereRadius(*foot);
   leg.foot_sphere_center = SphereCenter(*foot);
+  if (SphereCollision(*foot) != nullptr) leg.foot_contact = FootContact::kSphere;
   std::vector<LinkPtr> path = PathFromRoot(foot);
   path.erase(path.begin(), std::find(path.begin(), path.end(), base) + 1);
   Eigen::Isometry3d base_T = Eigen::Isometry3d::Identity();
@@ -187,6 +192,52 @@ void NameLegs(std::vector<LegModel>& legs, const std::string& source) {
   legs = sorted;
 }
 
+// The vertices of `link`'s collision meshes in the link frame.
+std::vector<Eigen::Vector3d> MeshVertices(const urdf::Link& link, const RobotMeshes& meshes) {
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t i = 0; i < link.collision_array.size(); ++i) {
+    const auto mesh = meshes.Find(link.name, static_cast<int>(i));
+    if (!mesh) continue;
+    const Eigen::Isometry3d origin = UrdfPoseToIsometry(link.collision_array[i]->origin);
+    for (const Eigen::Vector3d& v : mesh->vertices) points.push_back(origin * v);
+  }
+  return points;
+}
+
+// A foot whose only collision is a mesh touches the ground with the mesh's lowest point along
+// the leg (from the hip through the foot) in the nominal stance. Vertices within a tenth of a
+// millimetre of the lowest are averaged: a rounded foot's rim has many, and their mean lies in the
+// foot's middle plane rather than on one side of it.
+void SetMeshFootContacts(const urdf::ModelInterface& urdf, const std::string& base_link, const RobotMeshes& meshes,
+                         std::vector<LegModel>& legs) {
+  std::shared_ptr<const KDL::Tree> tree;
+  for (LegModel& leg : legs) {
+    if (leg.foot_contact == FootContact::kSphere || leg.joint_names.size() != 3) continue;  // RobotKinematics names the latter
+    const std::vector<Eigen::Vector3d> points = MeshVertices(*urdf.getLink(leg.foot_link), meshes);
+    if (points.empty()) continue;
+    if (!tree) tree = std::make_shared<const KDL::Tree>(UrdfToKdlTree(urdf));
+    const LegKinematics kinematics(leg, *tree, base_link);
+    LegWorkspace ws(kinematics);
+    const Eigen::Isometry3d foot_B = kinematics.FootPose(kinematics.nominal(), ws);
+    const Eigen::Vector3d down_F = foot_B.linear().transpose() * (foot_B.translation() - leg.hip_B).normalized();
+    double lowest = -std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& p : points) lowest = std::max(lowest, p.dot(down_F));
+    constexpr double kTie = 1e-4;  // [m]
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (const Eigen::Vector3d& p : points) {
+      if (p.dot(down_F) < lowest - kTie) continue;
+      sum += p;
+      ++count;
+    }
+    // On the support plane itself: the averaged point is pushed back out to the lowest depth.
+    const Eigen::Vector3d mean = sum / count;
+    leg.foot_sphere_center = mean + (lowest - mean.dot(down_F)) * down_F;
+    leg.foot_radius = 0.0;
+    leg.foot_contact = FootContact::kMeshLowestPoint;
+  }
+}
+
 std::string ReadText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument(path + ": cannot open the URDF file");
@@ -197,15 +248,26 @@ std::string ReadText(const std::string& path) {
 
 }  // namespace
 
-RobotModel RobotModel::FromUrdfFile(const std::string& path, const LegDetectionSettings& settings) {
-  return FromUrdfString(ReadText(path), path, settings);
+const char* ToString(FootContact contact) {
+  switch (contact) {
+    case FootContact::kLinkOrigin: return "link_origin";
+    case FootContact::kSphere: return "sphere";
+    case FootContact::kMeshLowestPoint: return "mesh_lowest_point";
+  }
+  return "unknown";
+}
+
+RobotModel RobotModel::FromUrdfFile(const std::string& path, const LegDetectionSettings& settings,
+                                    const MeshSettings& meshes) {
+  return FromUrdfString(ReadText(path), path, settings, meshes);
 }
 
 RobotModel RobotModel::FromUrdfString(const std::string& xml, const std::string& source_name,
-                                      const LegDetectionSettings& settings) {
+                                      const LegDetectionSettings& settings, const MeshSettings& meshes) {
   const std::shared_ptr<const urdf::ModelInterface> parsed = ParseUrdf(xml, source_name);
   RobotModel model;
   model.urdf_ = parsed;
+  model.meshes_ = RobotMeshes::Load(*parsed, std::filesystem::path(source_name).parent_path().string(), meshes, source_name);
   model.name_ = parsed->getName();
   model.source_ = source_name;
   for (const auto& [name, link] : parsed->links_) {
@@ -216,6 +278,7 @@ RobotModel RobotModel::FromUrdfString(const std::string& xml, const std::string&
   model.base_link_ = base->name;
   for (const auto& foot : feet) model.legs_.push_back(BuildLeg(base, foot));
   NameLegs(model.legs_, source_name);
+  SetMeshFootContacts(*parsed, model.base_link_, *model.meshes_, model.legs_);
   return model;
 }
 

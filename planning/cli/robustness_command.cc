@@ -21,6 +21,8 @@ int RunRobustness(const std::vector<std::string>& args) {
   RobustnessSettings settings;
   bool json = false;
   app.add_option("--robot", robot_path, "Robot URDF (default: the built-in stairbot)");
+  RobotFlags robot_flags;
+  AddRobotFlags(app, robot_flags);
   AddStairFlags(app, stairs);
   app.add_option("--facing", facing, "forward or backward, default forward");
   app.add_option("--sigma-rise", settings.sigma_rise, "Std. dev. of each rise's error [m] (default 0.005)");
@@ -36,7 +38,7 @@ int RunRobustness(const std::vector<std::string>& args) {
     options.validation.time_step = 0.05;
     RobustnessReport report;
     try {
-      report = EvaluateRobustness(LoadRobot(robot_path), nominal.spec(), options, settings);
+      report = EvaluateRobustness(LoadRobot(robot_path, robot_flags), nominal.spec(), options, settings);
     } catch (const FieldError& e) {
       std::string flag = e.field();
       std::replace(flag.begin(), flag.end(), '_', '-');

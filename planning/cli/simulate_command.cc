@@ -78,6 +78,8 @@ int RunSimulate(const std::vector<std::string>& args) {
   bool print_json = false;
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
+  RobotFlags robot_flags;
+  AddRobotFlags(app, robot_flags);
   app.add_option("--video", video, "Render the run with MuJoCo's renderer offscreen (EGL) into this mp4 (ffmpeg)");
   app.add_option("--frames", frames_dir, "Render the run into this directory as PNGs, one every --frame-ms");
   app.add_option("--video-speed", video_speed, "Playback speed of --video against the plan's clock (default 1)")
@@ -96,7 +98,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("simulate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
-    const RobotModel robot = LoadPlanRobot(file, robot_path);
+    const RobotModel robot = LoadPlanRobot(file, robot_path, robot_flags);
     const Staircase stairs(file.stairs);
     if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--frames");
     const bool rendering = !video.empty() || !frames_dir.empty();

@@ -16,11 +16,13 @@ int RunValidate(const std::vector<std::string>& args) {
   bool json = false;
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
+  RobotFlags robot_flags;
+  AddRobotFlags(app, robot_flags);
   app.add_flag("--json", json, "Print the validation report as JSON");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("validate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
-    const RobotModel robot = LoadPlanRobot(file, robot_path);
+    const RobotModel robot = LoadPlanRobot(file, robot_path, robot_flags);
     const Staircase stairs(file.stairs);
     const PipelineOptions options = OptionsForPlan(file.plan);
     const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
