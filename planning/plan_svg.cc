@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "planning/body_path.h"
+#include "planning/svg_text.h"
 
 namespace stairplan {
 namespace {
@@ -36,17 +37,6 @@ const char* LegColour(const std::string& leg) {
       {"LF", "#1f77b4"}, {"RF", "#ff7f0e"}, {"LH", "#9467bd"}, {"RH", "#8c564b"}};
   const auto it = colours.find(leg);
   return it == colours.end() ? "#333333" : it->second;
-}
-
-std::string Escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
 }
 
 // Where a violation happened: the footstep that landed outside its region, the leg's foot (both
@@ -114,7 +104,7 @@ void DrawHeader(std::ostringstream& svg, const Plan& plan, const ValidationRepor
   const bool invalid = plan.status != PlanStatus::kOk || (validation != nullptr && !validation->ok);
   svg << "<g font-family='sans-serif' font-size='13'>\n";
   svg << "<text x='" << kMarginPx << "' y='20' font-weight='bold'" << (invalid ? " fill='#b0006e'" : "") << ">"
-      << Escaped(Title(plan, validation)) << "</text>\n";
+      << SvgEscaped(Title(plan, validation)) << "</text>\n";
   double x = kMarginPx;
   const auto item = [&](const char* colour, const std::string& label) {
     svg << "<rect x='" << x << "' y='32' width='12' height='12' fill='" << colour << "'/>";
@@ -206,7 +196,7 @@ void DrawViolations(std::ostringstream& svg, const View& side, const View& top, 
     if (static_cast<int>(i) < kListedViolations) {
       svg << "<text x='" << kMarginPx << "' y='" << list_top + kLinePx * static_cast<double>(i) << "'>" << i + 1
           << ": t = " << viol.t << " s, " << ToString(viol.kind) << " (" << viol.leg << "), " << viol.value
-          << Escaped(viol.detail.empty() ? "" : ", " + viol.detail) << "</text>\n";
+          << SvgEscaped(viol.detail.empty() ? "" : ", " + viol.detail) << "</text>\n";
     }
   }
   if (static_cast<int>(validation.violations.size()) > kListedViolations) {

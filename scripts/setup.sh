@@ -5,7 +5,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev liborocos-kdl-dev liburdfdom-dev
   libfcl-dev libccd-dev catch2 libbenchmark-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libmujoco-dev libqhull-dev
-  nodejs npm chromium ffmpeg librsvg2-bin libegl-dev libosmesa6-dev
+  chromium ffmpeg librsvg2-bin libegl-dev libosmesa6-dev
   coinor-libclp-dev
   libtinyxml2-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
@@ -14,6 +14,9 @@ packages=(
 )
 # `setup.sh sanitize` (scripts/sanitize.sh, run by scripts/test.sh) also installs the sanitizer
 # toolchain: clang 14 with its ASan/UBSan/libFuzzer runtimes, lld and Ninja for a faster build.
+# Node.js and npm for the viewer's bundle, from Debian unless the machine has them already (a
+# Node.js that ships its own npm conflicts with Debian's npm package).
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 if [ "${1:-}" = sanitize ]; then
   packages+=(clang-14 libclang-rt-14-dev lld-14 ninja-build)
 fi

@@ -378,25 +378,15 @@ void Bench::WriteFiles() const {
   }
 }
 
-void SetTimeLimit(optim::Solver& solver, double seconds) {
-  if (auto* s = dynamic_cast<optim::ActiveSetQpSolver*>(&solver)) s->settings().time_limit_s = seconds;
-  if (auto* s = dynamic_cast<optim::IpoptSolver*>(&solver)) s->settings().time_limit_s = seconds;
-  if (auto* s = dynamic_cast<optim::NloptSolver*>(&solver)) s->settings().time_limit_s = seconds;
-  if (auto* s = dynamic_cast<optim::ClpSolver*>(&solver)) s->settings().time_limit_s = seconds;
-}
-
 }  // namespace
 
 std::unique_ptr<optim::Solver> MakeNamedSolver(const std::string& name, const std::string& flag, double time_limit_s) {
   if (!(time_limit_s > 0)) throw BadInput("--time-limit: must be a positive number of seconds");
-  std::unique_ptr<optim::Solver> solver;
   try {
-    solver = optim::MakeSolver(name);
+    return optim::MakeSolver(name, time_limit_s);
   } catch (const std::invalid_argument& e) {
     throw BadInput(flag + ": " + e.what());
   }
-  SetTimeLimit(*solver, time_limit_s);
-  return solver;
 }
 
 int RunQpBench(const QpBenchOptions& options) {

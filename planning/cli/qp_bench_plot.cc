@@ -6,22 +6,13 @@
 #include <sstream>
 #include <utility>
 
+#include "planning/svg_text.h"
+
 namespace stairplan::cli {
 namespace {
 
 constexpr double kPanelW = 420, kPanelH = 300, kLeft = 55, kRight = 15, kTop = 35, kBottom = 45;
 const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b"};
-
-std::string Escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
-}
 
 std::string TimeLabel(double decade) {
   const double us = std::pow(10.0, decade);
@@ -53,7 +44,7 @@ void DrawPanel(std::ostringstream& svg, const QpBenchPanel& panel, double x0) {
   const double w = kPanelW - kLeft - kRight, h = kPanelH - kTop - kBottom;
   const auto X = [&](double us) { return x0 + kLeft + w * (std::log10(std::max(us, 0.01)) - lo) / (hi - lo); };
   const auto Y = [&](double fraction) { return kTop + h * (1.0 - fraction); };
-  svg << "<text x='" << x0 + kLeft << "' y='20' font-weight='bold'>" << Escaped(panel.title) << "</text>\n";
+  svg << "<text x='" << x0 + kLeft << "' y='20' font-weight='bold'>" << SvgEscaped(panel.title) << "</text>\n";
   svg << "<rect x='" << x0 + kLeft << "' y='" << kTop << "' width='" << w << "' height='" << h
       << "' fill='none' stroke='#222'/>\n";
   for (int d = lo; d <= hi; ++d) {
@@ -83,7 +74,7 @@ void DrawPanel(std::ostringstream& svg, const QpBenchPanel& panel, double x0) {
     const double ly = kTop + 16 + 16 * static_cast<double>(c);
     svg << "<line x1='" << x0 + kLeft + 8 << "' y1='" << ly - 4 << "' x2='" << x0 + kLeft + 28 << "' y2='" << ly - 4
         << "' stroke='" << colour << "' stroke-width='2'/><text x='" << x0 + kLeft + 32 << "' y='" << ly << "'>"
-        << Escaped(panel.curves[c].solver) << " (" << t.size() << "/" << panel.problems << ")</text>\n";
+        << SvgEscaped(panel.curves[c].solver) << " (" << t.size() << "/" << panel.problems << ")</text>\n";
   }
 }
 
@@ -95,7 +86,7 @@ std::string QpBenchPlotSvg(const std::vector<QpBenchPanel>& panels, const std::s
   svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << kPanelH + 30
       << "' font-family='sans-serif' font-size='11'>\n<rect width='100%' height='100%' fill='white'/>\n";
   for (std::size_t p = 0; p < panels.size(); ++p) DrawPanel(svg, panels[p], kPanelW * static_cast<double>(p));
-  svg << "<text x='10' y='" << kPanelH + 18 << "'>" << Escaped(caption) << "</text>\n</svg>\n";
+  svg << "<text x='10' y='" << kPanelH + 18 << "'>" << SvgEscaped(caption) << "</text>\n</svg>\n";
   return svg.str();
 }
 

@@ -92,4 +92,14 @@ std::unique_ptr<Solver> MakeSolver(std::string_view name) {
                               "' (expected active-set, ipopt, nlopt, clp or clp-barrier)");
 }
 
+std::unique_ptr<Solver> MakeSolver(std::string_view name, double time_limit_s) {
+  if (!(time_limit_s > 0)) throw std::invalid_argument("time_limit_s: must be positive");
+  std::unique_ptr<Solver> solver = MakeSolver(name);
+  if (auto* s = dynamic_cast<ActiveSetQpSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;
+  if (auto* s = dynamic_cast<IpoptSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;
+  if (auto* s = dynamic_cast<NloptSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;
+  if (auto* s = dynamic_cast<ClpSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;
+  return solver;
+}
+
 }  // namespace stairplan::optim

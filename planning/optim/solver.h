@@ -52,5 +52,8 @@ std::unique_ptr<Solver> MakeSolver(const Program& program);
 /// Solver by name ("active-set", "ipopt", "nlopt", "clp", "clp-barrier"); throws std::invalid_argument
 /// naming it otherwise, or naming the missing package for CLP in a build without it.
 std::unique_ptr<Solver> MakeSolver(std::string_view name);
+/// The same with every solve limited to `time_limit_s` of wall time: a reference solver that
+/// cycles (CLP's primal simplex can) then returns kTimeLimit instead of running on.
+std::unique_ptr<Solver> MakeSolver(std::string_view name, double time_limit_s);
 
 }  // namespace stairplan::optim

@@ -70,7 +70,7 @@ TEST_CASE("simulate prints a summary by default, like every command, and its JSO
   // --out still holds the JSON, which --json prints.
   const nlohmann::json written = nlohmann::json::parse(ReadFile(dir + "/sim.json"));
   CheckVersioned(written);
-  const StairplanRun json = RunStairplan(dir, "simulate --json " + plan);
-  CHECK(json.code == summary.code);
-  CHECK(nlohmann::json::parse(json.out)["status"] == written["status"]);
+  const StairplanRun printed = RunStairplan(dir, "simulate --json " + plan);
+  CHECK(printed.code == summary.code);
+  CHECK(nlohmann::json::parse(printed.out)["status"] == written["status"]);
 }
