@@ -30,9 +30,11 @@ double IgnorableSupportZ(const CollisionShape& shape, const Eigen::Isometry3d& p
   return foot_contact_z;
 }
 
-// Where the foot touches what it stands on: a sphere's lowest point, a mesh foot's contact point.
+// Where the foot touches what it stands on: a sphere's lowest point, the bottom of a mesh foot's
+// contact sphere.
 double FootContactZ(const CollisionShape& contact, const Eigen::Isometry3d& pose_W) {
-  return contact.type == ShapeType::kMesh ? (pose_W * contact.contact_point).z() : LowestZ(contact, pose_W);
+  return contact.type == ShapeType::kMesh ? (pose_W * contact.contact_point).z() - contact.contact_radius
+                                          : LowestZ(contact, pose_W);
 }
 
 // Folds the clearance of one robot shape against every stair solid into `best`.

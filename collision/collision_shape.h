@@ -33,9 +33,10 @@ struct CollisionShape {
   int segment = -1;           ///< leg chain segment whose tip frame carries it; -1: the base frame
   /// The foot's contact sphere, or the foot link's mesh of a mesh foot: touches the ground by design.
   bool foot_contact = false;
-  /// For a mesh foot's contact shape: its contact point (LegModel::foot_sphere_center) in the
-  /// shape's frame (`local`), where the foot meets the surface it stands on.
+  /// For a mesh foot's contact shape: the centre of its contact sphere (LegModel::foot_sphere_center)
+  /// in the shape's frame (`local`); the foot meets the surface it stands on contact_radius below it.
   Eigen::Vector3d contact_point = Eigen::Vector3d::Zero();
+  double contact_radius = 0.0;  ///< LegModel::foot_radius of a mesh foot's contact shape [m]
   /// Part of the foot: on the foot link or on a link fixed between the knee's link and the foot
   /// (the foot sphere, ANYmal B's adapter tube, ANYmal C's shank tube on its FOOT link). The knee's
   /// own link (stairbot's shank, a Unitree calf) is not, though it too is rigid with the foot.

@@ -73,6 +73,7 @@ RobotCollisionModel::RobotCollisionModel(const RobotKinematics& kinematics) {
       shape.foot_part = a.segment > leg.knee_segment();
       if (shape.foot_contact && shape.type == ShapeType::kMesh) {
         shape.contact_point = shape.local.inverse() * (a.link_in_frame * link_in_ancestor * leg.model().foot_sphere_center);
+        shape.contact_radius = leg.model().foot_radius;
       }
       auto& shapes = legs_[static_cast<std::size_t>(a.leg)];
       if (shape.foot_contact && foot_shapes_[static_cast<std::size_t>(a.leg)] < 0) {

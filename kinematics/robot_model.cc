@@ -204,10 +204,54 @@ std::vector<Eigen::Vector3d> MeshVertices(const urdf::Link& link, const RobotMes
   return points;
 }
 
+// The mesh's extent along unit direction d: its support h(d) = max p.d.
+double Support(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& d) {
+  double h = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : points) h = std::max(h, p.dot(d));
+  return h;
+}
+
+// A foot rolls about the knee axis as the leg swings, so its contact wanders over its rim. Where
+// the rim is a circle (Solo's wheel-shaped foot), the support along directions turned about that
+// axis from `down` is h = c.d + r for a fixed centre c and radius r: fitted by least squares over
+// +-40 degrees (about the link origin if that fits), the foot is that sphere when no direction
+// misses by more than 0.3 mm. Along the axis the centre lies midway across the foot. Returns
+// false (the foot is not round) otherwise.
+bool FitRollingSphere(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& down,
+                      const Eigen::Vector3d& axis_in, Eigen::Vector3d* centre, double* radius) {
+  constexpr int kSamples = 17;
+  constexpr double kRange = 40.0 * M_PI / 180.0, kTolerance = 3e-4;  // [rad], [m]
+  const Eigen::Vector3d axis = (axis_in - axis_in.dot(down) * down).normalized();
+  const Eigen::Vector3d side = axis.cross(down);
+  Eigen::Matrix<double, kSamples, 3> a;
+  Eigen::Matrix<double, kSamples, 1> h;
+  for (int k = 0; k < kSamples; ++k) {
+    const double theta = kRange * (2.0 * k / (kSamples - 1) - 1.0);
+    a.row(k) << std::cos(theta), std::sin(theta), 1.0;
+    h(k) = Support(points, std::cos(theta) * down + std::sin(theta) * side);
+  }
+  const double across = 0.5 * (Support(points, axis) - Support(points, -axis));
+  // Feet are drawn about their link origin: a sphere there is tried first, as the planners need
+  // not re-aim a foot whose contact sphere is centred on its origin.
+  const double about_origin = h.mean();
+  if ((h.array() - about_origin).abs().maxCoeff() <= kTolerance && about_origin > kTolerance) {
+    *centre = across * axis;
+    *radius = about_origin;
+    return true;
+  }
+  const Eigen::Vector3d fit = a.colPivHouseholderQr().solve(h);
+  if (!((a * fit - h).cwiseAbs().maxCoeff() <= kTolerance) || !(fit.z() > kTolerance)) return false;
+  *centre = fit.x() * down + fit.y() * side + across * axis;
+  *radius = fit.z();
+  return true;
+}
+
 // A foot whose only collision is a mesh touches the ground with the mesh's lowest point along
 // the leg (from the hip through the foot) in the nominal stance. Vertices within a tenth of a
 // millimetre of the lowest are averaged: a rounded foot's rim has many, and their mean lies in the
-// foot's middle plane rather than on one side of it.
+// foot's middle plane rather than on one side of it. A foot round about the knee axis is the
+// sphere fitted to its rim, whose bottom that point is: its contact then rolls with the foot
+// instead of staying on one rim point that dips below the ground as the shank turns.
 void SetMeshFootContacts(const urdf::ModelInterface& urdf, const std::string& base_link, const RobotMeshes& meshes,
                          std::vector<LegModel>& legs) {
   std::shared_ptr<const KDL::Tree> tree;
@@ -220,8 +264,7 @@ void SetMeshFootContacts(const urdf::ModelInterface& urdf, const std::string& ba
     LegWorkspace ws(kinematics);
     const Eigen::Isometry3d foot_B = kinematics.FootPose(kinematics.nominal(), ws);
     const Eigen::Vector3d down_F = foot_B.linear().transpose() * (foot_B.translation() - leg.hip_B).normalized();
-    double lowest = -std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& p : points) lowest = std::max(lowest, p.dot(down_F));
+    const double lowest = Support(points, down_F);
     constexpr double kTie = 1e-4;  // [m]
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     int count = 0;
@@ -232,9 +275,20 @@ void SetMeshFootContacts(const urdf::ModelInterface& urdf, const std::string& ba
     }
     // On the support plane itself: the averaged point is pushed back out to the lowest depth.
     const Eigen::Vector3d mean = sum / count;
-    leg.foot_sphere_center = mean + (lowest - mean.dot(down_F)) * down_F;
+    leg.foot_contact_point = mean + (lowest - mean.dot(down_F)) * down_F;
+    leg.foot_sphere_center = leg.foot_contact_point;
     leg.foot_radius = 0.0;
     leg.foot_contact = FootContact::kMeshLowestPoint;
+    // The knee axis in the foot frame, from how the foot turns with the last joint.
+    Eigen::Vector3d q = kinematics.nominal();
+    q.z() += 1e-3;
+    const Eigen::AngleAxisd turn(foot_B.linear().transpose() * kinematics.FootPose(q, ws).linear());
+    Eigen::Vector3d centre;
+    double radius = 0.0;
+    if (turn.angle() > 0.0 && FitRollingSphere(points, down_F, turn.axis(), &centre, &radius)) {
+      leg.foot_sphere_center = centre.norm() < kTie ? Eigen::Vector3d::Zero() : centre;
+      leg.foot_radius = radius;
+    }
   }
 }
 

@@ -29,7 +29,9 @@ struct JointLimits {
 enum class FootContact {
   kLinkOrigin,        ///< no collision geometry to go by: the foot link's origin
   kSphere,            ///< the lowest point of the foot's sphere collision
-  kMeshLowestPoint,   ///< the foot mesh's lowest point along the leg in the nominal stance
+  /// the foot mesh's lowest point along the leg in the nominal stance; where the mesh is round
+  /// about the knee axis, the bottom of the sphere fitted to it, which that point lies on
+  kMeshLowestPoint,
 };
 /// "link_origin", "sphere" or "mesh_lowest_point".
 const char* ToString(FootContact contact);
@@ -45,10 +47,14 @@ struct LegModel {
   Eigen::Vector3d foot_zero_B = Eigen::Vector3d::Zero(); ///< foot origin at zero joint angles, base frame [m]
   double foot_radius = 0.0;  ///< radius of the foot's sphere collision, 0 when it has none [m]
   /// Centre of the foot's sphere collision in the foot link frame (ANYmal's sits above the link
-  /// origin, Go2's slightly behind it). A mesh foot is a sphere of radius 0 here: this is then its
+  /// origin, Go2's slightly behind it). A mesh foot that is round where it rolls (about the knee
+  /// axis) is the sphere fitted to that rim; any other mesh foot is a sphere of radius 0 at its
   /// contact point (FootContact::kMeshLowestPoint), so every planner places it as it places a
   /// sphere. Zero when the foot has neither [m].
   Eigen::Vector3d foot_sphere_center = Eigen::Vector3d::Zero();
+  /// Where a mesh foot touches the ground in the nominal stance, in the foot link frame: its
+  /// lowest point along the leg (on the fitted sphere of a round foot). Zero for other feet [m].
+  Eigen::Vector3d foot_contact_point = Eigen::Vector3d::Zero();
   FootContact foot_contact = FootContact::kLinkOrigin;  ///< where foot_sphere_center comes from
   double max_reach = 0.0;    ///< upper bound on the hip-to-foot distance: sum of the chain's offsets [m]
   double mass = 0.0;         ///< mass of the leg's links [kg]

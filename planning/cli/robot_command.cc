@@ -28,8 +28,10 @@ nlohmann::json LegJson(const LegKinematics& leg) {
   }
   return {{"name", m.name}, {"foot_link", m.foot_link}, {"hip_B", Xyz(m.hip_B)}, {"joints", joints},
           {"max_reach_m", m.max_reach}, {"nominal_q", Xyz(leg.nominal())},
-          {"foot_contact", ToString(m.foot_contact)}, {"foot_contact_point_in_foot_link", Xyz(m.foot_sphere_center)},
-          {"foot_radius_m", m.foot_radius}};
+          {"foot_contact", ToString(m.foot_contact)},
+          {"foot_contact_point_in_foot_link",
+           Xyz(m.foot_contact == FootContact::kMeshLowestPoint ? m.foot_contact_point : m.foot_sphere_center)},
+          {"foot_sphere_center_in_foot_link", Xyz(m.foot_sphere_center)}, {"foot_radius_m", m.foot_radius}};
 }
 
 // Mesh shapes of the collision model: how many, and their hulls' sizes.
@@ -55,7 +57,11 @@ void PrintSummary(const nlohmann::json& j) {
     std::cout << "  " << leg["name"].get<std::string>() << ": foot " << leg["foot_link"].get<std::string>()
               << ", hip at (" << leg["hip_B"][0] << ", " << leg["hip_B"][1] << ", " << leg["hip_B"][2]
               << ") m, contact " << leg["foot_contact"].get<std::string>() << " at (" << c[0] << ", " << c[1] << ", "
-              << c[2] << ") m in the foot link\n";
+              << c[2] << ") m in the foot link";
+    if (leg["foot_contact"] == "mesh_lowest_point" && leg["foot_radius_m"].get<double>() > 0.0) {
+      std::cout << ", rolling as a sphere of radius " << leg["foot_radius_m"].get<double>() << " m";
+    }
+    std::cout << "\n";
   }
   const auto& m = j["meshes"];
   std::cout << "  meshes: " << m["collision_meshes"] << " collision meshes as " << m["collision"].get<std::string>()

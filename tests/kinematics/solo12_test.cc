@@ -107,15 +107,21 @@ TEST_CASE("Solo 12's mesh feet touch down at their lowest point along the leg", 
     const auto& model = leg.model();
     INFO(model.name);
     CHECK(model.foot_contact == FootContact::kMeshLowestPoint);
-    CHECK(model.foot_radius == 0.0);
     // The foot mesh is a wheel of radius 16 mm about the foot origin, 16.5 mm thick along y: its
     // lowest point along any direction in its x-z plane is on the rim, across its thickness.
-    CHECK(Eigen::Vector2d(model.foot_sphere_center.x(), model.foot_sphere_center.z()).norm() == Approx(0.016).margin(2e-4));
-    CHECK(std::abs(model.foot_sphere_center.y()) < 0.00825);
+    const Eigen::Vector3d& contact = model.foot_contact_point;
+    CHECK(Eigen::Vector2d(contact.x(), contact.z()).norm() == Approx(0.016).margin(2e-4));
+    CHECK(std::abs(contact.y()) < 0.00825);
     // ... and it is the point furthest along the leg (hip to foot) in the nominal stance.
     const Eigen::Isometry3d foot = leg.FootPose(leg.nominal(), ws.leg(l));
     const Eigen::Vector3d along = (foot.translation() - model.hip_B).normalized();
-    CHECK((foot.linear() * model.foot_sphere_center).normalized().dot(along) > 0.99);
+    CHECK((foot.linear() * contact).normalized().dot(along) > 0.99);
+    // The wheel rolls about the knee axis: it is the sphere of its rim, centred on the foot origin
+    // (its middle plane), whose bottom along the leg is that contact point.
+    CHECK(model.foot_radius == Approx(0.016).margin(5e-4));
+    CHECK(model.foot_sphere_center.norm() < 1e-4);
+    const Eigen::Vector3d along_F = foot.linear().transpose() * along;
+    CHECK(model.foot_sphere_center.dot(along_F) + model.foot_radius == Approx(contact.dot(along_F)).margin(3e-4));
   }
 }
 
