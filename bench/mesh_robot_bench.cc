@@ -86,17 +86,9 @@ void BM_StanceCheck(benchmark::State& state) {
   const RobotModel* robot = Robot(index);
   if (!robot) return state.SkipWithError("robot files not found in ../shared");
   StanceChecker checker(*robot, LowStairs());
-  BodyPose body;
-  const auto& lf = checker.kinematics().leg(0);
-  const Eigen::Isometry3d foot0 = lf.FootPose(lf.nominal(), checker.workspace().leg(0));
-  body.position_W = {-0.4, 0.0, lf.model().foot_radius - (foot0 * lf.model().foot_sphere_center).z()};
-  std::array<Eigen::Vector3d, 4> contacts;
-  for (int l = 0; l < 4; ++l) {
-    const auto& leg = checker.kinematics().leg(l);
-    const Eigen::Isometry3d foot = leg.FootPose(leg.nominal(), checker.workspace().leg(l));
-    contacts[static_cast<std::size_t>(l)] =
-        body.ToIsometry() * (foot * leg.model().foot_sphere_center) - leg.model().foot_radius * Eigen::Vector3d::UnitZ();
-  }
+  const NominalStance standing = NominalStanceAt(checker.kinematics(), checker.workspace(), -0.4);
+  const BodyPose& body = standing.body;
+  const std::array<Eigen::Vector3d, 4>& contacts = standing.contacts_W;
   for (auto _ : state) benchmark::DoNotOptimize(checker.Check(body, contacts).min_clearance);
   Label(state, index);
 }

@@ -30,6 +30,19 @@ Eigen::Vector3d FootOriginForContact(const LegModel& leg, const Eigen::Vector3d&
   return centre_W - foot_rotation_W * leg.foot_sphere_center;
 }
 
+NominalStance NominalStanceAt(const RobotKinematics& kinematics, RobotWorkspace& ws, double x) {
+  NominalStance stance;
+  // Where each foot's contact sphere touches down, in the base frame.
+  const auto contact_B = [&](int l) -> Eigen::Vector3d {
+    const LegKinematics& leg = kinematics.leg(l);
+    return leg.FootPose(leg.nominal(), ws.leg(l)) * leg.model().foot_sphere_center -
+           leg.model().foot_radius * Eigen::Vector3d::UnitZ();
+  };
+  stance.body.position_W = {x, 0.0, -contact_B(0).z()};
+  for (int l = 0; l < 4; ++l) stance.contacts_W[static_cast<std::size_t>(l)] = stance.body.ToIsometry() * contact_B(l);
+  return stance;
+}
+
 IkResult SolveContactIk(const LegKinematics& leg, const Eigen::Vector3d& contact_W, const Eigen::Isometry3d& body_W,
                         const Eigen::Vector3d& seed, LegWorkspace& ws, const IkSettings& settings) {
   const Eigen::Isometry3d W_body = body_W.inverse();

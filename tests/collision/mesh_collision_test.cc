@@ -190,17 +190,10 @@ TEST_CASE("Solo 12's collision model: mesh shapes, mesh feet, a clear stance on 
       CHECK(foot.foot_part);
     }
     // Standing on the landing in the nominal pose: every foot's contact point on the landing.
-    BodyPose body;
-    const auto& lf = checker.kinematics().leg(0);
-    const Eigen::Isometry3d foot0 = lf.FootPose(lf.nominal(), checker.workspace().leg(0));
-    // A mesh foot touches down at the bottom of its contact sphere (radius 0 unless it is round).
-    body.position_W = {-0.5, 0.0, lf.model().foot_radius - (foot0 * lf.model().foot_sphere_center).z()};
-    std::array<Eigen::Vector3d, 4> contacts;
+    const NominalStance standing = NominalStanceAt(checker.kinematics(), checker.workspace(), -0.5);
+    BodyPose body = standing.body;
+    std::array<Eigen::Vector3d, 4> contacts = standing.contacts_W;
     for (int l = 0; l < 4; ++l) {
-      const auto& leg = checker.kinematics().leg(l);
-      const Eigen::Isometry3d foot = leg.FootPose(leg.nominal(), checker.workspace().leg(l));
-      contacts[static_cast<std::size_t>(l)] =
-          body.ToIsometry() * (foot * leg.model().foot_sphere_center) - leg.model().foot_radius * Eigen::Vector3d::UnitZ();
       CHECK(contacts[static_cast<std::size_t>(l)].z() == Approx(0.0).margin(1e-4));  // front and hind nominal differ by microns
     }
     const StanceResult r = checker.Check(body, contacts);
