@@ -5,6 +5,9 @@ find_package(urdfdom REQUIRED CONFIG)
 # tinyxml2 checks robot files before urdfdom (and its TinyXML 2.6) sees them (issue #28).
 find_package(tinyxml2 REQUIRED CONFIG)
 find_package(fcl REQUIRED CONFIG)
+# Collision meshes of URDFs (STL, OBJ, COLLADA) and their convex hulls.
+find_package(assimp REQUIRED CONFIG)
+find_package(Qhull REQUIRED CONFIG)
 find_package(NLopt REQUIRED CONFIG)
 find_package(yaml-cpp REQUIRED CONFIG)
 find_package(nlohmann_json 3.11 REQUIRED CONFIG)

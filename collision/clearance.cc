@@ -21,11 +21,20 @@ constexpr double kBelowContactTolerance = 1e-6;
 // is (ANYmal B's adapter tube ends 7.75 mm above the contact and at any tilt stays 3.3 mm above
 // it). Dipping below the contact, it is measured against that surface like any other; risers,
 // nosings and other treads always are.
+// The foot's contact shape itself always ignores it: a mesh foot rolled off its nominal contact
+// point dips a little below it, as a real foot does.
 double IgnorableSupportZ(const CollisionShape& shape, const Eigen::Isometry3d& pose_W, double foot_contact_z) {
-  if (!shape.foot_part || !(LowestZ(shape, pose_W) >= foot_contact_z - kBelowContactTolerance)) {
+  if (!shape.foot_part || (!shape.foot_contact && !(LowestZ(shape, pose_W) >= foot_contact_z - kBelowContactTolerance))) {
     return std::numeric_limits<double>::quiet_NaN();
   }
   return foot_contact_z;
+}
+
+// Where the foot touches what it stands on: a sphere's lowest point, the bottom of a mesh foot's
+// contact sphere.
+double FootContactZ(const CollisionShape& contact, const Eigen::Isometry3d& pose_W) {
+  return contact.type == ShapeType::kMesh ? (pose_W * contact.contact_point).z() - contact.contact_radius
+                                          : LowestZ(contact, pose_W);
 }
 
 // Folds the clearance of one robot shape against every stair solid into `best`.
@@ -66,12 +75,11 @@ Clearance LegStairClearance(const RobotKinematics& kinematics, const RobotCollis
   const auto pose_of = [&](const CollisionShape& shape) -> Eigen::Isometry3d {
     return body_W * frames[static_cast<std::size_t>(shape.segment)] * shape.local;
   };
-  // The sphere's lowest point: where the foot touches whatever it stands on.
   double foot_contact_z = std::numeric_limits<double>::quiet_NaN();
   const int foot = robot.foot_shape(leg);
   if (options.skip_foot_support && foot >= 0) {
-    const CollisionShape& sphere = shapes[static_cast<std::size_t>(foot)];
-    foot_contact_z = LowestZ(sphere, pose_of(sphere));
+    const CollisionShape& contact = shapes[static_cast<std::size_t>(foot)];
+    foot_contact_z = FootContactZ(contact, pose_of(contact));
   }
   Clearance best;
   for (std::size_t i = 0; i < shapes.size(); ++i) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fcl/geometry/shape/box.h>
@@ -30,13 +31,19 @@ double LowestZ(const CollisionShape& shape, const Eigen::Isometry3d& pose_W) {
     }
     case ShapeType::kSphere:
       return centre_z - shape.size.x();
+    case ShapeType::kMesh: {
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector3d& v : shape.mesh->hull_vertices) lowest = std::min(lowest, R.row(2).dot(v));
+      return centre_z + lowest;
+    }
   }
   return centre_z;
 }
 
-std::vector<CollisionShape> LinkCollisionShapes(const urdf::Link& link, const std::string& source) {
+std::vector<CollisionShape> LinkCollisionShapes(const urdf::Link& link, const RobotModel& robot) {
   std::vector<CollisionShape> shapes;
-  for (const auto& collision : link.collision_array) {
+  for (std::size_t index = 0; index < link.collision_array.size(); ++index) {
+    const auto& collision = link.collision_array[index];
     if (!collision || !collision->geometry) continue;
     CollisionShape shape;
     shape.link = link.name;
@@ -70,9 +77,23 @@ std::vector<CollisionShape> LinkCollisionShapes(const urdf::Link& link, const st
         shape.bounding_radius = sphere.radius;
         break;
       }
+      case urdf::Geometry::MESH: {
+        const std::shared_ptr<const TriangleMesh> loaded = robot.meshes().Find(link.name, static_cast<int>(index));
+        if (!loaded) throw std::invalid_argument(robot.source() + ": <link name=\"" + link.name + "\">: mesh not loaded");
+        try {
+          shape.mesh = GetMeshShape(loaded, robot.meshes().collision());
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(robot.source() + ": <link name=\"" + link.name + "\">: " + e.what());
+        }
+        shape.type = ShapeType::kMesh;
+        shape.geometry = shape.mesh->geometry;
+        shape.size = shape.mesh->size;
+        shape.bounding_radius = shape.mesh->bounding_radius;
+        shape.local = shape.local * Eigen::Translation3d(shape.mesh->centre);
+        break;
+      }
       default:
-        throw std::invalid_argument(source + ": <link name=\"" + link.name +
-                                    "\">: <collision> with a mesh is not supported; use boxes, cylinders and spheres");
+        throw std::invalid_argument(robot.source() + ": <link name=\"" + link.name + "\">: unknown <collision> geometry");
     }
     shapes.push_back(std::move(shape));
   }

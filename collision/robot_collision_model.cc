@@ -55,7 +55,7 @@ RobotCollisionModel::RobotCollisionModel(const RobotKinematics& kinematics) {
     const auto frame = frames.find(at->name);
     if (frame == frames.end()) continue;  // behind a joint no leg chain models: not ours to check
     const Attachment& a = frame->second;
-    for (CollisionShape& shape : LinkCollisionShapes(*link, robot.source())) {
+    for (CollisionShape& shape : LinkCollisionShapes(*link, robot)) {
       shape.local = a.link_in_frame * link_in_ancestor * shape.local;
       shape.segment = a.segment;
       if (a.leg < 0) {
@@ -63,12 +63,18 @@ RobotCollisionModel::RobotCollisionModel(const RobotKinematics& kinematics) {
         continue;
       }
       const LegKinematics& leg = kinematics.leg(a.leg);
-      shape.foot_contact = name == leg.model().foot_link && shape.type == ShapeType::kSphere;
+      shape.foot_contact = name == leg.model().foot_link &&
+                           (shape.type == ShapeType::kSphere ||
+                            (shape.type == ShapeType::kMesh && leg.model().foot_contact == FootContact::kMeshLowestPoint));
       // The chain's segments after the knee's are the fixed links down to the foot. The knee's own
       // link is left out: its shapes are the shank itself, and robots that model the lower leg as
       // one link (stairbot, Unitree) keep the full margin to the tread under it, as their
       // planners are tuned on.
       shape.foot_part = a.segment > leg.knee_segment();
+      if (shape.foot_contact && shape.type == ShapeType::kMesh) {
+        shape.contact_point = shape.local.inverse() * (a.link_in_frame * link_in_ancestor * leg.model().foot_sphere_center);
+        shape.contact_radius = leg.model().foot_radius;
+      }
       auto& shapes = legs_[static_cast<std::size_t>(a.leg)];
       if (shape.foot_contact && foot_shapes_[static_cast<std::size_t>(a.leg)] < 0) {
         foot_shapes_[static_cast<std::size_t>(a.leg)] = static_cast<int>(shapes.size());

@@ -4,7 +4,9 @@
 #include <exception>
 #include <limits>
 
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 
@@ -32,8 +34,45 @@ SignedDistanceResult Fallback(const Eigen::Isometry3d& pose_a, const Eigen::Isom
   return r;
 }
 
-// Half-extent of a primitive along unit direction n, or -1 for a geometry we do not model.
+// The vertex of a mesh shape (hull or triangles) furthest along n_local, in its own frame; null
+// for other shapes. A mesh's support is its hull's, so the triangles' vertices serve as well.
+const Eigen::Vector3d* MeshSupportVertex(const fcl::CollisionGeometryd& g, const Eigen::Vector3d& n_local) {
+  const Eigen::Vector3d* vertices = nullptr;
+  int count = 0;
+  if (g.getNodeType() == fcl::GEOM_CONVEX) {
+    const auto& convex = static_cast<const fcl::Convexd&>(g);
+    vertices = convex.getVertices().data();
+    count = static_cast<int>(convex.getVertices().size());
+  } else if (g.getNodeType() == fcl::BV_OBBRSS) {
+    const auto& model = static_cast<const fcl::BVHModel<fcl::OBBRSSd>&>(g);
+    vertices = model.vertices;
+    count = model.num_vertices;
+  }
+  const Eigen::Vector3d* best = nullptr;
+  double best_value = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < count; ++i) {
+    const double value = n_local.dot(vertices[i]);
+    if (value > best_value) {
+      best_value = value;
+      best = &vertices[i];
+    }
+  }
+  return best;
+}
+
+bool IsMesh(const fcl::CollisionGeometryd& g) {
+  return g.getNodeType() == fcl::GEOM_CONVEX || g.getNodeType() == fcl::BV_OBBRSS;
+}
+
+// How far a shape reaches from its origin along unit direction n (a primitive's half-extent;
+// a mesh, not centred on its origin, may reach less one way than the other), or NaN for a
+// geometry we do not model.
 double Support(const fcl::CollisionGeometryd& g, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& n) {
+  if (IsMesh(g)) {
+    const Eigen::Vector3d n_local = rotation.transpose() * n;
+    const Eigen::Vector3d* vertex = MeshSupportVertex(g, n_local);
+    return vertex ? n_local.dot(*vertex) : std::numeric_limits<double>::quiet_NaN();
+  }
   switch (g.getNodeType()) {
     case fcl::GEOM_BOX: {
       const Eigen::Vector3d half = 0.5 * static_cast<const fcl::Boxd&>(g).side;
@@ -47,7 +86,7 @@ double Support(const fcl::CollisionGeometryd& g, const Eigen::Matrix3d& rotation
     case fcl::GEOM_SPHERE:
       return static_cast<const fcl::Sphered&>(g).radius;
     default:
-      return -1.0;
+      return std::numeric_limits<double>::quiet_NaN();
   }
 }
 
@@ -66,6 +105,8 @@ Eigen::Vector3d SupportPoint(const fcl::CollisionGeometryd& g, const Eigen::Isom
     local.z() = n_local.z() >= 0.0 ? 0.5 * c.lz : -0.5 * c.lz;
   } else if (g.getNodeType() == fcl::GEOM_SPHERE) {
     local = static_cast<const fcl::Sphered&>(g).radius * n_local;
+  } else if (const Eigen::Vector3d* vertex = MeshSupportVertex(g, n_local)) {
+    local = *vertex;
   }
   return pose * local;
 }
@@ -82,11 +123,11 @@ double SeparatingAxisDepth(const fcl::CollisionGeometryd& a, const Eigen::Isomet
   double best = std::numeric_limits<double>::infinity();
   const Eigen::Vector3d box_center = box.Center(), box_half = 0.5 * box.Size();
   const auto consider = [&](const Eigen::Vector3d& n) {
-    const double s = Support(a, pose_a.linear(), n);
-    if (s < 0.0) return;
+    const double s_hi = Support(a, pose_a.linear(), n), s_lo = Support(a, pose_a.linear(), -n);
+    if (std::isnan(s_hi) || std::isnan(s_lo)) return;
     const double c = pose_a.translation().dot(n), b = box_center.dot(n), h = n.cwiseAbs().dot(box_half);
     // Push a towards +n (its low end past the box's high end) or towards -n.
-    const double up = (b + h) - (c - s), down = (c + s) - (b - h);
+    const double up = (b + h) - (c - s_lo), down = (c + s_hi) - (b - h);
     if (up < best) {
       best = up;
       *axis = n;
@@ -97,11 +138,11 @@ double SeparatingAxisDepth(const fcl::CollisionGeometryd& a, const Eigen::Isomet
     }
   };
   for (int i = 0; i < 3; ++i) consider(Eigen::Vector3d::Unit(i));
-  if (a.getNodeType() == fcl::GEOM_SPHERE) {
+  if (a.getNodeType() == fcl::GEOM_SPHERE || IsMesh(a)) {
     // Its centre outside the box (near an edge or corner): the axis from the box's nearest point.
     const Eigen::Vector3d c = pose_a.translation(), out = c - c.cwiseMax(box.min).cwiseMin(box.max);
     if (out.norm() > 1e-12) consider(out.normalized());
-    return best;
+    if (a.getNodeType() == fcl::GEOM_SPHERE) return best;
   }
   for (int i = 0; i < 3; ++i) consider(pose_a.linear().col(i));
   if (a.getNodeType() != fcl::GEOM_BOX) return best;
@@ -136,7 +177,7 @@ SignedDistanceResult SignedDistance(const fcl::CollisionGeometryd& a, const Eige
     // Touching or penetrating a stair box: the separating axes (exact for face contacts and for
     // box-box, no allocation, never into EPA, which may throw).
     const fcl::NODE_TYPE type = a.getNodeType();
-    if (hints.box_b && (type == fcl::GEOM_CYLINDER || type == fcl::GEOM_BOX || type == fcl::GEOM_SPHERE)) {
+    if (hints.box_b && (type == fcl::GEOM_CYLINDER || type == fcl::GEOM_BOX || type == fcl::GEOM_SPHERE || IsMesh(a))) {
       Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
       const double depth = std::max(0.0, SeparatingAxisDepth(a, pose_a, *hints.box_b, &axis));
       if (std::isfinite(depth)) {

@@ -30,6 +30,33 @@ Eigen::Vector3d FootOriginForContact(const LegModel& leg, const Eigen::Vector3d&
   return centre_W - foot_rotation_W * leg.foot_sphere_center;
 }
 
+NominalStance NominalStanceAt(const RobotKinematics& kinematics, RobotWorkspace& ws, double x) {
+  NominalStance stance;
+  // Where each foot's contact sphere touches down, in the base frame.
+  const auto contact_B = [&](int l) -> Eigen::Vector3d {
+    const LegKinematics& leg = kinematics.leg(l);
+    return leg.FootPose(leg.nominal(), ws.leg(l)) * leg.model().foot_sphere_center -
+           leg.model().foot_radius * Eigen::Vector3d::UnitZ();
+  };
+  stance.body.position_W = {x, 0.0, -contact_B(0).z()};
+  for (int l = 0; l < 4; ++l) stance.contacts_W[static_cast<std::size_t>(l)] = stance.body.ToIsometry() * contact_B(l);
+  return stance;
+}
+
+IkResult SolveContactIk(const LegKinematics& leg, const Eigen::Vector3d& contact_W, const Eigen::Isometry3d& body_W,
+                        const Eigen::Vector3d& seed, LegWorkspace& ws, const IkSettings& settings) {
+  const Eigen::Isometry3d W_body = body_W.inverse();
+  // The contact's offset from the foot origin turns with the foot: solve, re-aim with the foot's
+  // orientation, solve again from there (the offset is a couple of centimetres at most).
+  IkResult ik = leg.SolveFootIk(W_body * FootOriginForContact(leg.model(), contact_W, body_W.linear()), seed, ws, settings);
+  if (leg.model().foot_sphere_center.isZero()) return ik;
+  for (int pass = 0; pass < 3 && ik.ok(); ++pass) {
+    const Eigen::Matrix3d foot_rotation_W = body_W.linear() * leg.FootPose(ik.q, ws).linear();
+    ik = leg.SolveFootIk(W_body * FootOriginForContact(leg.model(), contact_W, foot_rotation_W), ik.q, ws, settings);
+  }
+  return ik;
+}
+
 StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollisionModel& robot,
                          const StairCollisionModel& stairs, const BodyPose& body,
                          const std::array<Eigen::Vector3d, 4>& contacts_W, RobotWorkspace& ws,
@@ -41,7 +68,6 @@ StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollision
     }
   }
   const Eigen::Isometry3d body_W = body.ToIsometry();
-  const Eigen::Isometry3d W_body = body_W.inverse();
   StanceResult result;
   result.min_clearance = std::numeric_limits<double>::infinity();
   bool out_of_reach = false, limits = false;
@@ -49,17 +75,7 @@ StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollision
     const LegKinematics& leg = kinematics.leg(l);
     LegStance& stance = result.legs[static_cast<std::size_t>(l)];
     const Eigen::Vector3d& contact = contacts_W[static_cast<std::size_t>(l)];
-    // The sphere's offset from the foot origin turns with the foot: solve, re-aim with the foot's
-    // orientation, solve again from there (the offset is a couple of centimetres at most).
-    Eigen::Matrix3d foot_rotation_W = body_W.linear();
-    stance.ik = leg.SolveFootIk(W_body * FootOriginForContact(leg.model(), contact, foot_rotation_W), ws.leg(l), settings.ik);
-    if (!leg.model().foot_sphere_center.isZero()) {
-      for (int pass = 0; pass < 3 && stance.ik.ok(); ++pass) {
-        foot_rotation_W = body_W.linear() * leg.FootPose(stance.ik.q, ws.leg(l)).linear();
-        stance.ik = leg.SolveFootIk(W_body * FootOriginForContact(leg.model(), contact, foot_rotation_W), stance.ik.q,
-                                    ws.leg(l), settings.ik);
-      }
-    }
+    stance.ik = SolveContactIk(leg, contact, body_W, leg.nominal(), ws.leg(l), settings.ik);
     out_of_reach = out_of_reach || stance.ik.status == IkStatus::kOutOfReach;
     limits = limits || stance.ik.status == IkStatus::kJointLimits;
     if (settings.stop_at_first_failure && (out_of_reach || limits)) {

@@ -95,4 +95,19 @@ class StanceChecker {
 Eigen::Vector3d FootOriginForContact(const LegModel& leg, const Eigen::Vector3d& contact_W,
                                      const Eigen::Matrix3d& foot_rotation_W);
 
+/// A body pose with the contacts its feet make standing level in their nominal joint angles.
+struct NominalStance {
+  BodyPose body;
+  std::array<Eigen::Vector3d, 4> contacts_W;
+};
+/// The robot standing level in its nominal joint angles, its base at x along the stairs and
+/// LF's contact (the bottom of its foot sphere, or a mesh foot's contact sphere) at height 0.
+NominalStance NominalStanceAt(const RobotKinematics& kinematics, RobotWorkspace& ws, double x);
+
+/// IK of `leg` for its foot to rest on `contact_W` with the body at `body_W`: solved with the
+/// foot turned as the body, then (when the contact is offset from the foot origin) re-aimed three
+/// times with the foot's orientation from the previous solution, from `seed`.
+IkResult SolveContactIk(const LegKinematics& leg, const Eigen::Vector3d& contact_W, const Eigen::Isometry3d& body_W,
+                        const Eigen::Vector3d& seed, LegWorkspace& ws, const IkSettings& settings = {});
+
 }  // namespace stairplan

@@ -4,14 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include <urdf_model/model.h>
 
+#include "kinematics/leg_kinematics.h"
 #include "kinematics/urdf_pose.h"
+#include "kinematics/urdf_to_kdl.h"
 
 namespace stairplan {
 namespace {
@@ -136,6 +140,7 @@ LegModel BuildLeg(const LinkPtr& base, const LinkPtr& foot) {
   leg.foot_link = foot->name;
   leg.foot_radius = SphereRadius(*foot);
   leg.foot_sphere_center = SphereCenter(*foot);
+  if (SphereCollision(*foot) != nullptr) leg.foot_contact = FootContact::kSphere;
   std::vector<LinkPtr> path = PathFromRoot(foot);
   path.erase(path.begin(), std::find(path.begin(), path.end(), base) + 1);
   Eigen::Isometry3d base_T = Eigen::Isometry3d::Identity();
@@ -187,6 +192,106 @@ void NameLegs(std::vector<LegModel>& legs, const std::string& source) {
   legs = sorted;
 }
 
+// The vertices of `link`'s collision meshes in the link frame.
+std::vector<Eigen::Vector3d> MeshVertices(const urdf::Link& link, const RobotMeshes& meshes) {
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t i = 0; i < link.collision_array.size(); ++i) {
+    const auto mesh = meshes.Find(link.name, static_cast<int>(i));
+    if (!mesh) continue;
+    const Eigen::Isometry3d origin = UrdfPoseToIsometry(link.collision_array[i]->origin);
+    for (const Eigen::Vector3d& v : mesh->vertices) points.push_back(origin * v);
+  }
+  return points;
+}
+
+// The mesh's extent along unit direction d: its support h(d) = max p.d.
+double Support(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& d) {
+  double h = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : points) h = std::max(h, p.dot(d));
+  return h;
+}
+
+// A foot rolls about the knee axis as the leg swings, so its contact wanders over its rim. Where
+// the rim is a circle (Solo's wheel-shaped foot), the support along directions turned about that
+// axis from `down` is h = c.d + r for a fixed centre c and radius r: fitted by least squares over
+// +-40 degrees (about the link origin if that fits), the foot is that sphere when no direction
+// misses by more than 0.3 mm. Along the axis the centre lies midway across the foot. Returns
+// false (the foot is not round) otherwise.
+bool FitRollingSphere(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& down,
+                      const Eigen::Vector3d& axis_in, Eigen::Vector3d* centre, double* radius) {
+  constexpr int kSamples = 17;
+  constexpr double kRange = 40.0 * M_PI / 180.0, kTolerance = 3e-4;  // [rad], [m]
+  const Eigen::Vector3d axis = (axis_in - axis_in.dot(down) * down).normalized();
+  const Eigen::Vector3d side = axis.cross(down);
+  Eigen::Matrix<double, kSamples, 3> a;
+  Eigen::Matrix<double, kSamples, 1> h;
+  for (int k = 0; k < kSamples; ++k) {
+    const double theta = kRange * (2.0 * k / (kSamples - 1) - 1.0);
+    a.row(k) << std::cos(theta), std::sin(theta), 1.0;
+    h(k) = Support(points, std::cos(theta) * down + std::sin(theta) * side);
+  }
+  const double across = 0.5 * (Support(points, axis) - Support(points, -axis));
+  // Feet are drawn about their link origin: a sphere there is tried first, as the planners need
+  // not re-aim a foot whose contact sphere is centred on its origin.
+  const double about_origin = h.mean();
+  if ((h.array() - about_origin).abs().maxCoeff() <= kTolerance && about_origin > kTolerance) {
+    *centre = across * axis;
+    *radius = about_origin;
+    return true;
+  }
+  const Eigen::Vector3d fit = a.colPivHouseholderQr().solve(h);
+  if (!((a * fit - h).cwiseAbs().maxCoeff() <= kTolerance) || !(fit.z() > kTolerance)) return false;
+  *centre = fit.x() * down + fit.y() * side + across * axis;
+  *radius = fit.z();
+  return true;
+}
+
+// A foot whose only collision is a mesh touches the ground with the mesh's lowest point along
+// the leg (from the hip through the foot) in the nominal stance. Vertices within a tenth of a
+// millimetre of the lowest are averaged: a rounded foot's rim has many, and their mean lies in the
+// foot's middle plane rather than on one side of it. A foot round about the knee axis is the
+// sphere fitted to its rim, whose bottom that point is: its contact then rolls with the foot
+// instead of staying on one rim point that dips below the ground as the shank turns.
+void SetMeshFootContacts(const urdf::ModelInterface& urdf, const std::string& base_link, const RobotMeshes& meshes,
+                         std::vector<LegModel>& legs) {
+  std::shared_ptr<const KDL::Tree> tree;
+  for (LegModel& leg : legs) {
+    if (leg.foot_contact == FootContact::kSphere || leg.joint_names.size() != 3) continue;  // RobotKinematics names the latter
+    const std::vector<Eigen::Vector3d> points = MeshVertices(*urdf.getLink(leg.foot_link), meshes);
+    if (points.empty()) continue;
+    if (!tree) tree = std::make_shared<const KDL::Tree>(UrdfToKdlTree(urdf));
+    const LegKinematics kinematics(leg, *tree, base_link);
+    LegWorkspace ws(kinematics);
+    const Eigen::Isometry3d foot_B = kinematics.FootPose(kinematics.nominal(), ws);
+    const Eigen::Vector3d down_F = foot_B.linear().transpose() * (foot_B.translation() - leg.hip_B).normalized();
+    const double lowest = Support(points, down_F);
+    constexpr double kTie = 1e-4;  // [m]
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (const Eigen::Vector3d& p : points) {
+      if (p.dot(down_F) < lowest - kTie) continue;
+      sum += p;
+      ++count;
+    }
+    // On the support plane itself: the averaged point is pushed back out to the lowest depth.
+    const Eigen::Vector3d mean = sum / count;
+    leg.foot_contact_point = mean + (lowest - mean.dot(down_F)) * down_F;
+    leg.foot_sphere_center = leg.foot_contact_point;
+    leg.foot_radius = 0.0;
+    leg.foot_contact = FootContact::kMeshLowestPoint;
+    // The knee axis in the foot frame, from how the foot turns with the last joint.
+    Eigen::Vector3d q = kinematics.nominal();
+    q.z() += 1e-3;
+    const Eigen::AngleAxisd turn(foot_B.linear().transpose() * kinematics.FootPose(q, ws).linear());
+    Eigen::Vector3d centre;
+    double radius = 0.0;
+    if (turn.angle() > 0.0 && FitRollingSphere(points, down_F, turn.axis(), &centre, &radius)) {
+      leg.foot_sphere_center = centre.norm() < kTie ? Eigen::Vector3d::Zero() : centre;
+      leg.foot_radius = radius;
+    }
+  }
+}
+
 std::string ReadText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument(path + ": cannot open the URDF file");
@@ -197,15 +302,26 @@ std::string ReadText(const std::string& path) {
 
 }  // namespace
 
-RobotModel RobotModel::FromUrdfFile(const std::string& path, const LegDetectionSettings& settings) {
-  return FromUrdfString(ReadText(path), path, settings);
+const char* ToString(FootContact contact) {
+  switch (contact) {
+    case FootContact::kLinkOrigin: return "link_origin";
+    case FootContact::kSphere: return "sphere";
+    case FootContact::kMeshLowestPoint: return "mesh_lowest_point";
+  }
+  return "unknown";
+}
+
+RobotModel RobotModel::FromUrdfFile(const std::string& path, const LegDetectionSettings& settings,
+                                    const MeshSettings& meshes) {
+  return FromUrdfString(ReadText(path), path, settings, meshes);
 }
 
 RobotModel RobotModel::FromUrdfString(const std::string& xml, const std::string& source_name,
-                                      const LegDetectionSettings& settings) {
+                                      const LegDetectionSettings& settings, const MeshSettings& meshes) {
   const std::shared_ptr<const urdf::ModelInterface> parsed = ParseUrdf(xml, source_name);
   RobotModel model;
   model.urdf_ = parsed;
+  model.meshes_ = RobotMeshes::Load(*parsed, std::filesystem::path(source_name).parent_path().string(), meshes, source_name);
   model.name_ = parsed->getName();
   model.source_ = source_name;
   for (const auto& [name, link] : parsed->links_) {
@@ -216,6 +332,7 @@ RobotModel RobotModel::FromUrdfString(const std::string& xml, const std::string&
   model.base_link_ = base->name;
   for (const auto& foot : feet) model.legs_.push_back(BuildLeg(base, foot));
   NameLegs(model.legs_, source_name);
+  SetMeshFootContacts(*parsed, model.base_link_, *model.meshes_, model.legs_);
   return model;
 }
 

@@ -9,6 +9,8 @@
 
 #include <Eigen/Geometry>
 
+#include "kinematics/robot_meshes.h"
+
 namespace urdf {
 class ModelInterface;
 }
@@ -23,6 +25,17 @@ struct JointLimits {
   double velocity = 0.0;  ///< [rad/s]
 };
 
+/// What a foot touches the ground with.
+enum class FootContact {
+  kLinkOrigin,        ///< no collision geometry to go by: the foot link's origin
+  kSphere,            ///< the lowest point of the foot's sphere collision
+  /// the foot mesh's lowest point along the leg in the nominal stance; where the mesh is round
+  /// about the knee axis, the bottom of the sphere fitted to it, which that point lies on
+  kMeshLowestPoint,
+};
+/// "link_origin", "sphere" or "mesh_lowest_point".
+const char* ToString(FootContact contact);
+
 /// One leg: the chain of links and movable joints from the base to the foot.
 struct LegModel {
   std::string name;                      ///< "LF", "RF", "LH" or "RH"
@@ -34,8 +47,15 @@ struct LegModel {
   Eigen::Vector3d foot_zero_B = Eigen::Vector3d::Zero(); ///< foot origin at zero joint angles, base frame [m]
   double foot_radius = 0.0;  ///< radius of the foot's sphere collision, 0 when it has none [m]
   /// Centre of the foot's sphere collision in the foot link frame (ANYmal's sits above the link
-  /// origin, Go2's slightly behind it); zero when the foot has no sphere [m].
+  /// origin, Go2's slightly behind it). A mesh foot that is round where it rolls (about the knee
+  /// axis) is the sphere fitted to that rim; any other mesh foot is a sphere of radius 0 at its
+  /// contact point (FootContact::kMeshLowestPoint), so every planner places it as it places a
+  /// sphere. Zero when the foot has neither [m].
   Eigen::Vector3d foot_sphere_center = Eigen::Vector3d::Zero();
+  /// Where a mesh foot touches the ground in the nominal stance, in the foot link frame: its
+  /// lowest point along the leg (on the fitted sphere of a round foot). Zero for other feet [m].
+  Eigen::Vector3d foot_contact_point = Eigen::Vector3d::Zero();
+  FootContact foot_contact = FootContact::kLinkOrigin;  ///< where foot_sphere_center comes from
   double max_reach = 0.0;    ///< upper bound on the hip-to-foot distance: sum of the chain's offsets [m]
   double mass = 0.0;         ///< mass of the leg's links [kg]
 };
@@ -52,15 +72,18 @@ struct LegDetectionSettings {
   std::vector<std::string> foot_links;
 };
 
-/// A robot model loaded from URDF. Immutable after loading; cheap to copy (shared URDF).
+/// A robot model loaded from URDF. Immutable after loading; cheap to copy (shared URDF and meshes).
 class RobotModel {
  public:
-  /// Loads and checks a URDF file. Throws std::invalid_argument naming the file and the element
-  /// (missing file, malformed XML, a joint naming a missing link, no four feet, ...).
-  static RobotModel FromUrdfFile(const std::string& path, const LegDetectionSettings& settings = {});
-  /// The same from URDF text; `source_name` is used in error messages.
+  /// Loads and checks a URDF file and reads its collision meshes (see RobotMeshes). Throws
+  /// std::invalid_argument naming the file and the element (missing file, malformed XML, a joint
+  /// naming a missing link, no four feet, an unresolved mesh URI, a bad mesh file, ...).
+  static RobotModel FromUrdfFile(const std::string& path, const LegDetectionSettings& settings = {},
+                                 const MeshSettings& meshes = {});
+  /// The same from URDF text; `source_name` is used in error messages, and its folder (when it is
+  /// a path) is where relative mesh paths start.
   static RobotModel FromUrdfString(const std::string& xml, const std::string& source_name,
-                                   const LegDetectionSettings& settings = {});
+                                   const LegDetectionSettings& settings = {}, const MeshSettings& meshes = {});
 
   const std::string& name() const { return name_; }
   const std::string& source() const { return source_; }
@@ -77,9 +100,12 @@ class RobotModel {
   /// The parsed URDF, for the kinematics and collision builders.
   const urdf::ModelInterface& urdf() const { return *urdf_; }
   std::shared_ptr<const urdf::ModelInterface> urdf_ptr() const { return urdf_; }
+  /// The collision meshes, read once when the model was loaded (empty for a robot of primitives).
+  const RobotMeshes& meshes() const { return *meshes_; }
 
  private:
   std::shared_ptr<const urdf::ModelInterface> urdf_;
+  std::shared_ptr<const RobotMeshes> meshes_ = std::make_shared<const RobotMeshes>();
   std::string name_;
   std::string source_;
   std::string base_link_;

@@ -71,17 +71,31 @@ void WriteFileAtomically(const std::string& path, const std::string& contents) {
   }
 }
 
-RobotModel LoadRobot(const std::string& path) {
-  if (path.empty()) return BuiltinRobot();
-  if (!std::filesystem::is_regular_file(path)) throw BadInput("--robot: no such file '" + path + "'");
-  return RobotModel::FromUrdfFile(path);
+void AddRobotFlags(CLI::App& app, RobotFlags& flags) {
+  app.add_option("--package-path", flags.package_path,
+                 "Folders searched for the robot's package:// mesh URIs, DIR[:DIR...] (then ROS_PACKAGE_PATH)");
+  app.add_option("--mesh-collision", flags.mesh_collision,
+                 "Collision meshes as their convex hulls (hull, default) or as the exact triangles (exact)");
 }
 
-RobotModel LoadPlanRobot(const PlanFile& file, const std::string& override_path) {
-  if (!override_path.empty()) return LoadRobot(override_path);
+RobotModel LoadRobot(const std::string& path, const RobotFlags& flags) {
+  MeshSettings meshes;
+  try {
+    meshes.collision = ParseMeshCollision(flags.mesh_collision);
+  } catch (const std::invalid_argument&) {
+    throw BadInput("--mesh-collision: must be 'hull' or 'exact' (got '" + flags.mesh_collision + "')");
+  }
+  meshes.package_path = PackagePath::FromString(flags.package_path);
+  if (path.empty()) return BuiltinRobot();
+  if (!std::filesystem::is_regular_file(path)) throw BadInput("--robot: no such file '" + path + "'");
+  return RobotModel::FromUrdfFile(path, {}, meshes);
+}
+
+RobotModel LoadPlanRobot(const PlanFile& file, const std::string& override_path, const RobotFlags& flags) {
+  if (!override_path.empty()) return LoadRobot(override_path, flags);
   const std::string& source = file.plan.robot_source;
-  if (source.empty() || source.rfind("builtin:", 0) == 0) return LoadRobot("");
-  return LoadRobot(source);
+  if (source.empty() || source.rfind("builtin:", 0) == 0) return LoadRobot("", flags);
+  return LoadRobot(source, flags);
 }
 
 void MakeOutputDir(const std::string& dir, const std::string& flag) {

@@ -54,11 +54,19 @@ int Guarded(const std::string& command, const std::function<int()>& body);
 /// Writes `contents` to `path` through a temporary file and a rename; throws BadInput on failure.
 void WriteFileAtomically(const std::string& path, const std::string& contents);
 
+/// How every command that takes a robot finds and models its collision meshes.
+struct RobotFlags {
+  std::string package_path;            ///< --package-path DIR[:DIR...], before ROS_PACKAGE_PATH
+  std::string mesh_collision = "hull";  ///< --mesh-collision hull|exact
+};
+/// Adds --package-path and --mesh-collision to `app`.
+void AddRobotFlags(CLI::App& app, RobotFlags& flags);
+
 /// The robot named by --robot: the built-in stairbot when `path` is empty; BadInput when missing.
-RobotModel LoadRobot(const std::string& path);
+RobotModel LoadRobot(const std::string& path, const RobotFlags& flags = {});
 
 /// The robot a plan.json names (a URDF path or the built-in robot), unless --robot overrides it.
-RobotModel LoadPlanRobot(const PlanFile& file, const std::string& override_path);
+RobotModel LoadPlanRobot(const PlanFile& file, const std::string& override_path, const RobotFlags& flags = {});
 
 /// Creates `dir` (and parents) or throws BadInput naming the flag.
 void MakeOutputDir(const std::string& dir, const std::string& flag);

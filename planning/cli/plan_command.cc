@@ -20,6 +20,7 @@ namespace {
 
 struct PlanOptions {
   std::string robot;
+  RobotFlags robot_flags;
   StairFlags stairs;
   std::string facing = "forward";
   std::string planner = "crawl";
@@ -36,6 +37,7 @@ struct PlanOptions {
 
 void AddOptions(CLI::App& app, PlanOptions& o) {
   app.add_option("--robot", o.robot, "Robot URDF file (default: the built-in stairbot)");
+  AddRobotFlags(app, o.robot_flags);
   AddStairFlags(app, o.stairs);
   app.add_option("--facing", o.facing, "forward or backward, default forward");
   app.add_option("--body", o.body,
@@ -203,7 +205,7 @@ int RunPlan(const std::vector<std::string>& args) {
     }
     SetBodyOptions(o, options);
     ApplySettings(o.set, options);
-    const RobotModel robot = LoadRobot(o.robot);
+    const RobotModel robot = LoadRobot(o.robot, o.robot_flags);
     std::optional<CloudStairs> perceived;
     if (!o.cloud.empty()) perceived = PerceiveCloud(o.cloud, o.stairs, options.facing);
     const Staircase stairs = perceived              ? perceived->stairs

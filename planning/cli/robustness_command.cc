@@ -26,6 +26,8 @@ int RunRobustness(const std::vector<std::string>& args) {
   bool json = false, simulate = false;
   std::optional<double> swing_clearance;
   app.add_option("--robot", robot_path, "Robot URDF (default: the built-in stairbot)");
+  RobotFlags robot_flags;
+  AddRobotFlags(app, robot_flags);
   AddStairFlags(app, stairs);
   app.add_option("--facing", facing, "forward or backward, default forward");
   app.add_option("--sigma-rise", settings.sigma_rise, "Std. dev. of each rise's error [m] (default 0.005)");
@@ -47,7 +49,7 @@ int RunRobustness(const std::vector<std::string>& args) {
     options.facing = ParseFacing(facing);
     options.validation.time_step = 0.05;
     if (swing_clearance) options.crawl.swing.clearance = options.crawl.swing.min_lift = *swing_clearance;
-    const RobotModel robot = LoadRobot(robot_path);
+    const RobotModel robot = LoadRobot(robot_path, robot_flags);
     RobustnessReport report;
     PhysicsRobustnessReport physics;
     try {

@@ -83,6 +83,8 @@ int RunSimulate(const std::vector<std::string>& args) {
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
   app.add_option("--stairs", true_stairs.file, "Stairs YAML to execute on instead of the plan's own (stairs that differ from the model)");
+  RobotFlags robot_flags;
+  AddRobotFlags(app, robot_flags);
   app.add_option("--video", video, "Render the run with MuJoCo's renderer offscreen (EGL) into this mp4 (ffmpeg)");
   app.add_option("--frames", frames_dir, "Render the run into this directory as PNGs, one every --frame-ms");
   app.add_option("--video-speed", video_speed, "Playback speed of --video against the plan's clock (default 1)")
@@ -106,7 +108,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("simulate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
-    const RobotModel robot = LoadPlanRobot(file, robot_path);
+    const RobotModel robot = LoadPlanRobot(file, robot_path, robot_flags);
     const Staircase stairs = true_stairs.file.empty() ? Staircase(file.stairs) : ResolveStairs(true_stairs);
     if (!frames_dir.empty()) MakeOutputDir(frames_dir, "--frames");
     const bool rendering = !video.empty() || !frames_dir.empty();

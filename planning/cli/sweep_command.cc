@@ -40,6 +40,7 @@ struct SweepOptions {
   bool times = false;
   bool simulate = false;
   bool resume = false;
+  RobotFlags robot_flags;  // --package-path, --mesh-collision
 };
 
 // One robot's sweep: where its robot comes from and where its files go.
@@ -211,7 +212,7 @@ std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const Swe
   std::optional<RobotModel> robot;
   SweepFiles files;
   try {
-    robot.emplace(LoadRobot(job.robot_path));
+    robot.emplace(LoadRobot(job.robot_path, o.robot_flags));
     if (coordinator) files = OpenSweepFiles(o, grid, shard, job, *robot);
   } catch (...) {
     if (cluster != nullptr) cluster->AllReady(false);
@@ -306,6 +307,7 @@ int RunSweepCommand(const std::vector<std::string>& args) {
                  "An atlas: comma-separated URDFs ('builtin' for stairbot), each swept into --out DIR: "
                  "<robot>.csv, <robot>-<direction>.svg, and atlas.md with each robot's feasible region");
   app.add_option("--out", o.out, "The atlas's output folder (with --robots)");
+  AddRobotFlags(app, o.robot_flags);
   app.add_option("--threads", o.threads,
                  "Worker threads (default 1; under mpirun, rank 0's); the output does not depend on it")
       ->check(CLI::Range(1, 256));

@@ -22,11 +22,13 @@ int RunValidate(const std::vector<std::string>& args) {
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
   app.add_option("--stairs", true_stairs.file, "Stairs YAML to validate on instead of the plan's own (e.g. the true stairs)");
+  RobotFlags robot_flags;
+  AddRobotFlags(app, robot_flags);
   app.add_flag("--json", json, "Print the validation report as JSON");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("validate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
-    const RobotModel robot = LoadPlanRobot(file, robot_path);
+    const RobotModel robot = LoadPlanRobot(file, robot_path, robot_flags);
     const Staircase stairs = true_stairs.file.empty() ? Staircase(file.stairs) : ResolveStairs(true_stairs);
     const PipelineOptions options = OptionsForPlan(file.plan);
     const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <urdf_model/model.h>
 
+#include "collision/mesh_shape.h"
 #include "geometry/field_error.h"
 #include "kinematics/checked_xml.h"
 
@@ -61,11 +62,42 @@ void WriteInertial(std::ostringstream& out, const urdf::Link& link, const MjcfSe
       << body(0, 2) << " " << body(1, 2) << "'/>\n";
 }
 
+std::string MeshAssetName(const std::string& link, std::size_t index) {
+  return link + "_mesh_" + std::to_string(index);
+}
+
+// Every collision mesh as an asset given by its hull's vertices: MuJoCo collides with a mesh's
+// convex hull whatever it is given, so the hull is all it needs, and the file's format does not
+// matter (MuJoCo 2.2 reads no COLLADA).
+void WriteMeshAssets(std::ostringstream& out, const RobotModel& robot) {
+  if (robot.meshes().size() == 0) return;
+  out << "  <asset>\n";
+  for (const auto& [name, link] : robot.urdf().links_) {
+    for (std::size_t i = 0; i < link->collision_array.size(); ++i) {
+      const std::shared_ptr<const TriangleMesh> mesh = robot.meshes().Find(name, static_cast<int>(i));
+      if (!mesh) continue;
+      const std::shared_ptr<const MeshShape> hull = GetMeshShape(mesh, MeshCollision::kConvexHull);
+      out << "    <mesh name='" << MeshAssetName(name, i) << "' vertex='";
+      for (const Eigen::Vector3d& v : hull->hull_vertices) {
+        const Eigen::Vector3d p = v + hull->centre;
+        out << p.x() << " " << p.y() << " " << p.z() << " ";
+      }
+      out << "'/>\n";
+    }
+  }
+  out << "  </asset>\n";
+}
+
 void WriteGeoms(std::ostringstream& out, const urdf::Link& link, const std::string& indent) {
   int n = 0;
-  for (const auto& c : link.collision_array) {
+  for (std::size_t index = 0; index < link.collision_array.size(); ++index) {
+    const auto& c = link.collision_array[index];
     if (!c || !c->geometry) continue;
     std::string type, size;
+    // Meshes collide with the stairs and primitives but not with each other: hulls of adjacent
+    // links overlap where the real parts interleave (Solo 12's thigh hull reaches 9 mm into its
+    // base's), which MuJoCo would push apart. The validator checks leg against leg.
+    std::string filter;
     if (c->geometry->type == urdf::Geometry::BOX) {
       const auto& b = static_cast<const urdf::Box&>(*c->geometry);
       type = "box";
@@ -82,10 +114,12 @@ void WriteGeoms(std::ostringstream& out, const urdf::Link& link, const std::stri
       sz << std::setprecision(10) << static_cast<const urdf::Sphere&>(*c->geometry).radius;
       size = sz.str();
     } else {
-      continue;  // meshes are not collision primitives: the robots we support use primitives
+      type = "mesh";
+      size = "0 0 0";
+      filter = "' mesh='" + XmlEscaped(MeshAssetName(link.name, index)) + "' contype='2' conaffinity='1";
     }
     out << indent << "<geom name='" << XmlEscaped(link.name) << "_collision_" << n++ << "' type='" << type << "' size='" << size
-        << "' pos='" << Pos(c->origin) << "' quat='" << Quat(c->origin) << "'/>\n";
+        << "' pos='" << Pos(c->origin) << "' quat='" << Quat(c->origin) << filter << "'/>\n";
   }
 }
 
@@ -163,8 +197,9 @@ std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const Mj
       << "  <option timestep='" << settings.timestep << "' gravity='0 0 -9.81' cone='"
       << (settings.elliptic_cone ? "elliptic" : "pyramidal") << "' impratio='" << settings.impratio << "'/>\n"
       << "  <default><geom friction='" << settings.friction << " 0.005 0.0001' condim='3' margin='"
-      << settings.detect_margin << "' gap='" << settings.detect_margin << "'/></default>\n"
-      << "  <worldbody>\n"
+      << settings.detect_margin << "' gap='" << settings.detect_margin << "'/></default>\n";
+  WriteMeshAssets(out, robot);
+  out << "  <worldbody>\n"
       << "    <light pos='0 -3 4' dir='0 0.6 -0.8' directional='true'/>\n";
   WriteStairs(out, stairs);
   out << "    <body name='" << XmlEscaped(base->name) << "' pos='0 0 1'>\n      <freejoint name='floating_base'/>\n";

@@ -1,6 +1,6 @@
 // Our own writer of MJCF (MuJoCo's model format) from a loaded robot and a staircase: the robot's
 // links as bodies with their URDF inertias, revolute joints with limits and damping, collision
-// primitives as geoms, a free-floating base, torque motors bounded by the URDF efforts, and the
+// primitives and meshes (their hulls, as inline mesh assets) as geoms, a free-floating base, torque motors bounded by the URDF efforts, and the
 // stairs as boxes. MuJoCo is the physics check that nobody on this team wrote.
 #pragma once
 

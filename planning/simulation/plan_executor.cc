@@ -38,6 +38,7 @@ struct PlanExecutor::LegState {
   int knee_body = -1;                       // the body whose origin is the knee joint
   int hip_body = -1;                        // ... the hip joint
   double foot_radius = 0.0;
+  Eigen::Vector3d contact_F = Eigen::Vector3d::Zero();  // a foot without a sphere geom: its contact sphere's centre in the foot frame
   bool stance = true;
   Eigen::Vector3d foothold_W = Eigen::Vector3d::Zero();  // where the stance foot stands
   bool stance_measured = false;             // stance_start_W holds where this stance began
@@ -101,6 +102,10 @@ PlanExecutor::PlanExecutor(const RobotModel& robot, const Staircase& stairs, con
     }
     leg.foot_body = mj_name2id(m, mjOBJ_BODY, model.foot_link.c_str());
     if (leg.foot_body < 0) throw std::invalid_argument("robot: no body for foot link " + model.foot_link);
+    // A mesh foot's contact sphere (LegModel::foot_contact): radius 0 at its lowest point, or a
+    // round foot's rolling sphere.
+    leg.contact_F = model.foot_sphere_center;
+    leg.foot_radius = model.foot_radius;
     for (int g = 0; g < m->ngeom; ++g) {
       if (m->geom_bodyid[g] == leg.foot_body && m->geom_type[g] == mjGEOM_SPHERE) {
         leg.foot_geom = g;
@@ -163,7 +168,8 @@ Eigen::Vector3d PlanExecutor::FootContactPoint(const LegState& leg) const {
   const mjData* d = const_cast<MujocoWorld&>(*world_).data();
   if (leg.foot_geom < 0) {
     const double* p = d->xpos + 3 * leg.foot_body;
-    return {p[0], p[1], p[2]};
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rotation(d->xmat + 9 * leg.foot_body);
+    return Eigen::Vector3d(p[0], p[1], p[2]) + rotation * leg.contact_F - leg.foot_radius * Eigen::Vector3d::UnitZ();
   }
   const double* p = d->geom_xpos + 3 * leg.foot_geom;
   return {p[0], p[1], p[2] - leg.foot_radius};

@@ -8,6 +8,9 @@ ViewerShapeType DrawnType(ShapeType type) {
     case ShapeType::kBox: return ViewerShapeType::kBox;
     case ShapeType::kCylinder: return ViewerShapeType::kCylinder;
     case ShapeType::kSphere: return ViewerShapeType::kSphere;
+    // A mesh is drawn as its bounding box (CollisionShape::size and local hold it) until the page
+    // draws meshes.
+    case ShapeType::kMesh: return ViewerShapeType::kBox;
   }
   return ViewerShapeType::kBox;
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh_files.h"
 #include "test_paths.h"
 
 using namespace stairplan::testing;
@@ -89,6 +90,16 @@ std::string EditPlan(const std::string& plan, const std::string& from, const std
 
 // stairbot named in Latin-1: the name once reached plan.json and nlohmann's dump threw (exit 1).
 std::string Latin1Stairbot() { return EditPlan(Slurp(SourceDir() + "/data/robots/stairbot.urdf"), "\"stairbot\"", "\"stair\xE9" "bot\""); }
+// stairbot with its base's collision box replaced by the mesh `mesh` (relative to the URDF) at `scale`.
+std::string MeshRobotUrdf(const std::string& mesh, const std::string& scale) {
+  return EditPlan(Slurp(SourceDir() + "/data/robots/stairbot.urdf"), "<geometry><box size=\"0.70 0.20 0.12\"/></geometry>",
+                  "<geometry><mesh filename=\"" + mesh + "\" scale=\"" + scale + "\"/></geometry>");
+}
+
+bool IsMeshFile(const std::string& file) {
+  const std::string extension = fs::path(file).extension().string();
+  return extension == ".stl" || extension == ".obj" || extension == ".dae";
+}
 
 std::vector<BadCase> Table() {
   const std::string plan = GoodPlan();
@@ -115,6 +126,21 @@ std::vector<BadCase> Table() {
   t.push_back({"huge", "plan", "", "", "plan --steps 99999999999 --out {dir}/out", {"--steps"}, plan_out});
   t.push_back({"wrong-type", "plan", "", "", "plan --run wide --out {dir}/out", {"--run"}, plan_out});
   t.push_back({"empty", "plan", "", "", "plan --direction '' --out {dir}/out", {"--direction"}, plan_out});
+
+  // Collision meshes (issue #21): a bad mesh file is the case's file, and {dir}/r.urdf (written
+  // beside it) is stairbot with that mesh as its base's collision.
+  const auto box = stairplan::testing::BoxTriangles(Eigen::Vector3d::Constant(-0.1), Eigen::Vector3d::Constant(0.1));
+  std::string cut_stl = stairplan::testing::BinaryStl(box);
+  cut_stl.resize(cut_stl.size() / 2);
+  t.push_back({"missing", "plan", "r.urdf", MeshRobotUrdf("meshes/absent.stl", "1 1 1"), "plan --robot {file} --out {dir}/out", {"{file}", "meshes/absent.stl"}, plan_out});
+  t.push_back({"missing", "robot", "r.urdf", MeshRobotUrdf("package://nowhere/base.stl", "1 1 1"), "robot {file} --package-path {dir}", {"{file}", "package://nowhere/base.stl", "{dir}"}, {}});
+  t.push_back({"truncated", "plan", "m.stl", cut_stl, "plan --robot {dir}/r.urdf --out {dir}/out", {"{file}", "truncated"}, plan_out});
+  t.push_back({"empty", "plan", "m.obj", "", "plan --robot {dir}/r.urdf --out {dir}/out", {"{file}"}, plan_out});
+  t.push_back({"empty", "robot", "m.dae", stairplan::testing::Dae({}, "Z_UP", 1.0), "robot {dir}/r.urdf --json", {"{file}", "no triangles"}, {}});
+  t.push_back({"huge", "plan", "r.urdf", MeshRobotUrdf("m.stl", "1e9 1e9 1e9"), "plan --robot {file} --out {dir}/out", {"{file}", "m.stl", "scale"}, plan_out});
+  t.push_back({"wrong-type", "robot", "m.stl", kYamlGood, "robot {dir}/r.urdf --json", {"{file}"}, {}});
+  t.push_back({"malformed", "robot", "r.urdf", kUrdfMalformed, "robot {file} --json", {"{file}"}, {}});
+  t.push_back({"wrong-type", "robot", "", "", "robot --mesh-collision fuzzy", {"--mesh-collision"}, {}});
 
   // validate: plan.json.
   t.push_back({"malformed", "validate", "p.json", "{\"robot\": {", "validate {file} --json", {"{file}"}, {}});
@@ -257,6 +283,7 @@ TEST_CASE("every sub-command refuses bad input with exit 2, a message naming it,
     if (!file.empty()) {
       fs::create_directories(fs::path(file).parent_path());
       std::ofstream(file, std::ios::binary) << c.contents;
+      if (IsMeshFile(c.file)) std::ofstream(dir + "/r.urdf") << MeshRobotUrdf(c.file, "1 1 1");
     }
     const std::string args = Replace(c.args, dir, file);
     const int code = RunCommand("timeout 60 " + BinDir() + "/stairplan " + args, dir + "/run.out", dir + "/run.err");
