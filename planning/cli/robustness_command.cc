@@ -72,6 +72,12 @@ int RunRobustness(const std::vector<std::string>& args) {
                             {"without_responses_ok", physics.without_responses_ok},
                             {"with_responses_fell", physics.with_responses_fell},
                             {"without_responses_fell", physics.without_responses_fell}, {"trips", physics.trips}};
+        out["simulated"]["runs"] = nlohmann::json::array();
+        for (const PhysicsRobustnessTrial& run : physics.runs) {
+          out["simulated"]["runs"].push_back({{"with_responses_failure", run.with_responses},
+                                              {"without_responses_failure", run.without_responses},
+                                              {"responses", run.responses}});
+        }
       }
       std::cout << StampVersion(out).dump(2) << "\n";
     } else {
@@ -85,6 +91,13 @@ int RunRobustness(const std::vector<std::string>& args) {
                   << physics.with_responses_ok << "/" << physics.trials << " passed, without " << physics.without_responses_ok
                   << "/" << physics.trials << " (" << physics.trips << " trips answered); fell " << physics.with_responses_fell
                   << " times with responses, " << physics.without_responses_fell << " without\n";
+        for (std::size_t k = 0; k < physics.runs.size(); ++k) {
+          const PhysicsRobustnessTrial& run = physics.runs[k];
+          if (run.with_responses.empty() && run.without_responses.empty()) continue;
+          std::cout << "    staircase " << k << ": with responses (" << run.responses << " carried out) "
+                    << (run.with_responses.empty() ? "passed" : run.with_responses) << "; without "
+                    << (run.without_responses.empty() ? "passed" : run.without_responses) << "\n";
+        }
       }
     }
     return kExitOk;

@@ -114,6 +114,29 @@ ImpactResponse Untangle(const ImpactEvent& e, const ConstrainedMap& map, const I
   return r;
 }
 
+// A foot down outside the step region: the nearest point of the target stair's step region,
+// a margin inside, where the foot is moved with a short re-swing.
+ImpactResponse IntoStepRegion(const ImpactEvent& e, const ConstrainedMap& map, const ImpactSettings& s) {
+  ImpactResponse r;
+  r.target_W = e.target_W;
+  if (e.target_stair < 0 || e.target_stair >= map.size() || map.stair(e.target_stair).step_region.empty()) {
+    r.kind = ResponseKind::kProceed;
+    r.reason = "outside the step region, and the target stair has none: staying";
+    return r;
+  }
+  const StairRegions& stair = map.stair(e.target_stair);
+  Eigen::Vector2d p = stair.step_region.ClosestPoint(e.swing_foot_W.head<2>());
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& v : stair.step_region.vertices) centre += v;
+  centre /= static_cast<double>(stair.step_region.vertices.size());
+  const Eigen::Vector2d inward = centre - p;  // convex: towards the centre stays inside
+  if (inward.norm() > 1e-9) p += std::min(s.step_region_margin, inward.norm()) * inward.normalized();
+  r.kind = ResponseKind::kAdjustStep;
+  r.target_W = {p.x(), p.y(), stair.z};
+  r.reason = "down outside the step region: moved to its nearest point";
+  return r;
+}
+
 ImpactResponse Simple(ResponseKind kind, const ImpactEvent& e, const std::string& reason) {
   ImpactResponse r;
   r.kind = kind;
@@ -135,6 +158,7 @@ const char* ToString(ImpactKind kind) {
     case ImpactKind::kLiftoffScuff: return "liftoff_scuff";
     case ImpactKind::kKneeGlancingTerrain: return "knee_glancing_terrain";
     case ImpactKind::kIpsilateralStrike: return "ipsilateral_strike";
+    case ImpactKind::kMisplacedTouchdown: return "misplaced_touchdown";
   }
   return "unknown";
 }
@@ -159,6 +183,7 @@ void ImpactSettings::Validate() const {
   RequireInRange("contralateral_clearance", contralateral_clearance, 0.0, 1.0);
   RequireInRange("untangle_distance", untangle_distance, 0.0, 1.0);
   RequireInRange("knee_forward_distance", knee_forward_distance, 0.0, 1.0);
+  RequireInRange("step_region_margin", step_region_margin, 0.0, 1.0);
 }
 
 ImpactResponse RespondToImpact(const ImpactEvent& event, const ConstrainedMap& map, const ImpactSettings& settings) {
@@ -199,6 +224,8 @@ ImpactResponse RespondToImpact(const ImpactEvent& event, const ConstrainedMap& m
       return Simple(ResponseKind::kProceed, event, "knee glanced the terrain: no reaction");
     case ImpactKind::kIpsilateralStrike:
       return Simple(ResponseKind::kProceed, event, "foot struck the leg on its own side: the legs part as the swing goes on");
+    case ImpactKind::kMisplacedTouchdown:
+      return IntoStepRegion(event, map, settings);
   }
   return Simple(ResponseKind::kProceed, event, "unknown impact");
 }

@@ -23,6 +23,9 @@ enum class ImpactKind {
   kLiftoffScuff,           ///< the foot scuffed the tread at liftoff ([0067])
   kKneeGlancingTerrain,    ///< the knee glanced a tread or nosing while swinging ([0068])
   kIpsilateralStrike,      ///< the swing foot struck the other leg of its own side ([0053]: front and hind legs)
+  /// The swing foot came down outside every step region (on a nosing, against a riser): not the
+  /// touchdown of [0055], which is in the target step location; the step moves into the region ([0060]).
+  kMisplacedTouchdown,
 };
 
 /// How to react.
@@ -59,6 +62,7 @@ struct ImpactSettings {
   double contralateral_clearance = 0.10; ///< lateral gap kept from the contralateral foot [m]
   double untangle_distance = 0.06;       ///< fore/aft move before sideways when legs crossed [m]
   double knee_forward_distance = 0.05;   ///< how far the knee moves forward [m]
+  double step_region_margin = 0.01;      ///< how far inside the step region a moved foot aims [m]
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;

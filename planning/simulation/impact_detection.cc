@@ -22,6 +22,7 @@ void ImpactDetectionSettings::Validate() const {
   RequireInRange("impact.min_reswing_time", min_reswing_time, 0.0, 5.0);
   RequireInRange("impact.leg_strike_distance", leg_strike_distance, 0.0, 0.5);
   RequireInRange("impact.near_stairs", near_stairs, 0.0, 0.5);
+  RequireInRange("impact.touchdown_clearance", touchdown_clearance, 0.0, 0.5);
   RequireInRange("impact.retract_distance", retract_distance, 0.0, 0.5);
   response.Validate();
 }
@@ -48,6 +49,11 @@ double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, con
   const double len2 = ab.squaredNorm();
   const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
   return (p - (a + s * ab)).norm();
+}
+
+bool InStepRegionAt(const ConstrainedMap& map, const Eigen::Vector3d& p_W) {
+  const int stair = map.StairAt(p_W.head<2>());
+  return stair >= 0 && std::abs(map.stair(stair).z - p_W.z()) < 0.02 && map.InStepRegion(stair, p_W.head<2>(), 1e-6);
 }
 
 ImpactKind ClassifyContralateral(const Eigen::Vector3d& swing_foot_W, const Eigen::Vector3d& contralateral_foot_W,

@@ -24,6 +24,9 @@ struct ImpactDetectionSettings {
   /// A foot force with the swing foot this close to another leg's shank (beyond the two radii) is
   /// a strike on that leg, not a trip [m].
   double leg_strike_distance = 0.03;
+  /// An upward foot force from the touchdown phase on is a touchdown only with the foot at most this
+  /// far above the stairs; higher, it pushes on another leg (a strike) [m].
+  double touchdown_clearance = 0.01;
   /// The residual's foot force is taken as a foot impact only with the foot within this of the
   /// stairs (above them, or this far either way along its swing); farther, it is a knee or thigh [m].
   double near_stairs = 0.04;
@@ -58,6 +61,11 @@ ImpactKind ClassifyLegLinkOnStairs(const Eigen::Vector3d& contact_W, const Eigen
 /// Distance from point `p` to the segment from `a` to `b` [m]: a swing foot against another leg's
 /// shank (knee to foot), the robot's own kinematics telling a leg strike from a trip.
 double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
+/// Whether a foot's contact point `p_W` stands in a step region of `map`: within 2 cm of the height
+/// of the stair under it and inside that stair's step region. The executor's landing judge and its
+/// misplaced-touchdown detector ask the same question.
+bool InStepRegionAt(const ConstrainedMap& map, const Eigen::Vector3d& p_W);
 
 /// The kind of a swing leg's contact with the contralateral leg: crossing when the swing foot is on
 /// the far side of the contralateral foot from its own side of the body ([0062]), a strike otherwise.

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include <Eigen/Core>
+
 #include "planning/impact/impact_response.h"
 
 namespace stairplan {
@@ -32,6 +34,12 @@ struct ImpactRecord {
   double swing_phase = 0.0;   ///< 0 at liftoff, 1 at the planned touchdown
   double force_n = 0.0;       ///< the estimated external force at detection [N]
   std::string reason;         ///< the response's one-line reason
+  /// Where the hit leg's foot was at detection (for a touchdown: where it landed) [m, world].
+  Eigen::Vector3d at_W = Eigen::Vector3d::Zero();
+  /// The swing's target after the response: the planned foothold unless the response moved it [m, world].
+  Eigen::Vector3d target_W = Eigen::Vector3d::Zero();
+  /// The response was carried out (false: recorded only, with responses off or the leg's quota spent).
+  bool executed = false;
 };
 
 }  // namespace stairplan

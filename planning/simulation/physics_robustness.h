@@ -3,6 +3,7 @@
 // seed 000 [0053]-[0068] buy is counted on the same stairs.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "geometry/staircase.h"
@@ -11,6 +12,13 @@
 #include "planning/simulation/sim_settings.h"
 
 namespace stairplan {
+
+/// One perturbed staircase's two runs: why each failed ("" when it passed, SimulationOutcome::FirstCause).
+struct PhysicsRobustnessTrial {
+  std::string with_responses;
+  std::string without_responses;
+  int responses = 0;  ///< responses carried out in the run with them (touchdowns not counted)
+};
 
 struct PhysicsRobustnessReport {
   int trials = 0;
@@ -22,6 +30,7 @@ struct PhysicsRobustnessReport {
   int with_responses_fell = 0;
   int without_responses_fell = 0;
   int trips = 0;                 ///< trips detected over the runs with responses
+  std::vector<PhysicsRobustnessTrial> runs;  ///< per perturbed staircase, in order
 };
 
 /// Executes `plan` (planned on `nominal`) on each of `perturbed` (the robustness command's

@@ -14,6 +14,7 @@
 #include "collision/stance_check.h"
 #include "planning/plan_pipeline.h"
 #include "planning/simulation/body_reference.h"
+#include "planning/simulation/executor_leg_state.h"
 #include "planning/simulation/plan_dynamics.h"
 #include "planning/validation/traversal_validator.h"
 
@@ -27,43 +28,6 @@ constexpr double kBlendTime = 0.1;        // a leg's aim moves between planned a
 double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 }  // namespace
-
-struct PlanExecutor::LegState {
-  int kin = 0;                              // index in kinematics_
-  std::string name;
-  std::array<int, 3> qpos{}, dof{}, motor{};
-  std::array<double, 3> effort{};
-  int foot_body = -1;
-  int foot_geom = -1;                       // the foot's sphere geom, -1 when it has none
-  int knee_body = -1;                       // the body whose origin is the knee joint
-  int hip_body = -1;                        // ... the hip joint
-  double foot_radius = 0.0;
-  Eigen::Vector3d contact_F = Eigen::Vector3d::Zero();  // a foot without a sphere geom: its contact sphere's centre in the foot frame
-  bool stance = true;
-  Eigen::Vector3d foothold_W = Eigen::Vector3d::Zero();  // where the stance foot stands
-  bool stance_measured = false;             // stance_start_W holds where this stance began
-  Eigen::Vector3d stance_start_W = Eigen::Vector3d::Zero();
-  int step = -1;                            // the footstep being swung, -1 in stance
-  int next = 0;                             // next entry of leg_steps_
-  std::unique_ptr<SwingTrajectory> swing;
-  Eigen::Vector3d q_target = Eigen::Vector3d::Zero();
-  Eigen::Vector3d q_target_prev = Eigen::Vector3d::Zero();
-  Eigen::Vector3d qd_target_prev = Eigen::Vector3d::Zero();
-  bool has_target = false;
-  double t_switch = -1e9;                   // plan time of the last liftoff or touchdown [s]
-  double swing_t0 = 0.0, swing_t1 = 1.0;    // the swing's timing; a response re-times it [s, plan time]
-  double swing_apex = 0.0;                  // the current swing's apex height [m]
-  Eigen::Vector3d swing_target_W = Eigen::Vector3d::Zero();
-  std::optional<ImpactKind> foot_impact;    // this step's classification of the foot's external force
-  double foot_force = 0.0;                  // its magnitude [N]
-  double t_first_contact = -1.0;            // the contact list's start of this swing's latest contact [s]
-  bool link_touching = false;               // any link of this leg touches the stairs in the contact list
-  bool was_touching = false;                // ... did at the previous step
-  double t_recorded = -1e9;                 // the last impact recorded in this swing [s]
-  double t_responded = -1e9;                // the last response carried out in this swing [s]
-  bool scuffed = false;                     // a liftoff scuff was recorded in this swing
-  int responses = 0;                        // responses in this swing
-};
 
 PlanExecutor::PlanExecutor(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const Plan& plan,
                            const SimSettings& settings)
@@ -244,6 +208,12 @@ void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touchin
                          (settings_.impact.source == ImpactSource::kNone ? static_cast<bool>(foot_touching[i])
                                                                          : leg.foot_impact == ImpactKind::kTouchdown);
     if (!touched && !late_out) continue;
+    // Down outside every step region (the stairs are not where the plan put them): the foot moves
+    // into the region before it takes load.
+    if (touched && settings_.impact.source != ImpactSource::kNone && !InStepRegionAt(map_, FootContactPoint(leg)) &&
+        Respond(i, ImpactKind::kMisplacedTouchdown, tp, "foot", leg.foot_force)) {
+      continue;
+    }
     FootLanding landing;
     landing.leg = leg.name;
     landing.t_planned = f.t_touchdown;
@@ -253,9 +223,7 @@ void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touchin
     landing.landed_W = FootContactPoint(leg);
     landing.error_m = (landing.landed_W - f.position_W).head<2>().norm();
     landing.stair = map_.StairAt(landing.landed_W.head<2>());
-    landing.in_step_region = touched && landing.stair >= 0 &&
-                             std::abs(map_.stair(landing.stair).z - landing.landed_W.z()) < 0.02 &&
-                             map_.InStepRegion(landing.stair, landing.landed_W.head<2>(), 1e-6);
+    landing.in_step_region = touched && InStepRegionAt(map_, landing.landed_W);
     outcome_.landings.push_back(landing);
     if (touched && settings_.impact.source != ImpactSource::kNone) {
       ImpactRecord record;
@@ -272,7 +240,10 @@ void PlanExecutor::UpdatePhases(double tp, const std::vector<bool>& foot_touchin
       const double early = f.t_touchdown - tp;
       record.reason = std::abs(early) < 0.02 ? "touchdown on time"
                       : (early > 0.0 ? "touchdown early by " : "touchdown late by ") + std::to_string(std::abs(early)) + " s";
-      outcome_.impacts.push_back(record);
+      record.at_W = landing.landed_W;
+      record.target_W = f.position_W;
+      record.executed = true;
+      RecordImpact(record);
     }
     leg.stance = true;
     leg.t_switch = tp;
@@ -489,220 +460,8 @@ bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {
   return fallen_;
 }
 
-void PlanExecutor::RobotContact(double tp, const mjContact& con) {
-  if (settings_.impact.source != ImpactSource::kContacts || con.dist > 0.0) return;
-  const mjModel* m = world_->model();
-  const int b1 = m->geom_bodyid[con.geom1], b2 = m->geom_bodyid[con.geom2];
-  const int l1 = body_leg_[static_cast<std::size_t>(b1)], l2 = body_leg_[static_cast<std::size_t>(b2)];
-  for (const auto& [mine, other, body, other_body] : {std::tuple{l1, l2, b1, b2}, std::tuple{l2, l1, b2, b1}}) {
-    if (mine < 0 || legs_[static_cast<std::size_t>(mine)].stance) continue;
-    const LegState& leg = legs_[static_cast<std::size_t>(mine)];
-    const std::string link = mj_id2name(m, mjOBJ_BODY, body);
-    if (other < 0 && (other_body == base_body_ || m->body_parentid[other_body] == 0)) {
-      Respond(static_cast<std::size_t>(mine), ImpactKind::kThighAgainstBody, tp, link, 0.0);
-    } else if (other >= 0 && other != mine) {
-      const LegState& contra = legs_[static_cast<std::size_t>(other)];  // contralateral or not
-      const ImpactKind kind =
-          contra.name[0] == leg.name[0]
-              ? ImpactKind::kIpsilateralStrike
-              : ClassifyContralateral(FootContactPoint(leg), FootContactPoint(contra), leg.name[0] == 'L', MeasuredPose().yaw);
-      Respond(static_cast<std::size_t>(mine), kind, tp, link, 0.0);
-    }
-  }
-}
-
 double PlanExecutor::SwingPhase(const LegState& leg, double tp) const {
   return (tp - leg.swing_t0) / std::max(leg.swing_t1 - leg.swing_t0, 1e-6);
-}
-
-Eigen::Vector3d PlanExecutor::FootForce(const LegState& leg) {
-  const mjModel* m = world_->model();
-  const mjData* d = world_->data();
-  if (settings_.impact.source == ImpactSource::kContacts) {
-    Eigen::Vector3d total = Eigen::Vector3d::Zero();
-    for (int c = 0; c < d->ncon; ++c) {
-      const mjContact& con = d->contact[c];
-      const bool first = m->geom_bodyid[con.geom1] == leg.foot_body;
-      if (!first && m->geom_bodyid[con.geom2] != leg.foot_body) continue;
-      if (!stair_geom_[static_cast<std::size_t>(first ? con.geom2 : con.geom1)]) continue;  // legs on legs: RobotContact
-      mjtNum local[6];
-      mj_contactForce(m, d, c, local);
-      // The contact frame's rows are its normal (from geom1 to geom2) and two tangents.
-      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(con.frame);
-      const Eigen::Vector3d on_geom2 = frame.transpose() * Eigen::Vector3d(local[0], local[1], local[2]);
-      total += first ? Eigen::Vector3d(-on_geom2) : on_geom2;
-    }
-    return total;
-  }
-  // J^T f = tau_ext on the leg's joints; f in the base frame, by damped least squares: near a
-  // straight leg the force along it moves no joint and is not seen.
-  const LegKinematics& kin = kinematics_.leg(leg.kin);
-  Eigen::Vector3d q, tau;
-  for (int j = 0; j < 3; ++j) {
-    q(j) = d->qpos[leg.qpos[static_cast<std::size_t>(j)]];
-    tau(j) = residual_->at(leg.dof[static_cast<std::size_t>(j)]);
-  }
-  const Eigen::Matrix3d jac = kin.FootJacobian(q, ws_.leg(leg.kin));
-  const Eigen::Vector3d f_B = (jac * jac.transpose() + 1e-4 * Eigen::Matrix3d::Identity()).ldlt().solve(jac * tau);
-  return MeasuredPose().ToIsometry().linear() * f_B;
-}
-
-void PlanExecutor::DetectFootImpacts(double tp) {
-  if (settings_.impact.source == ImpactSource::kNone) return;
-  const double threshold = settings_.impact.force_threshold * mass_ * 9.81;
-  for (std::size_t i = 0; i < legs_.size(); ++i) {
-    LegState& leg = legs_[i];
-    leg.foot_impact.reset();
-    if (leg.stance || !leg.swing) continue;
-    const Eigen::Vector3d force = FootForce(leg);
-    leg.foot_force = force.norm();
-    const double phase = SwingPhase(leg, tp);
-    const Eigen::Vector3d dir = leg.swing_target_W - leg.swing->At(0.0);
-    leg.foot_impact = ClassifySwingFootForce(force, dir, phase, settings_.touchdown_phase, threshold, settings_.impact.scuff_phase);
-    if (!leg.foot_impact) continue;
-    if (settings_.impact.source == ImpactSource::kTorqueResidual && leg.foot_impact != ImpactKind::kTouchdown) {
-      // The residual does not say what the foot hit: the robot's own kinematics tell a strike on
-      // another leg's shank from a trip on the stairs (a foot pushed up late in its swing has landed).
-      if (const int struck = LegNearFoot(i); struck >= 0) {
-        const LegState& other = legs_[static_cast<std::size_t>(struck)];
-        leg.foot_impact = other.name[0] == leg.name[0]
-                              ? ImpactKind::kIpsilateralStrike
-                              : ClassifyContralateral(FootContactPoint(leg), FootContactPoint(other), leg.name[0] == 'L',
-                                                      MeasuredPose().yaw);
-        Respond(i, *leg.foot_impact, tp, "foot", leg.foot_force);
-        continue;
-      }
-    }
-    if (settings_.impact.source == ImpactSource::kTorqueResidual && leg.foot_impact != ImpactKind::kTouchdown &&
-        Clearance(FootContactPoint(leg), dir) > settings_.impact.near_stairs) {
-      // The foot is clear of the stairs: what was hit is higher up the leg. A knee near the stairs
-      // hit them; otherwise the thigh met the body.
-      const mjData* d = world_->data();
-      const auto position = [&](int body) { return Eigen::Vector3d(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]); };
-      const Eigen::Vector3d knee = position(leg.knee_body);
-      const bool knee_on_stairs = Clearance(knee, dir) < settings_.impact.near_stairs;
-      leg.foot_impact = knee_on_stairs ? ClassifyLegLinkOnStairs(knee, position(leg.hip_body), MeasuredPose().yaw)
-                                       : ImpactKind::kThighAgainstBody;
-      Respond(i, *leg.foot_impact, tp, knee_on_stairs ? "knee" : "thigh", leg.foot_force);
-      continue;
-    }
-    if (leg.foot_impact == ImpactKind::kLiftoffScuff && !leg.scuffed) {
-      leg.scuffed = true;
-      Respond(i, ImpactKind::kLiftoffScuff, tp, "foot", leg.foot_force);
-    } else if (leg.foot_impact == ImpactKind::kTrip) {
-      Respond(i, ImpactKind::kTrip, tp, "foot", leg.foot_force);
-    }
-  }
-}
-
-double PlanExecutor::Clearance(const Eigen::Vector3d& p_W, const Eigen::Vector3d& ahead_W) const {
-  Eigen::Vector3d dir = ahead_W;
-  dir.z() = 0.0;
-  if (dir.norm() > 1e-9) dir.normalize();
-  double top = -std::numeric_limits<double>::infinity();
-  for (const double s : {-1.0, 0.0, 1.0}) {
-    const Eigen::Vector3d q = p_W + s * settings_.impact.near_stairs * dir;
-    const double z = stairs_.HeightAt(q.x(), q.y());
-    if (std::isfinite(z)) top = std::max(top, z);
-  }
-  return p_W.z() - top;
-}
-
-int PlanExecutor::LegNearFoot(std::size_t i) const {
-  const mjData* d = const_cast<MujocoWorld&>(*world_).data();
-  const LegState& leg = legs_[i];
-  const Eigen::Vector3d foot = FootContactPoint(leg) + Eigen::Vector3d(0.0, 0.0, leg.foot_radius);
-  const auto position = [&](int body) { return Eigen::Vector3d(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]); };
-  for (std::size_t k = 0; k < legs_.size(); ++k) {
-    const LegState& other = legs_[k];
-    if (k == i || other.knee_body < 0) continue;
-    const Eigen::Vector3d other_foot = FootContactPoint(other) + Eigen::Vector3d(0.0, 0.0, other.foot_radius);
-    if (DistanceToSegment(foot, position(other.knee_body), other_foot) < leg.foot_radius + settings_.impact.leg_strike_distance) {
-      return static_cast<int>(k);
-    }
-  }
-  return -1;
-}
-
-void PlanExecutor::Reswing(LegState& leg, double tp, const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W,
-                           double apex_z) {
-  leg.swing = std::make_unique<SwingTrajectory>(from_W, to_W, apex_z, settings_.swing);
-  leg.swing_apex = apex_z;
-  leg.swing_target_W = to_W;
-  leg.swing_t1 = std::max(leg.swing_t1, tp + settings_.impact.min_reswing_time);
-  leg.swing_t0 = tp;
-}
-
-void PlanExecutor::Respond(std::size_t i, ImpactKind kind, double tp, const std::string& link, double force) {
-  LegState& leg = legs_[i];
-  // One answer per impact: a foot pressed on an obstacle is the same impact until the response
-  // has had time to act.
-  constexpr double kRefractory = 0.1;
-  constexpr int kMaxResponses = 3;
-  if (tp - leg.t_recorded < kRefractory || tp - leg.t_responded < kRefractory) return;
-  leg.t_recorded = tp;
-  const BodyPose body = MeasuredPose();
-  ImpactEvent event;
-  event.kind = kind;
-  event.leg = leg.name;
-  event.swing_phase = std::clamp(SwingPhase(leg, tp), 0.0, 1.0);
-  event.body_yaw = body.yaw;
-  event.target_W = leg.swing_target_W;
-  event.target_stair = map_.StairAt(event.target_W.head<2>());
-  event.swing_foot_W = FootContactPoint(leg);
-  for (const LegState& other : legs_) {
-    if (other.name[1] == leg.name[1] && other.name[0] != leg.name[0]) event.contralateral_foot_W = FootContactPoint(other);
-  }
-  const ImpactResponse response = RespondToImpact(event, map_, settings_.impact.response);
-  ImpactRecord record;
-  record.t = tp;
-  record.t_contact = leg.t_first_contact;
-  record.leg = leg.name;
-  record.kind = kind;
-  record.source = settings_.impact.source;
-  record.response = response.kind;
-  record.link = link;
-  record.swing_phase = event.swing_phase;
-  record.force_n = force;
-  record.reason = response.reason;
-  outcome_.impacts.push_back(record);
-  if (!settings_.impact.respond || leg.responses >= kMaxResponses || response.kind == ResponseKind::kProceed ||
-      response.kind == ResponseKind::kClassifyStance) {
-    return;
-  }
-  leg.t_responded = tp;
-  ++leg.responses;
-  const Eigen::Vector3d foot = event.swing_foot_W;
-  Eigen::Vector3d back = leg.swing_target_W - foot;
-  back.z() = 0.0;
-  back = back.norm() > 1e-9 ? Eigen::Vector3d(-back.normalized()) : Eigen::Vector3d::Zero();
-  const Eigen::Vector3d retracted = foot + settings_.impact.retract_distance * back;
-  switch (response.kind) {
-    case ResponseKind::kElevateFoot:  // draw back, lift higher than what stopped it, go on to the target
-      Reswing(leg, tp, retracted, leg.swing_target_W, std::max(leg.swing_apex, foot.z()) + response.extra_swing_height);
-      break;
-    case ResponseKind::kTouchdownNow: {  // go down where the foot is, clear of what it hit
-      Eigen::Vector3d down = retracted;
-      down.z() = response.target_W.z();  // the tread under the foot in the map
-      Reswing(leg, tp, retracted, down, retracted.z());
-      leg.swing_t1 = tp + 0.5 * settings_.impact.min_reswing_time;
-      break;
-    }
-    case ResponseKind::kMoveKneeForward: {
-      const Eigen::Vector3d forward(std::cos(body.yaw), std::sin(body.yaw), 0.0);
-      Reswing(leg, tp, foot + response.knee_forward * forward, leg.swing_target_W, leg.swing_apex);
-      break;
-    }
-    case ResponseKind::kAdjustStep:
-    case ResponseKind::kAdjustStepRisky:
-    case ResponseKind::kUntangle: {
-      const Eigen::Vector3d from = response.waypoints_W.empty() ? foot : response.waypoints_W.front();
-      Reswing(leg, tp, from, response.target_W, std::max(leg.swing_apex, response.target_W.z() + settings_.swing.min_lift));
-      break;
-    }
-    default:
-      break;
-  }
 }
 
 void PlanExecutor::MeasureSlip(double tp) {

@@ -14,11 +14,13 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "geometry/constrained_map.h"
 #include "kinematics/robot_kinematics.h"
 #include "planning/plan.h"
+#include "planning/simulation/impact_record.h"
 #include "planning/simulation/mujoco_world.h"
 #include "planning/simulation/sim_outcome.h"
 #include "planning/simulation/sim_settings.h"
@@ -32,6 +34,10 @@ namespace stairplan {
 /// Called at every recorded frame (SimSettings::frame_interval) with the world in that state and
 /// the plan time [s]: for drawing it (OffscreenRenderer), not for changing it.
 using FrameCallback = std::function<void(MujocoWorld& world, double t)>;
+
+/// Told each impact and response the executor records (touchdowns included), as it happens: the
+/// event stream seed 000 [0053] sends to the body planner. It must not change the world.
+using ImpactListener = std::function<void(const ImpactRecord& event)>;
 
 class PlanExecutor {
  public:
@@ -48,6 +54,9 @@ class PlanExecutor {
   SimulationOutcome Run(const FrameCallback& on_frame = {});
 
   const MujocoWorld& world() const { return *world_; }
+
+  /// Subscribes `listener` to the impacts of the next Run (replacing any earlier one).
+  void SetImpactListener(ImpactListener listener) { impact_listener_ = std::move(listener); }
 
  private:
   struct LegState;
@@ -68,15 +77,17 @@ class PlanExecutor {
   /// Classifies each swing foot's external force (torque residual or contact forces) into
   /// leg.foot_impact and answers trips and scuffs.
   void DetectFootImpacts(double tp);
-  /// A contact between two robot links (source kContacts): a swing leg on its contralateral leg,
-  /// a thigh on the body.
+  /// A contact between two robot links: a swing leg on another leg, a thigh on the body. Always the
+  /// ground truth of when the leg was hit (t_first_contact); answered with source kContacts.
   void RobotContact(double tp, const mjContact_& con);
   /// The world's force on a swing leg's foot [N]: from the torque residual or the contact list.
   Eigen::Vector3d FootForce(const LegState& leg);
-  /// RespondToImpact for `kind` on swing leg `i`, carried out and recorded.
-  void Respond(std::size_t i, ImpactKind kind, double tp, const std::string& link, double force);
+  /// RespondToImpact for `kind` on swing leg `i`, carried out and recorded; true when the swing changed.
+  bool Respond(std::size_t i, ImpactKind kind, double tp, const std::string& link, double force);
   /// The swing of leg `leg` replaced from now: from `from_W` to `to_W` over the apex, ending no
   /// earlier than min_reswing_time from now.
+  /// Appends `record` to the outcome and tells the listener.
+  void RecordImpact(const ImpactRecord& record);
   void Reswing(LegState& leg, double tp, const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, double apex_z);
   double SwingPhase(const LegState& leg, double tp) const;
   /// Height of `p_W` above the stairs under it and a little either way along `ahead_W` [m].
@@ -104,6 +115,7 @@ class PlanExecutor {
   std::vector<int> body_leg_;         // per MuJoCo body: the index in legs_ of the leg it belongs to, -1 otherwise
   std::unique_ptr<TorqueResidual> residual_;
   SimulationOutcome outcome_;
+  ImpactListener impact_listener_;
   bool fallen_ = false;
   bool running_ = false;  // false while placing the robot: targets only, no torques
 };

@@ -54,7 +54,10 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
                             {"link", e.link},
                             {"swing_phase", e.swing_phase},
                             {"force_n", e.force_n},
-                            {"reason", e.reason}});
+                            {"reason", e.reason},
+                            {"at", Vec(e.at_W)},
+                            {"target", Vec(e.target_W)},
+                            {"executed", e.executed}});
   }
   j["min_link_clearance_m"] = o.min_link_clearance_m;
   j["closest_link"] = o.closest_link;

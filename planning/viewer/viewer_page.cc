@@ -62,6 +62,30 @@ std::string Legend(const nlohmann::json& scene) {
   item("#1b9e77", "footstep LH");
   item("#555555", "footstep RH");
   item("#ff00cc", "violation");
+  if (!scene["sim"].is_null()) item("#00b8d9", "impact and response (MuJoCo run); dots: touchdowns");
+  return out.str();
+}
+
+// The run's impacts other than touchdowns, each with its response; touchdowns only counted.
+std::string ImpactList(const nlohmann::json& sim) {
+  if (!sim.contains("impacts")) return "";
+  std::ostringstream out;
+  std::size_t touchdowns = 0;
+  std::ostringstream lines;
+  for (const nlohmann::json& e : sim["impacts"]) {
+    if (e["kind"] == "touchdown") {
+      ++touchdowns;
+      continue;
+    }
+    std::ostringstream line;
+    line << "t = " << std::fixed << std::setprecision(3) << e["t"].get<double>() << " s: " << e["leg"].get<std::string>()
+         << " " << e["kind"].get<std::string>() << " -> " << e["response"].get<std::string>()
+         << (e["executed"].get<bool>() || e["response"] == "proceed" ? "" : " (recorded only)");
+    lines << "<div class=\"violation\" data-t=\"" << e["t"].get<double>() << "\" title=\""
+          << Escaped(e["reason"].get<std::string>()) << "\">" << Escaped(line.str()) << "</div>\n";
+  }
+  out << "<h2>Impacts (" << sim["impacts"].size() - touchdowns << ", and " << touchdowns << " touchdowns)</h2>\n"
+      << lines.str();
   return out.str();
 }
 
@@ -82,6 +106,7 @@ std::string ViolationList(const nlohmann::json& scene) {
     const std::string status = scene["sim"]["status"].get<std::string>();
     const std::string cause = scene["sim"]["cause"].get<std::string>();
     out << "<h2>MuJoCo run</h2>\n<div>" << Escaped(status + (cause.empty() ? "" : ": " + cause)) << "</div>\n";
+    out << ImpactList(scene["sim"]);
   }
   return out.str();
 }

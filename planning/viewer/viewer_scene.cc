@@ -189,6 +189,29 @@ json Violations(const JsonFieldReader& r, const json& report, const std::string&
   return out;
 }
 
+// The run's impacts and responses (seed 000 [0053]-[0068]) where they happened: the foot (or for
+// a touchdown, where it landed) and the swing's target after the response. Outputs from before
+// impacts were recorded have none; those from before their places were recorded are refused.
+json SimImpacts(const JsonFieldReader& r, const json& sim) {
+  json out = json::array();
+  if (!sim.contains("impacts")) return out;
+  const json& list = r.Array(sim, "impacts", "");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string p = "impacts[" + std::to_string(i) + "].";
+    const json& executed = r.At(list[i], "executed", p);
+    if (!executed.is_boolean()) r.Fail(p + "executed", "must be true or false");
+    out.push_back({{"t", Rounded(r.Number(list[i], "t", p))},
+                   {"leg", r.Text(list[i], "leg", p)},
+                   {"kind", r.Text(list[i], "kind", p)},
+                   {"response", r.Text(list[i], "response", p)},
+                   {"executed", executed.get<bool>()},
+                   {"reason", r.Text(list[i], "reason", p)},
+                   {"p", Vec(r.Triple(list[i], "at", p))},
+                   {"target", Vec(r.Triple(list[i], "target", p))}});
+  }
+  return out;
+}
+
 // The simulated robot: each recorded base pose and joint angles posed through the same shapes.
 json SimFrames(ViewerRobot& robot, const json& sim, const std::string& source) {
   const JsonFieldReader r(source);
@@ -215,6 +238,7 @@ json SimFrames(ViewerRobot& robot, const json& sim, const std::string& source) {
     AppendPoses(shape_poses, &poses);
   }
   json out = {{"t", times}, {"poses", poses}};
+  out["impacts"] = SimImpacts(r, sim);
   out["status"] = sim.contains("status") ? r.Text(sim, "status", "") : "";
   out["cause"] = sim.contains("first_cause") ? r.Text(sim, "first_cause", "") : "";
   return out;

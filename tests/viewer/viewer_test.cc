@@ -122,6 +122,24 @@ TEST_CASE("viewer scene: a pose per shape and frame, violations at their footste
   const json with_sim = stairplan::BuildViewerScene(robot, file, {&plan_json, "short_plan.json"}, {nullptr, ""},
                                                     {&sim, "sim.json"}, settings);
   CHECK(with_sim["sim"]["poses"].size() == scene["robot"]["shapes"].size() * 7);
+  // Its impacts: each drawn where it happened and listed with its response; one without its place is refused.
+  sim["impacts"] = {{{"t", 0.5}, {"leg", "LF"}, {"kind", "contralateral_strike"}, {"response", "adjust_step"},
+                     {"executed", true}, {"reason", "shifted away"}, {"at", {0.1, 0.0, 0.2}}, {"target", {0.1, 0.06, 0.17}}},
+                    {{"t", 0.6}, {"leg", "LF"}, {"kind", "touchdown"}, {"response", "classify_stance"},
+                     {"executed", true}, {"reason", "touchdown on time"}, {"at", {0.1, 0.06, 0.17}}, {"target", {0.1, 0.06, 0.17}}}};
+  const json with_impacts = stairplan::BuildViewerScene(robot, file, {&plan_json, "short_plan.json"}, {nullptr, ""},
+                                                        {&sim, "sim.json"}, settings);
+  REQUIRE(with_impacts["sim"]["impacts"].size() == 2);
+  CHECK(with_impacts["sim"]["impacts"][0]["target"][1].get<double>() == Approx(0.06));
+  CHECK(with_impacts["sim"]["impacts"][1]["p"][2].get<double>() == Approx(0.17));
+  const std::string page = stairplan::ViewerPageHtml(with_impacts, "");
+  CHECK(page.find("Impacts (1, and 1 touchdowns)") != std::string::npos);
+  CHECK(page.find("LF contralateral_strike -&gt; adjust_step") != std::string::npos);
+  sim["impacts"][1].erase("at");
+  CHECK_THROWS_WITH(stairplan::BuildViewerScene(robot, file, {&plan_json, "short_plan.json"}, {nullptr, ""},
+                                                {&sim, "sim.json"}, settings),
+                    Catch::Contains("sim.json: field 'impacts[1].at'"));
+  sim.erase("impacts");
   sim["frames"][0]["base"] = {0.0, 0.0};
   CHECK_THROWS_WITH(stairplan::BuildViewerScene(robot, file, {&plan_json, "short_plan.json"}, {nullptr, ""},
                                                 {&sim, "sim.json"}, settings),

@@ -8,6 +8,7 @@ const COLORS = {
   robot: 0x1f5fd0,        // the plan's robot (the viewer test looks for this blue)
   sim: 0xff8c1a,          // the simulated robot, translucent
   violation: 0xff00cc,    // violation markers, unlit (the viewer test looks for this magenta)
+  impact: 0x00b8d9,       // the MuJoCo run's impacts and where their responses sent the foot
   stairs: 0xc8c8c8,
   nosing: 0x9a9a9a,
   step: 0x2ca02c,
@@ -110,6 +111,38 @@ function buildViolations(scene) {
   });
 }
 
+// The MuJoCo run's impacts (seed 000 [0053]-[0068]): a touchdown is a small dot in its leg's colour
+// where the foot landed; any other event a cone pointing down at the foot, and when its response
+// moved the swing's target, a line from the foot to the new target.
+function buildImpacts(scene) {
+  if (!data.sim || !data.sim.impacts) return [];
+  const dot = new THREE.SphereGeometry(0.012, 10, 8);
+  const cone = new THREE.ConeGeometry(0.025, 0.06, 12).rotateX(-Math.PI / 2);
+  return data.sim.impacts.map((e) => {
+    const group = new THREE.Group();
+    if (e.kind === 'touchdown') {
+      group.add(new THREE.Mesh(dot, new THREE.MeshBasicMaterial({ color: COLORS.legs[e.leg] ?? 0x000000 })));
+      group.position.set(...e.p);
+    } else {
+      const material = new THREE.MeshBasicMaterial({ color: COLORS.impact, depthTest: false });
+      const marker = new THREE.Mesh(cone, material);
+      marker.position.set(e.p[0], e.p[1], e.p[2] + 0.04);
+      marker.renderOrder = 9;
+      group.add(marker);
+      const moved = Math.hypot(e.target[0] - e.p[0], e.target[1] - e.p[1], e.target[2] - e.p[2]) > 0.005;
+      if (e.executed && moved) {
+        const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints(
+          [new THREE.Vector3(...e.p), new THREE.Vector3(...e.target)]), new THREE.LineBasicMaterial({ color: COLORS.impact }));
+        const end = new THREE.Mesh(dot, material);
+        end.position.set(...e.target);
+        group.add(line, end);
+      }
+    }
+    scene.add(group);
+    return { group, t: e.t, touchdown: e.kind === 'touchdown' };
+  });
+}
+
 function setupCamera(renderer) {
   const lo = new THREE.Vector3(Infinity, Infinity, Infinity);
   const hi = new THREE.Vector3(-Infinity, -Infinity, -Infinity);
@@ -142,6 +175,7 @@ function main() {
   buildWorld(scene);
   const footsteps = buildFootsteps(scene);
   const markers = buildViolations(scene);
+  const impacts = buildImpacts(scene);
   const robot = buildRobot(scene, data.robot.shapes, new THREE.MeshLambertMaterial({ color: COLORS.robot }));
   // Pulled towards the camera so that where the run follows the plan exactly it tints the plan's robot.
   const sim = data.sim ? buildRobot(scene, data.robot.shapes, new THREE.MeshLambertMaterial({
@@ -184,6 +218,10 @@ function main() {
     if (sim) poseRobot(sim, data.sim, t);
     for (const f of footsteps) f.mesh.material.opacity = f.t <= t ? 1.0 : 0.3;
     for (const m of markers) m.group.scale.setScalar(Math.abs(m.t - t) < 0.3 ? 1.8 : 1.0);
+    for (const e of impacts) {
+      e.group.visible = e.t <= t || !e.touchdown;
+      e.group.scale.setScalar(!e.touchdown && Math.abs(e.t - t) < 0.3 ? 1.8 : 1.0);
+    }
     ui.slider.value = t;
     ui.label.textContent = `t = ${t.toFixed(2)} s / ${tMax.toFixed(2)} s`;
     ui.play.textContent = playing ? 'pause' : 'play';
