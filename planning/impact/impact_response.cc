@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <Eigen/Dense>
+
 #include "geometry/field_error.h"
 
 namespace stairplan {
@@ -114,8 +116,36 @@ ImpactResponse Untangle(const ImpactEvent& e, const ConstrainedMap& map, const I
   return r;
 }
 
-// A foot down outside the step region: the nearest point of the target stair's step region,
-// a margin inside, where the foot is moved with a short re-swing.
+// `poly` (convex, counter-clockwise) with every edge moved `d` inwards; empty when it vanishes.
+Polygon2 Inset(const Polygon2& poly, double d) {
+  Polygon2 out;
+  out.z = poly.z;
+  const std::size_t n = poly.vertices.size();
+  if (n < 3) return out;
+  const auto inward = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const Eigen::Vector2d e = (b - a).normalized();
+    return Eigen::Vector2d(-e.y(), e.x());  // left of a counter-clockwise edge is inside
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d& a = poly.vertices[(i + n - 1) % n];
+    const Eigen::Vector2d& v = poly.vertices[i];
+    const Eigen::Vector2d& b = poly.vertices[(i + 1) % n];
+    const Eigen::Vector2d n1 = inward(a, v), n2 = inward(v, b);
+    Eigen::Matrix2d lines;
+    lines << n1.transpose(), n2.transpose();
+    const Eigen::Vector2d offsets(n1.dot(v) + d, n2.dot(v) + d);
+    out.vertices.push_back(std::abs(lines.determinant()) < 1e-12 ? Eigen::Vector2d(v + d * n1)
+                                                                  : Eigen::Vector2d(lines.partialPivLu().solve(offsets)));
+  }
+  for (const Eigen::Vector2d& q : out.vertices) {
+    if (poly.SignedDistance(q) > -d + 1e-9) return {};
+  }
+  if (out.Area() <= 1e-12) return {};
+  return out;
+}
+
+// A foot down outside the step region: the nearest point of the target stair's step region, a
+// margin inside, where the foot is moved with a short re-swing.
 ImpactResponse IntoStepRegion(const ImpactEvent& e, const ConstrainedMap& map, const ImpactSettings& s) {
   ImpactResponse r;
   r.target_W = e.target_W;
@@ -125,12 +155,8 @@ ImpactResponse IntoStepRegion(const ImpactEvent& e, const ConstrainedMap& map, c
     return r;
   }
   const StairRegions& stair = map.stair(e.target_stair);
-  Eigen::Vector2d p = stair.step_region.ClosestPoint(e.swing_foot_W.head<2>());
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& v : stair.step_region.vertices) centre += v;
-  centre /= static_cast<double>(stair.step_region.vertices.size());
-  const Eigen::Vector2d inward = centre - p;  // convex: towards the centre stays inside
-  if (inward.norm() > 1e-9) p += std::min(s.step_region_margin, inward.norm()) * inward.normalized();
+  const Polygon2 inner = Inset(stair.step_region, s.step_region_margin);
+  const Eigen::Vector2d p = (inner.empty() ? stair.step_region : inner).ClosestPoint(e.swing_foot_W.head<2>());
   r.kind = ResponseKind::kAdjustStep;
   r.target_W = {p.x(), p.y(), stair.z};
   r.reason = "down outside the step region: moved to its nearest point";

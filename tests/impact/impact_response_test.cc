@@ -146,3 +146,29 @@ TEST_CASE("impact responses reject non-finite input", "[impact]") {
   bad.early_swing_phase = 2.0;
   CHECK_THROWS_AS(RespondToImpact(scene.Event(ImpactKind::kTrip), scene.map, bad), std::invalid_argument);
 }
+
+TEST_CASE("a foot down outside the step region moves to the region's nearest point, a margin inside", "[impact]") {
+  const Scene scene;
+  ImpactSettings settings;
+  const StairRegions& stair = scene.map.stair(3);
+  REQUIRE_FALSE(stair.step_region.empty());
+  const double region_end = stair.step_region.XExtent().hi;
+  // On the tread past the step region (towards the next riser), at every lateral place inside.
+  for (const double y : {-0.2, 0.0, 0.18}) {
+    ImpactEvent e = scene.Event(ImpactKind::kMisplacedTouchdown);
+    e.swing_phase = 1.0;
+    e.swing_foot_W = {region_end + 0.03, y, stair.z};
+    REQUIRE_FALSE(scene.map.InStepRegion(3, e.swing_foot_W.head<2>()));
+    const auto r = RespondToImpact(e, scene.map, settings);
+    INFO("y " << y);
+    REQUIRE(r.kind == ResponseKind::kAdjustStep);
+    CHECK(scene.map.InStepRegion(3, r.target_W.head<2>()));
+    CHECK(stair.step_region.SignedDistance(r.target_W.head<2>()) <= -settings.step_region_margin + 1e-6);
+    CHECK((r.target_W.head<2>() - e.swing_foot_W.head<2>()).norm() < 0.03 + 2.0 * settings.step_region_margin);
+    CHECK(r.target_W.z() == Approx(stair.z));
+  }
+  // A target stair the map does not have: nowhere to go.
+  ImpactEvent lost = scene.Event(ImpactKind::kMisplacedTouchdown);
+  lost.target_stair = scene.map.size();
+  CHECK(RespondToImpact(lost, scene.map, settings).kind == ResponseKind::kProceed);
+}
