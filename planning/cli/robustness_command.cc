@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/field_error.h"
+#include "geometry/stair_spec_yaml.h"
 #include "planning/cli/cli_common.h"
 #include "planning/json_version.h"
 #include "planning/cli/stair_flags.h"
@@ -20,7 +21,7 @@ namespace {
 
 int RunRobustness(const std::vector<std::string>& args) {
   CLI::App app("Open-loop robustness of a plan to per-step stair errors, against replanning", "robustness");
-  std::string robot_path, facing = "forward";
+  std::string robot_path, facing = "forward", stairs_out;
   StairFlags stairs;
   RobustnessSettings settings;
   bool json = false, simulate = false;
@@ -41,6 +42,9 @@ int RunRobustness(const std::vector<std::string>& args) {
                  "Plan the swings this high over the nosings and at least this far above the higher foothold [m] "
                  "(default: the crawl's 0.06 and 0.05); low swings are where a stair error stubs a toe")
       ->check(CLI::Range(0.0, 0.3));
+  app.add_option("--stairs-out", stairs_out,
+                 "Write each perturbed staircase to DIR/staircase_K.yaml (K from 0), to replay one with "
+                 "`stairplan simulate PLAN --stairs`");
   app.add_flag("--json", json, "Print the report as JSON");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("robustness", [&] {
@@ -50,6 +54,14 @@ int RunRobustness(const std::vector<std::string>& args) {
     options.validation.time_step = 0.05;
     if (swing_clearance) options.crawl.swing.clearance = options.crawl.swing.min_lift = *swing_clearance;
     const RobotModel robot = LoadRobot(robot_path, robot_flags);
+    if (!stairs_out.empty()) {
+      MakeOutputDir(stairs_out, "--stairs-out");
+      const std::vector<StairSpec> perturbed = PerturbedStaircases(nominal.spec(), settings);
+      for (std::size_t k = 0; k < perturbed.size(); ++k) {
+        WriteFileAtomically(stairs_out + "/staircase_" + std::to_string(k) + ".yaml",
+                            StairSpecToYaml(perturbed[k], "perturbed staircase " + std::to_string(k) + " of stairplan robustness"));
+      }
+    }
     RobustnessReport report;
     PhysicsRobustnessReport physics;
     try {

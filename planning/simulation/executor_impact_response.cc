@@ -87,6 +87,7 @@ bool PlanExecutor::Respond(std::size_t i, ImpactKind kind, double tp, const std:
     case ResponseKind::kAdjustStep:
       if (kind == ImpactKind::kMisplacedTouchdown) {  // a short hop from where it came down
         Reswing(leg, tp, foot, response.target_W, std::max(foot.z(), response.target_W.z()) + settings_.swing.min_lift);
+        leg.swing_t1 = tp + settings_.impact.hop_time;
         break;
       }
       [[fallthrough]];

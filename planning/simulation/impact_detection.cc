@@ -24,6 +24,7 @@ void ImpactDetectionSettings::Validate() const {
   RequireInRange("impact.near_stairs", near_stairs, 0.0, 0.5);
   RequireInRange("impact.touchdown_clearance", touchdown_clearance, 0.0, 0.5);
   RequireInRange("impact.retract_distance", retract_distance, 0.0, 0.5);
+  RequireInRange("impact.hop_time", hop_time, 0.01, 5.0);
   response.Validate();
 }
 

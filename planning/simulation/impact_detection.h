@@ -30,6 +30,9 @@ struct ImpactDetectionSettings {
   /// The residual's foot force is taken as a foot impact only with the foot within this of the
   /// stairs (above them, or this far either way along its swing); farther, it is a knee or thigh [m].
   double near_stairs = 0.04;
+  /// A foot down outside the step region hops into it in this long [s, plan time]: the plan expects
+  /// the leg to take load, and a full re-swing leaves the body on three legs too long.
+  double hop_time = 0.15;
   /// How far a tripped foot draws back before it lifts again [m].
   double retract_distance = 0.02;
   /// The responses' own settings. "Early" in swing is before the foot starts lowering onto its

@@ -59,7 +59,7 @@ void SimSettings::Set(const std::string& name, double value) {
       {"stance.force_weight", &stance.force_weight}, {"stance.moment_weight", &stance.moment_weight},
       {"stance.regularization", &stance.regularization},
       {"impact.force_threshold", &impact.force_threshold}, {"impact.min_reswing_time", &impact.min_reswing_time},
-      {"impact.retract_distance", &impact.retract_distance},
+      {"impact.retract_distance", &impact.retract_distance}, {"impact.hop_time", &impact.hop_time},
       {"impact.elevate_height", &impact.response.elevate_height},
       {"impact.early_swing_phase", &impact.response.early_swing_phase}};
   const auto it = fields.find(name);

@@ -58,7 +58,7 @@ struct SimSettings {
   double hold_time = 1.0;            ///< standing after the plan ends before judging [s]
   double touchdown_phase = 0.5;      ///< a foot contact counts as touchdown from this swing phase on
   double late_descent_speed = 0.2;   ///< a foot late for touchdown keeps lowering at this speed [m/s]
-  double late_descent_max = 0.05;    ///< ... by at most this much [m]
+  double late_descent_max = 0.10;    ///< ... by at most this much [m]
 
   /// Impact detection and the responses to impacts (seed 000 [0053]-[0068]).
   ImpactDetectionSettings impact;
