@@ -254,6 +254,7 @@ std::vector<BadCase> Table() {
   t.push_back({"nan", "robustness", "", "", "robustness --json --sigma-rise nan", {"--sigma-rise"}, {}});
   t.push_back({"huge", "robustness", "", "", "robustness --json --trials 99999999999", {"--trials"}, {}});
   t.push_back({"wrong-type", "robustness", "", "", "robustness --json --rise steep", {"--rise"}, {}});
+  t.push_back({"wrong-type", "robustness", "f.txt", "a file", "robustness --json --trials 1 --stairs-out {file}/sub", {"--stairs-out"}, {}});
 
   // simulate (when present): plan.json.
   t.push_back({"malformed", "simulate", "p.json", "{\"robot\": {", "simulate {file}", {"{file}"}, {}});
