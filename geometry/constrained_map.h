@@ -41,8 +41,8 @@ struct ConstrainedMapSettings {
 
 /// A part of a surface to avoid, with the reason.
 struct CollisionRegion {
-  Polygon2 polygon;
-  RegionKind kind = RegionKind::kEdge;
+  Polygon2 polygon;  ///< the region on the surface (at its height)
+  RegionKind kind = RegionKind::kEdge;  ///< why it is avoided
 };
 
 /// The regions of one stair surface (landing or tread).
@@ -51,19 +51,25 @@ struct StairRegions {
   double z = 0.0;                    ///< surface height [m]
   Polygon2 surface;                  ///< the whole walkable top
   Polygon2 step_region;              ///< where a foot may land; empty when none is safe
-  std::vector<CollisionRegion> collision_regions;
+  std::vector<CollisionRegion> collision_regions;  ///< the parts of the surface to avoid
 };
 
+/// The step and collision regions of every surface of a staircase, in travel order.
 class ConstrainedMap {
  public:
   ConstrainedMap() = default;
   /// The analytic map of `stairs` for a robot travelling in the stairs' direction facing `facing`.
   static ConstrainedMap FromStaircase(const Staircase& stairs, Facing facing, const ConstrainedMapSettings& settings = {});
 
+  /// Every surface's regions, in travel order.
   const std::vector<StairRegions>& stairs() const { return stairs_; }
+  /// The regions of surface `index`; throws std::out_of_range for a bad index.
   const StairRegions& stair(int index) const;
+  /// Number of surfaces (the landings included).
   int size() const { return static_cast<int>(stairs_.size()); }
+  /// Which way the robot faces when it travels the stairs.
   Facing facing() const { return facing_; }
+  /// Up or down: the stairs' direction of travel.
   TravelDirection direction() const { return direction_; }
 
   /// The surface whose top contains (x, y), or -1.

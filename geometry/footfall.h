@@ -9,6 +9,7 @@
 
 namespace stairplan {
 
+/// One footfall: when and where a foot touched down.
 struct Footfall {
   double t = 0.0;          ///< touchdown time [s]
   std::string leg;         ///< e.g. "LF"

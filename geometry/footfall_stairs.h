@@ -16,6 +16,7 @@
 
 namespace stairplan {
 
+/// Thresholds and tolerances of StairsFromFootfalls().
 struct FootfallStairsSettings {
   double min_rise = 0.08;   ///< stair height threshold, lower end [m] (seed 001 [0050])
   double max_rise = 0.30;   ///< stair height threshold, upper end [m] ([0051])
@@ -41,6 +42,7 @@ struct FootfallEdge {
   Eigen::Vector2d along = Eigen::Vector2d::UnitY();    ///< unit, perpendicular to the stairs' direction
 };
 
+/// One staircase found from footfalls.
 struct FootfallStaircase {
   StairModel model;                   ///< regular fit: rise and run by least squares over treads and edges
   TravelDirection traversal = TravelDirection::kUp;  ///< how the robot walked it

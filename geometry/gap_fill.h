@@ -8,6 +8,7 @@
 
 namespace stairplan {
 
+/// How FillGaps() tells occlusions from poor vision, and how far it bridges.
 struct GapFillSettings {
   /// A height difference across a hole above this is a near-far contrast (an occlusion) [m].
   double contrast = 0.05;
@@ -22,6 +23,7 @@ struct GapFillSettings {
   void Validate() const;
 };
 
+/// What FillGaps() did, in cells.
 struct GapFillReport {
   int occluded = 0;  ///< cells filled flat
   int smoothed = 0;  ///< cells filled smoothly (kPoor ones included)

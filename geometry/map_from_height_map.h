@@ -12,6 +12,7 @@
 
 namespace stairplan {
 
+/// How ConstrainedMapFromHeightMap() turns the height map's data into collision regions.
 struct MapFromHeightMapSettings {
   TravelDirection travel = TravelDirection::kUp;  ///< which way the robot will traverse the stairs
   Facing facing = Facing::kForward;               ///< and facing which way ([0047])

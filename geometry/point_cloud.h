@@ -11,13 +11,17 @@ namespace stairplan {
 
 /// Points in the world frame [m]. Every point is finite (the readers and the sensor guarantee it).
 struct PointCloud {
-  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3d> points;  ///< the points [m]
 
+  /// Number of points.
   std::size_t size() const { return points.size(); }
+  /// True when there are no points.
   bool empty() const { return points.empty(); }
+  ///@{
   /// Componentwise bounds; both zero for an empty cloud.
   Eigen::Vector3d Min() const;
   Eigen::Vector3d Max() const;
+  ///@}
 };
 
 /// The cloud rotated by `yaw` about z, then translated: p_W = Rz(yaw) p + translation.

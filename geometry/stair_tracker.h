@@ -12,6 +12,7 @@
 
 namespace stairplan {
 
+/// The stair tracker's ranges and tolerances: what it accepts as stairs.
 struct StairTrackerSettings {
   double min_rise = 0.08;   ///< [m]
   double max_rise = 0.30;   ///< [m]
@@ -33,8 +34,9 @@ struct StairTrackerSettings {
   void Validate() const;
 };
 
+/// The tracker's answer: the fitted stairs and how well they explain the data, or why there are none.
 struct StairFit {
-  bool found = false;
+  bool found = false;  ///< true when the cloud is stairs
   std::string reason;      ///< why the cloud is not stairs (empty when found)
   StairModel model;        ///< the stairs, valid when found
   std::vector<double> level_residuals;  ///< measured minus fitted level heights, lowest first [m]

@@ -25,6 +25,7 @@ namespace stairplan {
 /// bytes. Comments, the DOCTYPE and processing instructions are dropped.
 class CheckedXml {
  public:
+  /// Checks and parses `text`; `source_name` starts every error message.
   CheckedXml(const std::string& text, const std::string& source_name);
   ~CheckedXml();
   CheckedXml(const CheckedXml&) = delete;

@@ -18,9 +18,12 @@ namespace stairplan {
 struct TriangleMesh {
   std::string file;                          ///< the file it was read from
   std::vector<Eigen::Vector3d> vertices;     ///< [m]
+  /// index triples into `vertices`, counter-clockwise seen from outside
   std::vector<std::array<int, 3>> triangles;
 
+  /// Componentwise lower bounds of the vertices [m].
   Eigen::Vector3d Min() const;
+  /// Componentwise upper bounds of the vertices [m].
   Eigen::Vector3d Max() const;
 };
 

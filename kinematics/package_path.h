@@ -10,7 +10,7 @@ namespace stairplan {
 
 /// Folders searched for `package://` URIs, in order.
 struct PackagePath {
-  std::vector<std::string> folders;
+  std::vector<std::string> folders;  ///< search folders, in order
 
   /// Splits "DIR[:DIR...]" (empty entries are dropped).
   static PackagePath FromString(const std::string& colon_separated);

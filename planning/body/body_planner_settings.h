@@ -7,6 +7,7 @@
 
 namespace stairplan {
 
+/// The body planner's settings: horizon, cost weights, hard limits, margins, trust region, budget.
 struct BodyPlannerSettings {
   // --- Horizon.
   int knots = 40;             ///< knots over the horizon

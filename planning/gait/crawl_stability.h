@@ -20,7 +20,7 @@ enum class CrawlCase { kRightFirst = 1, kFrontSwitched = 2 };
 
 /// The stability estimate for one arrangement.
 struct CrawlStability {
-  CrawlCase arrangement = CrawlCase::kRightFirst;
+  CrawlCase arrangement = CrawlCase::kRightFirst;  ///< case 1 or case 2
   /// Legs in the order they swing within one cycle, starting with the right hind leg (names as
   /// everywhere in stairplan: LF, RF, LH, RH).
   std::array<const char*, 4> swing_sequence{};

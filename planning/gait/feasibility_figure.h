@@ -10,9 +10,9 @@ namespace stairplan {
 
 /// A stair to mark on the chart [m].
 struct MarkedStair {
-  double run = 0.0;
-  double rise = 0.0;
-  std::string label;
+  double run = 0.0;  ///< tread depth W [m]
+  double rise = 0.0;  ///< riser height H [m]
+  std::string label;  ///< its label on the chart
 };
 
 /// The paper's stairs: nominal 27 x 17 cm, and the two it climbed, 31 x 17.5 and 28 x 16 cm.

@@ -27,6 +27,7 @@ struct DimensionlessVerdict {
   bool c16 = false;  ///< l_max >= l_min, from (13)
   /// CL < BL < 2CL, the assumption under which (11)-(13) replace (8)-(10).
   bool in_body_range = false;
+  /// True when (14), (15) and (16) all hold.
   bool feasible() const { return c14 && c15 && c16; }
 };
 

@@ -28,6 +28,7 @@ TreadErrorTolerance TreadDepthTolerance(const GaitDesign& design, double run, do
 struct CumulativeTreadError {
   std::vector<double> cumulative;  ///< dW_t after each step: the running sum of the errors [m]
   int first_violation = -1;        ///< the first step whose dW_t leaves the range, -1 when none
+  /// True when the cumulative error stays within the range at every step.
   bool within() const { return first_violation < 0; }
 };
 

@@ -42,14 +42,14 @@ const char* ToString(ResponseKind kind);
 
 /// One detected impact with the state the response needs. Positions in the world frame [m].
 struct ImpactEvent {
-  ImpactKind kind = ImpactKind::kTouchdown;
+  ImpactKind kind = ImpactKind::kTouchdown;  ///< what was detected
   std::string leg;                 ///< the swing (or impacted) leg: "LF", "RF", "LH", "RH"
   double swing_phase = 0.0;        ///< 0 at liftoff, 1 at planned touchdown
   double body_yaw = 0.0;           ///< body heading, to know which way is the leg's own side [rad]
   int target_stair = -1;           ///< the stair the swing foot is heading for
-  Eigen::Vector3d swing_foot_W = Eigen::Vector3d::Zero();
-  Eigen::Vector3d target_W = Eigen::Vector3d::Zero();
-  Eigen::Vector3d contralateral_foot_W = Eigen::Vector3d::Zero();
+  Eigen::Vector3d swing_foot_W = Eigen::Vector3d::Zero();  ///< the swing foot now
+  Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< where the swing foot is heading
+  Eigen::Vector3d contralateral_foot_W = Eigen::Vector3d::Zero();  ///< the contralateral leg's foot
 };
 
 /// Tunable parts of the responses, with defaults for a medium quadruped.
@@ -66,7 +66,7 @@ struct ImpactSettings {
 
 /// The reaction to one impact.
 struct ImpactResponse {
-  ResponseKind kind = ResponseKind::kProceed;
+  ResponseKind kind = ResponseKind::kProceed;  ///< the reaction
   Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< the (possibly adjusted) foot target
   std::vector<Eigen::Vector3d> waypoints_W;            ///< intermediate foot positions, in order
   double extra_swing_height = 0.0;                     ///< for kElevateFoot [m]

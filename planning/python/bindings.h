@@ -18,8 +18,10 @@ namespace py = pybind11;
 /// A file named by the caller is missing: Python's FileNotFoundError with `filename` set.
 class FileNotFound : public std::runtime_error {
  public:
+  /// `path`: the missing file.
   explicit FileNotFound(const std::string& path)
       : std::runtime_error("no such file: '" + path + "'"), path_(path) {}
+  /// The missing file.
   const std::string& path() const { return path_; }
 
  private:
@@ -57,11 +59,11 @@ namespace stairplan::python {
 /// Stairs found in a point cloud: the staircase and the constrained map in its own frame, and the
 /// fit (a dict).
 struct Perceived {
-  bool found = false;
-  std::string reason;
-  std::shared_ptr<Staircase> stairs;
-  std::shared_ptr<ConstrainedMap> map;
-  py::dict fit;
+  bool found = false;  ///< stairs were found
+  std::string reason;  ///< why not, when not found
+  std::shared_ptr<Staircase> stairs;  ///< the fitted staircase, when found
+  std::shared_ptr<ConstrainedMap> map;  ///< its constrained map, when found
+  py::dict fit;  ///< the tracker's fit
 };
 
 /// None (the CLI's default stairs), a Stairs, a dict of stairs YAML keys or a YAML file, with the
@@ -79,10 +81,10 @@ namespace stairplan::python {
 /// A plan with what it was planned for: the robot, the stairs, the map, the validation and the
 /// plan.json object (what `stairplan plan` writes, without its "load" timing).
 struct PlanResult {
-  std::shared_ptr<const RobotModel> robot;
-  std::shared_ptr<const Staircase> stairs;
-  std::shared_ptr<const PipelineResult> result;
-  nlohmann::json json;
+  std::shared_ptr<const RobotModel> robot;  ///< the robot planned for
+  std::shared_ptr<const Staircase> stairs;  ///< the stairs planned on
+  std::shared_ptr<const PipelineResult> result;  ///< the map, plan and validation
+  nlohmann::json json;  ///< the plan.json object
 };
 
 }  // namespace stairplan::python

@@ -33,6 +33,7 @@ namespace stairplan {
 /// the plan time [s]: for drawing it (OffscreenRenderer), not for changing it.
 using FrameCallback = std::function<void(MujocoWorld& world, double t)>;
 
+/// Plays a plan on the simulated robot in MuJoCo and judges the run (see the file's top comment).
 class PlanExecutor {
  public:
   /// Builds the world and places the robot on the plan's initial footholds. Throws
@@ -47,6 +48,7 @@ class PlanExecutor {
   /// Settles, executes the plan, holds, and judges. Call once.
   SimulationOutcome Run(const FrameCallback& on_frame = {});
 
+  /// The simulated world.
   const MujocoWorld& world() const { return *world_; }
 
  private:

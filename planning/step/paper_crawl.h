@@ -20,7 +20,9 @@
 
 namespace stairplan {
 
+/// The paper crawl's robot, design choices, timing and body path.
 struct PaperCrawlSettings {
+  /// The body path the paper's crawl is planned with: taller hips and lower swings than the pipeline's.
   static BodyPathSettings PaperBody() {
     BodyPathSettings body;
     body.hip_height_fraction = 0.8;
@@ -36,7 +38,7 @@ struct PaperCrawlSettings {
   /// paper's simulation's d = H / 2 would put the right feet 2.9 cm from the nose, in the band the
   /// map keeps free; its error analysis's 2.8 cm the left feet 20.4 cm back, past the step region.
   double hip_clearance = -1.0;
-  CrawlCase arrangement = CrawlCase::kRightFirst;
+  CrawlCase arrangement = CrawlCase::kRightFirst;  ///< case 1 or case 2 of the contact offsets
   /// How long a swing takes [s]; it sets the hip speed, D_i / swing_duration.
   double swing_duration = 0.5;
   /// Four feet down before the first swing [s].

@@ -9,6 +9,7 @@
 
 namespace stairplan {
 
+/// The step planner's controllers, rule-outs, targets and cost weights.
 struct StepPlannerSettings {
   // --- Controllers (seed 000 [0033]): every cadence with every gait.
   /// Swing durations of the fixed-cadence controllers [s]; 0.25 to 0.45 s in 0.05 s steps.
@@ -26,9 +27,11 @@ struct StepPlannerSettings {
   /// The highest step a leg can clear, as a fraction of its max_reach.
   double max_step_height_fraction = 0.45;
   /// Geometric reach band (hip to foot centre) as fractions of max_reach, used when no other
+  ///@{
   /// ReachModel is given.
   double reach_min_fraction = 0.30;
   double reach_max_fraction = 0.95;
+  ///@}
 
   // --- Targets.
   /// Targets are put at least this far inside their step region (less on very narrow regions) [m].
