@@ -18,6 +18,7 @@ class Link;
 
 namespace stairplan {
 
+/// The kind of a collision shape.
 enum class ShapeType { kBox, kCylinder, kSphere, kMesh };
 
 /// One collision shape of the robot.

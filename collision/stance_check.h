@@ -25,6 +25,7 @@ struct StanceSettings {
   void Validate() const;
 };
 
+/// How a stance check ended: the first failure found.
 enum class StanceStatus {
   kOk,
   kOutOfReach,   ///< some foot cannot be reached

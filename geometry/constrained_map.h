@@ -13,6 +13,7 @@ namespace stairplan {
 
 /// Which way the robot's front faces relative to the direction of travel.
 enum class Facing { kForward, kBackward };
+/// Returns "forward" or "backward".
 const char* ToString(Facing facing);
 
 /// Why a part of a surface is a collision region.
@@ -23,6 +24,7 @@ enum class RegionKind {
   kRobot,  ///< found by checking the robot's legs against the stairs (collision module)
   kData,   ///< poor or missing sensor data (perception)
 };
+/// Returns "edge", "riser", "side", "robot" or "data".
 const char* ToString(RegionKind kind);
 
 /// Margins of the analytic map [m]. Defaults suit a medium quadruped on building-code stairs.

@@ -49,9 +49,11 @@ struct SensorNoise {
 /// Distance along the unit ray (origin, direction) to the nearest box, or +infinity.
 double RayCast(const std::vector<Box3>& solids, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction);
 
+///@{
 /// Scans any set of boxes (a floor, a kerb, a staircase's Solids()) with a camera or a lidar.
 PointCloud ScanSolids(const std::vector<Box3>& solids, const PinholeCamera& camera, const SensorPose& pose, const SensorNoise& noise = {});
 PointCloud ScanSolids(const std::vector<Box3>& solids, const SpinningLidar& lidar, const SensorPose& pose, const SensorNoise& noise = {});
+///@}
 
 /// Scans the stairs with a camera. Throws std::invalid_argument for a non-positive image size,
 /// field of view or range, or a negative noise sigma.

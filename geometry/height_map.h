@@ -21,6 +21,7 @@ enum class CellState : std::uint8_t {
   kSmoothed,  ///< missing without contrast: filled smoothly
   kPoor,      ///< filled smoothly but far from any data: not to be trusted for stepping
 };
+/// Returns "unknown", "measured", "occluded", "smoothed" or "poor".
 const char* ToString(CellState state);
 
 /// How a cloud is binned into a HeightMap.

@@ -27,6 +27,7 @@ struct PointCloud {
 /// The cloud rotated by `yaw` about z, then translated: p_W = Rz(yaw) p + translation.
 PointCloud TransformCloud(const PointCloud& cloud, double yaw, const Eigen::Vector3d& translation);
 
+/// The cloud file formats ReadPointCloud() reads.
 enum class CloudFormat { kPly, kPcd, kXyz };
 
 /// The format of a cloud file by its content: a "ply" first line, a PCD header (comments, then

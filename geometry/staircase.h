@@ -11,6 +11,7 @@
 
 namespace stairplan {
 
+/// Which way the robot travels the stairs: up or down.
 enum class TravelDirection { kUp, kDown };
 
 /// Returns "up" or "down".

@@ -47,7 +47,9 @@ struct BodyState {
   double com_shift_y = 0.0;  ///< leftward shift of the centre of mass [m]
 };
 
+/// Whether a plan was found.
 enum class PlanStatus { kOk, kInfeasible };
+/// Returns "ok" or "infeasible".
 const char* ToString(PlanStatus status);
 
 /// What made a plan's body trajectory.

@@ -39,6 +39,8 @@ std::vector<StairSpec> PerturbedStaircases(const StairSpec& nominal, const Robus
 /// The nominal plan moved onto `true_stairs`: footholds keep x and y and take the true height.
 Plan PlanOnTrueStairs(const Plan& nominal, const Staircase& true_stairs, const ConstrainedMap& true_map);
 
+/// Plans `nominal`, then for each of PerturbedStaircases(): the nominal plan executed open loop on
+/// the perturbed stairs, and a new plan made on them, both validated there (not per cycle).
 RobustnessReport EvaluateRobustness(const RobotModel& robot, const StairSpec& nominal, const PipelineOptions& options,
                                     const RobustnessSettings& settings);
 

@@ -34,6 +34,7 @@
 
 namespace stairplan {
 
+/// Number of legs the body planner plans for (quadrupeds).
 constexpr int kBodyLegs = 4;
 
 /// The body planner's QP over the horizon's knots, built once and re-solved warm every cycle (see

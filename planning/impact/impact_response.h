@@ -37,7 +37,9 @@ enum class ResponseKind {
   kProceed,               ///< no reaction: continue the planned motion
 };
 
+/// Returns the kind's snake_case name, e.g. "knee_behind_body".
 const char* ToString(ImpactKind kind);
+/// Returns the response's snake_case name, e.g. "move_knee_forward".
 const char* ToString(ResponseKind kind);
 
 /// One detected impact with the state the response needs. Positions in the world frame [m].

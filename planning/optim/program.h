@@ -40,8 +40,10 @@
 
 #include <Eigen/Core>
 
+/// The optimisation core: programs, solvers and QP benchmark sets; it includes nothing else of stairplan.
 namespace stairplan::optim {
 
+/// Infinity: a bound that does not bind.
 constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Bounds at or beyond this magnitude mean "no bound" (QPS files use 1e30).
 constexpr double kInfiniteBound = 1e20;

@@ -27,9 +27,11 @@ namespace stairplan::optim {
 /// Makes a fresh solver (a cold start is a new object).
 using SolverFactory = std::function<std::unique_ptr<Solver>()>;
 
+///@{
 /// qpbenchmark's accuracies: mid (1e-6) and high (1e-9).
 constexpr double kMidAccuracy = 1e-6;
 constexpr double kHighAccuracy = 1e-9;
+///@}
 
 /// One measured solve: its outcome, qpbenchmark's residuals and its time.
 struct QpSample {

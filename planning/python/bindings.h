@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <pybind11/pybind11.h>
 
+/// The Python module's C++ side (planning/python): bindings and conversions.
 namespace stairplan::python {
 
 namespace py = pybind11;
@@ -28,11 +29,14 @@ class FileNotFound : public std::runtime_error {
   std::string path_;
 };
 
+///@{
+/// Adds one area's classes and functions to the module `m`.
 void BindGeometry(py::module_& m);
 void BindPlan(py::module_& m);
 void BindSweep(py::module_& m);
 void BindOptim(py::module_& m);
 void BindBody(py::module_& m);
+///@}
 
 /// JSON as Python objects (dict, list, str, float, int, bool, None). Non-finite numbers become
 /// None, as nlohmann's dump() writes them, so to_dict() equals the parsed file.

@@ -28,6 +28,7 @@ struct AgreementReport {
   std::vector<VerdictPair> invalid_but_passed; ///< the validator said invalid, physics passed
 };
 
+/// Counts agreements over `pairs` and collects the disagreements.
 AgreementReport CompareVerdicts(const std::vector<VerdictPair>& pairs);
 
 /// A short plain-text report: counts, rate, then each disagreement with both causes.

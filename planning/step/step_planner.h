@@ -58,6 +58,7 @@ enum class RuleOut {
   kLeaderBehind,    ///< the only targets would land a leading leg behind its trailing leg ([0070])
   kStepsBack,       ///< the only targets lie on a stair behind the leg's own
 };
+/// Returns the reason in words, e.g. "no step region".
 const char* ToString(RuleOut reason);
 
 /// One footstep of a controller's plan, unconstrained and snapped.

@@ -29,6 +29,7 @@ enum class ViolationKind {
   kStability,              ///< the centre of mass outside the support polygon (by less than the margin)
   kBodyAcceleration,       ///< a quasi-static plan's body accelerating faster than a robot can (value in m/s^2)
 };
+/// Returns the kind as plan.json writes it, e.g. "stair_collision".
 const char* ToString(ViolationKind kind);
 
 /// One violation found by the validator: when, which leg, what and by how much.
