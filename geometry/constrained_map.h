@@ -32,7 +32,7 @@ struct ConstrainedMapSettings {
   double edge_margin = 0.05;      ///< keep-out from the walking edge of a tread
   double riser_margin = 0.07;     ///< keep-out from the riser / nosing above a tread
   double side_margin = 0.10;      ///< keep-out from the stair's sides
-  /// Descending backwards, feet go to this middle fraction of each tread (seed 000 [0047]).
+  /// Descending backwards, feet go to this middle fraction of each tread (US 2020/0324412 [0047]).
   double backward_middle_fraction = 0.6;
   /// Narrowest step region kept; narrower treads get none (the planner must pass over them).
   double min_region_depth = 0.04;

@@ -1,5 +1,6 @@
-// Footfalls: where and when a foot touched the ground, as logged by a robot (seed 001 [0045]).
-// CSV columns t, leg, x, y, z with a header line; the readers name the file and line of errors.
+// Footfalls: where and when a foot touched the ground, as logged by a robot (PCT/US2021/022953
+// ("Identifying stairs from footfalls") [0045]). CSV columns t, leg, x, y, z with a header line;
+// the readers name the file and line of errors.
 #pragma once
 
 #include <string>

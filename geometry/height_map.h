@@ -17,7 +17,7 @@ namespace stairplan {
 enum class CellState : std::uint8_t {
   kUnknown,   ///< no data and not inferred: height is NaN
   kMeasured,  ///< from points in the cell
-  kOccluded,  ///< hidden behind a near-far contrast: filled flat (seed 000 [0042])
+  kOccluded,  ///< hidden behind a near-far contrast: filled flat (US 2020/0324412 [0042])
   kSmoothed,  ///< missing without contrast: filled smoothly
   kPoor,      ///< filled smoothly but far from any data: not to be trusted for stepping
 };

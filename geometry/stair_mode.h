@@ -1,8 +1,8 @@
-// Using a stair model (seed 001 [0042]-[0043], claims 6-9): a stair mode that switches on when
-// the robot comes within a set distance of a known staircase (and off again, with hysteresis,
-// once it has left), and the pose to take before climbing or descending: heading along the
-// stairs' direction vector (turned round when the robot goes backwards), centred across the width,
-// sensors pointed along the direction of travel.
+// Using a stair model (PCT/US2021/022953 ("Identifying stairs from footfalls") [0042]-[0043],
+// claims 6-9): a stair mode that switches on when the robot comes within a set distance of a known
+// staircase (and off again, with hysteresis, once it has left), and the pose to take before
+// climbing or descending: heading along the stairs' direction vector (turned round when the robot
+// goes backwards), centred across the width, sensors pointed along the direction of travel.
 #pragma once
 
 #include <vector>

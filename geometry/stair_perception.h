@@ -1,6 +1,7 @@
-// Perception end to end (seed 000 claim 1, step regions from image data): a point cloud becomes a
-// height map with its gaps filled, the stair tracker's model, and the constrained map the planners
-// use. One call for `stairplan plan --cloud` and `stairplan map`.
+// Perception end to end (US 2020/0324412 A1 ("Robotically negotiating stairs") claim 1, step
+// regions from image data): a point cloud becomes a height map with its gaps filled, the stair
+// tracker's model, and the constrained map the planners use. One call for `stairplan plan --cloud`
+// and `stairplan map`.
 #pragma once
 
 #include <optional>

@@ -1,7 +1,8 @@
-// The stair tracker (seed 000 [0071]): fits a regular staircase to a noisy point cloud by leaning
-// on the structure every staircase shares: parallel edges at a constant run, flat treads at a
-// constant rise. Terrain that does not fit (a ramp, a flat floor, a single box) is rejected with
-// the reason, and a fit reports how well the model explains the data.
+// The stair tracker (US 2020/0324412 A1 ("Robotically negotiating stairs") [0071]): fits a regular
+// staircase to a noisy point cloud by leaning on the structure every staircase shares: parallel
+// edges at a constant run, flat treads at a constant rise. Terrain that does not fit (a ramp, a
+// flat floor, a single box) is rejected with the reason, and a fit reports how well the model
+// explains the data.
 #pragma once
 
 #include <string>

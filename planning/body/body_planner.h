@@ -1,8 +1,8 @@
-// The control-loop body planner (seed 000 [0050]-[0052], claims 3-4): a receding-horizon QP over
-// the body's height, pitch and forward and sideways weight shift, bounded by every stance leg's
-// reach, by the height below which a leg would touch the stairs and by the support polygon the
-// centre of mass must stay over (quasi-static gaits), re-linearised around the previous solution
-// and re-solved warm once per cycle.
+// The control-loop body planner (US 2020/0324412 A1 ("Robotically negotiating stairs")
+// [0050]-[0052], claims 3-4): a receding-horizon QP over the body's height, pitch and forward and
+// sideways weight shift, bounded by every stance leg's reach, by the height below which a leg would
+// touch the stairs and by the support polygon the centre of mass must stay over (quasi-static
+// gaits), re-linearised around the previous solution and re-solved warm once per cycle.
 //
 //   BodyPlanner planner(robot, stairs, map, PlanCrawl(robot, stairs, map), settings);  // once
 //   BodyState state = planner.StartState();

@@ -1,7 +1,8 @@
-// The body planner's QP (seed 000 [0050]-[0052]): per knot the body height z, the pitch and the
-// forward and sideways shifts of the centre of mass. Built once; every cycle the bounds and linear
-// terms change, and the few support rows whose feet changed get new coefficients (inactive rows:
-// ActiveSetQpSolver keeps its factorisation), so it re-solves warm without allocating.
+// The body planner's QP (US 2020/0324412 A1 ("Robotically negotiating stairs") [0050]-[0052]): per
+// knot the body height z, the pitch and the forward and sideways shifts of the centre of mass.
+// Built once; every cycle the bounds and linear terms change, and the few support rows whose feet
+// changed get new coefficients (inactive rows: ActiveSetQpSolver keeps its factorisation), so it
+// re-solves warm without allocating.
 //
 //   min  sum_k [ sum_legs w_h (z_k + c_l pitch_k - height_ref_kl)^2       hip height above the feet
 //              + w_p (pitch_k - pitch_ref_k)^2 + w_s (shift_k - shift_ref_k)^2 ]

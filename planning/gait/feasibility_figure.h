@@ -1,6 +1,7 @@
-// The paper's Figure 4(b) (seed 003): the cross-section of the feasible volume of (14)-(16) at a
-// given l_max/BL and p, in the plane of W/BL and H/BL, with the paper's three stairs and the
-// building-code ranges of real stairs marked. Returned as SVG text; the caller writes it.
+// The paper's Figure 4(b) (Chen, Ko, Li, Lin 2012, "Stair Climbing in a Quadruped Robot"): the
+// cross-section of the feasible volume of (14)-(16) at a given l_max/BL and p, in the plane of W/BL
+// and H/BL, with the paper's three stairs and the building-code ranges of real stairs marked.
+// Returned as SVG text; the caller writes it.
 #pragma once
 
 #include <string>

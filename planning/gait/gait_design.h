@@ -1,6 +1,6 @@
-// The gait design of "Stair Climbing in a Quadruped Robot" (Chen, Ko, Li, Lin, 2012; seed 003):
-// minimum leg length, contact offsets, swing separations and the four-leg interference conditions
-// for a quasi-static crawl whose hips travel parallel to the stairs' edge line. Pure geometry.
+// The gait design of "Stair Climbing in a Quadruped Robot" (Chen, Ko, Li, Lin, 2012): minimum leg
+// length, contact offsets, swing separations and the four-leg interference conditions for a
+// quasi-static crawl whose hips travel parallel to the stairs' edge line. Pure geometry.
 //
 // Symbols follow the paper: W tread depth (run), H rise, CL = sqrt(W^2 + H^2), phi = atan(H / W),
 // d hip clearance (hip path to edge line), l leg length (hip to foot), BL body length (hip to hip),

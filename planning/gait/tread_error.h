@@ -1,6 +1,7 @@
-// How much tread depth may differ from the design's W before the crawl loses its footing (seed 003,
-// "Error Adaptation", eqs. (17)-(19)). Errors add up from step to step because the gait runs open
-// loop, so a staircase is checked on the cumulative error.
+// How much tread depth may differ from the design's W before the crawl loses its footing (Chen, Ko,
+// Li, Lin 2012, "Stair Climbing in a Quadruped Robot", "Error Adaptation", eqs. (17)-(19)). Errors
+// add up from step to step because the gait runs open loop, so a staircase is checked on the
+// cumulative error.
 #pragma once
 
 #include <vector>

@@ -1,6 +1,7 @@
-// Responses to impacts while traversing stairs (seed 000 [0053]-[0068], claims 5-8): given what hit
-// what and where the swing leg is in its swing, decide how the robot reacts. Pure decision logic;
-// the impact detector that produces the events lives with the controller or the simulator.
+// Responses to impacts while traversing stairs (US 2020/0324412 A1 ("Robotically negotiating
+// stairs") [0053]-[0068], claims 5-8): given what hit what and where the swing leg is in its swing,
+// decide how the robot reacts. Pure decision logic; the impact detector that produces the events
+// lives with the controller or the simulator.
 #pragma once
 
 #include <string>
@@ -12,7 +13,7 @@
 
 namespace stairplan {
 
-/// What was detected.
+/// What was detected (paragraphs of US 2020/0324412 A1, "Robotically negotiating stairs").
 enum class ImpactKind {
   kTouchdown,              ///< the swing foot reached its target tread ([0055])
   kKneeBehindBody,         ///< a trailing knee hit something behind the body ([0058])

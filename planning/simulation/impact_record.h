@@ -1,5 +1,6 @@
-// Impacts as the executor met them (seed 000 [0053]-[0068]): what hit what, when, how it was
-// found (MuJoCo's contact list or the joint-torque residual) and how the robot answered.
+// Impacts as the executor met them (US 2020/0324412 A1 ("Robotically negotiating stairs")
+// [0053]-[0068]): what hit what, when, how it was found (MuJoCo's contact list or the joint-torque
+// residual) and how the robot answered.
 #pragma once
 
 #include <string>

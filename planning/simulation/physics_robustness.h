@@ -1,6 +1,6 @@
 // The robustness command's perturbed stairs in MuJoCo: the nominal plan executed open loop on each
 // staircase, once answering impacts and once only recording them, so that what the responses of
-// seed 000 [0053]-[0068] buy is counted on the same stairs.
+// US 2020/0324412 [0053]-[0068] buy is counted on the same stairs.
 #pragma once
 
 #include <vector>

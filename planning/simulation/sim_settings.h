@@ -61,7 +61,7 @@ struct SimSettings {
   double late_descent_speed = 0.2;   ///< a foot late for touchdown keeps lowering at this speed [m/s]
   double late_descent_max = 0.05;    ///< ... by at most this much [m]
 
-  /// Impact detection and the responses to impacts (seed 000 [0053]-[0068]).
+  /// Impact detection and the responses to impacts (US 2020/0324412 [0053]-[0068]).
   ImpactDetectionSettings impact;
 
   // Judgement.

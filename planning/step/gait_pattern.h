@@ -7,8 +7,9 @@
 
 namespace stairplan {
 
-/// The paper's crawl (seed 003): one leg at a time, rear right, rear left, fore right, fore left;
-/// its alternative with the fore pair switched; and a trot-like gait with diagonal pairs.
+/// The crawl of Chen, Ko, Li, Lin 2012, "Stair Climbing in a Quadruped Robot": one leg at a time,
+/// rear right, rear left, fore right, fore left; its alternative with the fore pair switched; and a
+/// trot-like gait with diagonal pairs.
 enum class Gait { kCrawl, kCrawlAlternate, kTrot };
 
 /// "crawl", "crawl_alt" or "trot".

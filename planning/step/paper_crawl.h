@@ -1,10 +1,11 @@
-// The 2012 paper's crawl as a footstep source (seed 003, "Trajectory planning procedure"): the
-// gait design of planning/gait/ laid on a real staircase. Right feet land a_min from each nose,
-// left feet a_max (case 1; the front pair switched in case 2); each leg lifts off when its hip,
-// moving at a constant speed along the line d above the stairs' edges, reaches the point where it
-// is equidistant from its two contacts (eq. (3)), and swings for D_i (eqs. (5)-(7)), low under
-// its hip to the riser first, then up and over (Footstep::swing_approach_share), as the paper's leg
-// rotates about its hip. On the landings the same pattern continues with virtual noses one run apart.
+// The 2012 paper's crawl as a footstep source (Chen, Ko, Li, Lin 2012, "Stair Climbing in a
+// Quadruped Robot", "Trajectory planning procedure"): the gait design of planning/gait/ laid on a
+// real staircase. Right feet land a_min from each nose, left feet a_max (case 1; the front pair
+// switched in case 2); each leg lifts off when its hip, moving at a constant speed along the line d
+// above the stairs' edges, reaches the point where it is equidistant from its two contacts (eq.
+// (3)), and swings for D_i (eqs. (5)-(7)), low under its hip to the riser first, then up and over
+// (Footstep::swing_approach_share), as the paper's leg rotates about its hip. On the landings the
+// same pattern continues with virtual noses one run apart.
 //
 // The body is not the paper's rigid constant-velocity line (it would put the hind hips under the
 // bottom landing at the start and has no way off the flight): it is the quasi-static body path

@@ -1,11 +1,11 @@
-// The step planner (seed 000 [0033]-[0035], [0070], claims 9-12): a set of fixed-cadence
-// controllers (swing duration x gait) each turns the body's velocity command into an unconstrained
-// step plan over a horizon; every cycle each plan is checked against hard rules (a target no leg
-// reaches, a step too high to clear), scored against the constrained map (distance of each
-// unconstrained footstep from the nearest step region dominates; soft terms for swing height, reach
-// and timing), and the lowest score wins. The chosen plan's targets are snapped into their step
-// regions; a leading leg never lands behind its trailing leg, and a trailing leg passes its leading
-// leg only at a cost, when nothing else is in reach ([0070]).
+// The step planner (US 2020/0324412 A1 ("Robotically negotiating stairs") [0033]-[0035], [0070],
+// claims 9-12): a set of fixed-cadence controllers (swing duration x gait) each turns the body's
+// velocity command into an unconstrained step plan over a horizon; every cycle each plan is checked
+// against hard rules (a target no leg reaches, a step too high to clear), scored against the
+// constrained map (distance of each unconstrained footstep from the nearest step region dominates;
+// soft terms for swing height, reach and timing), and the lowest score wins. The chosen plan's
+// targets are snapped into their step regions; a leading leg never lands behind its trailing leg,
+// and a trailing leg passes its leading leg only at a cost, when nothing else is in reach ([0070]).
 //
 // Built once from the robot, the map and the settings; Update() allocates nothing.
 #pragma once
@@ -55,7 +55,7 @@ enum class RuleOut {
   kStepTooHigh,     ///< a footstep needs a step higher than the leg can clear
   kUnreachable,     ///< no target in reach from touchdown through the longest coming stance
   kStanceLost,      ///< a stance foot falls out of reach before the plan lifts it
-  kLeaderBehind,    ///< the only targets would land a leading leg behind its trailing leg ([0070])
+  kLeaderBehind,    ///< the only targets land a leading leg behind its trailing leg (US 2020/0324412 [0070])
   kStepsBack,       ///< the only targets lie on a stair behind the leg's own
 };
 /// Returns the reason in words, e.g. "no step region".
