@@ -18,7 +18,7 @@ namespace stairplan {
 struct TriangleMesh {
   std::string file;                          ///< the file it was read from
   std::vector<Eigen::Vector3d> vertices;     ///< [m]
-  /// index triples into `vertices`, counter-clockwise seen from outside
+  /// Index triples into `vertices`, counter-clockwise seen from outside.
   std::vector<std::array<int, 3>> triangles;
 
   /// Componentwise lower bounds of the vertices [m].

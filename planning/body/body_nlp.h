@@ -64,7 +64,7 @@ struct BodyNlpSolution {
   /// Per knot k and leg l (index k * kBodyLegs + l): the stance foothold (-1: swing) and the
   /// multipliers of its lowest- and highest-hip bounds.
   std::vector<int> stance_foothold;
-  /// per knot and leg, as stance_foothold: the multipliers of its two bounds
+  /// Per knot and leg, as stance_foothold: the multipliers of its two bounds.
   std::vector<std::array<double, 2>> stance_duals;
   /// Per acceleration row: quantity q (0 height, 1 pitch, 2 shift) over knots k .. k + 2 at
   /// q * (knots - 2) + k.

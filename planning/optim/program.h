@@ -174,9 +174,9 @@ class Program {
   const Eigen::VectorXd& variable_lower() const { return var_lower_; }  ///< lower bounds of x
   const Eigen::VectorXd& variable_upper() const { return var_upper_; }  ///< upper bounds of x
   const Eigen::VectorXd& initial_guess() const { return x0_; }  ///< x0, where solvers start
-  /// the nonlinear costs f_i
+  /// The nonlinear costs f_i.
   const std::vector<NonlinearCost>& nonlinear_costs() const { return nonlinear_costs_; }
-  /// the nonlinear constraints c_j
+  /// The nonlinear constraints c_j.
   const std::vector<NonlinearConstraint>& nonlinear_constraints() const { return nonlinear_constraints_; }
   /// True when there are no nonlinear costs or constraints.
   bool IsQuadratic() const { return nonlinear_costs_.empty() && nonlinear_constraints_.empty(); }

@@ -15,7 +15,7 @@ namespace stairplan {
 
 /// How the executor detects impacts and whether it answers them.
 struct ImpactDetectionSettings {
-  /// how impacts are detected: torque residual, contact list or none
+  /// How impacts are detected: torque residual, contact list or none.
   ImpactSource source = ImpactSource::kTorqueResidual;
   bool respond = true;             ///< carry the responses out (false: detect and record only)
   /// An external force at a swing foot above this share of the robot's weight is an impact.

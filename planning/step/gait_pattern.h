@@ -22,7 +22,7 @@ enum class TravelRole { kRearRight = 0, kRearLeft = 1, kForeRight = 2, kForeLeft
 struct GaitPattern {
   int phases = 4;  ///< phases per cycle
   int legs_per_phase = 1;  ///< legs swinging together in a phase
-  /// the roles swinging in each phase (the first legs_per_phase entries)
+  /// The roles swinging in each phase (the first legs_per_phase entries).
   std::array<std::array<TravelRole, 2>, 4> phase_roles{};
 
   /// Swing legs per cycle: phases * legs_per_phase (always 4).

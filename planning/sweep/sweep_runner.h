@@ -21,7 +21,7 @@ struct SweepRow {
   double cadence_s = 0.0;  ///< the chosen controller's swing duration [s]
   int footsteps = 0;  ///< footsteps in the plan
   double min_clearance_m = std::numeric_limits<double>::quiet_NaN();         ///< blank in CSV when unknown
-  /// smallest COM margin of the validation; blank in CSV when unknown [m]
+  /// Smallest COM margin of the validation; blank in CSV when unknown [m].
   double min_stability_margin_m = std::numeric_limits<double>::quiet_NaN();
   double plan_us = 0.0;     ///< not deterministic: only written with times
   double validate_us = 0.0;  ///< not deterministic: only written with times
