@@ -20,8 +20,9 @@ using namespace stairplan;
 namespace {
 
 // Two pairs may be as close as each other to round-off (a foot in a tread block and in the nosing
-// lip level with it): which one is kept may differ, its distance not beyond this [m].
-constexpr double kSameDistance = 1e-12;
+// lip level with it), and another compiler may round the poses differently on the two paths (GJK
+// stops within 1e-10): the distance kept may differ by this much, a nanometre [m].
+constexpr double kSameDistance = 1e-9;
 
 // Every shape pair of two legs measured (with the hints the queries give), in the base frame.
 double EveryPairLegLeg(const RobotKinematics& kinematics, const RobotCollisionModel& robot, int a,
