@@ -10,6 +10,7 @@ install(TARGETS stairplan RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # include urdfdom, a private dependency): not installed. scripts/check_install.sh checks that every
 # installed header's includes of ours are installed too.
 set(internal_headers body_nlp_internal.h difference_matrices.h urdf_parse.h urdf_pose.h lzf.h)
+list(APPEND internal_headers executor_leg_state.h)
 set(exclude_internal "")
 foreach(header ${internal_headers})
   list(APPEND exclude_internal PATTERN ${header} EXCLUDE)
