@@ -1,12 +1,9 @@
 #include "planning/simulation/plan_executor.h"
 
 #include <algorithm>
-#include <limits>
-#include <optional>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
-#include <tuple>
 
 #include <Eigen/Dense>
 #include <mujoco/mujoco.h>
@@ -15,6 +12,7 @@
 #include "planning/plan_pipeline.h"
 #include "planning/simulation/body_reference.h"
 #include "planning/simulation/executor_leg_state.h"
+#include "planning/simulation/impact_detection.h"
 #include "planning/simulation/plan_dynamics.h"
 #include "planning/validation/traversal_validator.h"
 

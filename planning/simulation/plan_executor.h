@@ -7,7 +7,10 @@
 // foot that touches the stairs in the second half of its swing becomes a stance foot where it
 // touched. Impacts (US 2020/0324412 [0053]-[0068]) are detected from the joint-torque residual or
 // from MuJoCo's contact list, classified, answered with RespondToImpact's response (a tripped foot
-// draws back and lifts higher, or goes down at once), and recorded in the outcome.
+// draws back and lifts higher, or goes down at once; a foot that strikes the contralateral leg
+// steps away from it; a foot down outside the step region hops into it), recorded in the outcome
+// and told to an ImpactListener. Detection lives in executor_impact_detection.cc, responses in
+// executor_impact_response.cc.
 #pragma once
 
 #include <array>
@@ -86,10 +89,10 @@ class PlanExecutor {
   Eigen::Vector3d FootForce(const LegState& leg);
   /// RespondToImpact for `kind` on swing leg `i`, carried out and recorded; true when the swing changed.
   bool Respond(std::size_t i, ImpactKind kind, double tp, const std::string& link, double force);
-  /// The swing of leg `leg` replaced from now: from `from_W` to `to_W` over the apex, ending no
-  /// earlier than min_reswing_time from now.
   /// Appends `record` to the outcome and tells the listener.
   void RecordImpact(const ImpactRecord& record);
+  /// The swing of leg `leg` replaced from now: from `from_W` to `to_W` over the apex, ending no
+  /// earlier than min_reswing_time from now.
   void Reswing(LegState& leg, double tp, const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, double apex_z);
   double SwingPhase(const LegState& leg, double tp) const;
   /// Height of `p_W` above the stairs under it and a little either way along `ahead_W` [m].
