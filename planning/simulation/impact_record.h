@@ -39,7 +39,8 @@ struct ImpactRecord {
   Eigen::Vector3d at_W = Eigen::Vector3d::Zero();
   /// The swing's target after the response: the planned foothold unless the response moved it [m, world].
   Eigen::Vector3d target_W = Eigen::Vector3d::Zero();
-  /// The response was carried out (false: recorded only, with responses off or the leg's quota spent).
+  /// The response was carried out (false: kProceed, which moves nothing, or recorded only, with
+  /// responses off or the leg's quota spent).
   bool executed = false;
 };
 
