@@ -77,6 +77,9 @@ class ContactWrenchQp {
   const ContactWrenchResult& Solve(const std::array<ContactFoot, 4>& feet, const Eigen::Vector3d& com_W,
                                    const Eigen::Vector3d& force_W, const Eigen::Vector3d& moment_W);
 
+  /// The next solve starts cold (no active set, H refactorised): for benchmarks' cold regime.
+  void ResetWarmStart() { solver_.ResetWarmStart(); }
+
   const ContactWrenchSettings& settings() const { return settings_; }
 
  private:

@@ -26,6 +26,7 @@ class MissedWrenchDrift {
   double floor_ = 0.0;
   bool started_ = false;
   double last_t_ = 0.0;
+  double last_residual_ = 0.0;  // [N]
   double speed_ = 0.0;  // [m/s]
   double drift_ = 0.0;
   double duration_ = 0.0;

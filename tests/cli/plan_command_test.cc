@@ -134,6 +134,7 @@ TEST_CASE("plan.json names the body planner and, for the receding horizon, carri
   REQUIRE(path.code == 0);
   const json by_path = json::parse(ReadFile(dir + "/path/plan.json"));
   CHECK(by_path["body_planner"] == "quasi_static_path");
+  CHECK(by_path["balance"] == "quasi_static");
   CHECK(by_path["body_cycles"]["count"] == 0);
 
   const Run qp = Plan("--steps 2 --body qp --set body.stability_margin=0.03 --out " + dir + "/qp", dir);
