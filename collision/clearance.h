@@ -1,7 +1,9 @@
 // Clearances between the robot and the stairs, and between contralateral legs: the smallest
-// signed distance over all shape pairs with the closest points, in the world frame. Pairs whose
-// bounding-sphere lower bound cannot beat the current minimum are skipped, so a leg far from the
-// stairs costs a few box distances. No allocation for separated configurations.
+// signed distance over all shape pairs with the closest points, in the world frame. Pairs are
+// measured closest first by their bounding spheres, and a pair whose lower bound (bounding spheres,
+// then the shapes' extents along the line between them) cannot beat the closest measured is
+// skipped, so a leg far from the stairs costs a few box distances. No allocation of ours for
+// separated configurations (FCL's support search on a hull allocates).
 #pragma once
 
 #include <limits>

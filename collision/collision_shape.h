@@ -18,12 +18,13 @@ class Link;
 
 namespace stairplan {
 
+/// The kind of a collision shape.
 enum class ShapeType { kBox, kCylinder, kSphere, kMesh };
 
 /// One collision shape of the robot.
 struct CollisionShape {
-  std::shared_ptr<const fcl::CollisionGeometryd> geometry;
-  ShapeType type = ShapeType::kBox;
+  std::shared_ptr<const fcl::CollisionGeometryd> geometry;  ///< the FCL shape, centred at `local`
+  ShapeType type = ShapeType::kBox;  ///< box, cylinder, sphere or mesh
   /// Box sides; cylinder (r, r, length); sphere (r, r, r); a mesh's bounding box sides [m].
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   /// Shape pose in its frame (for a mesh: the centre of its bounding box, where its geometry sits).

@@ -12,8 +12,8 @@ namespace stairplan {
 
 /// A closed convex polytope: its vertices and outward (counter-clockwise seen from outside) triangles.
 struct MeshHull {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> triangles;
+  std::vector<Eigen::Vector3d> vertices;  ///< the hull's corners
+  std::vector<std::array<int, 3>> triangles;  ///< indices into `vertices`, outward counter-clockwise
 };
 
 /// The convex hull of `points` (qhull, triangulated). Throws std::invalid_argument starting with

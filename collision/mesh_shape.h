@@ -21,7 +21,7 @@ struct MeshShape {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   /// The hull's vertices relative to `centre` (also for the exact mesh: its support points).
   std::vector<Eigen::Vector3d> hull_vertices;
-  int hull_triangles = 0;
+  int hull_triangles = 0;  ///< how many triangles the hull has
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< bounding box sides [m]
   double bounding_radius = 0.0;  ///< of a sphere about `centre` enclosing the mesh [m]
 };

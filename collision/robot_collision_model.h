@@ -25,6 +25,7 @@ class RobotCollisionModel {
   int foot_shape(int index) const { return foot_shapes_.at(static_cast<std::size_t>(index)); }
   /// Shapes fixed to the base frame (segment -1).
   const std::vector<CollisionShape>& body_shapes() const { return body_; }
+  /// Number of legs (RobotKinematics leg order).
   int leg_count() const { return static_cast<int>(legs_.size()); }
 
  private:

@@ -13,6 +13,7 @@
 
 namespace stairplan {
 
+/// How FindRobotCollisionRegions() samples the footholds.
 struct RobotRegionSettings {
   double sample_step = 0.01;          ///< foothold spacing along each surface [m]
   double min_clearance = 0.0;         ///< a foothold needs more clearance than this [m]
@@ -23,8 +24,10 @@ struct RobotRegionSettings {
 
 /// One stretch of a surface found unsafe.
 struct RobotRegion {
-  int stair_index = 0;
+  int stair_index = 0;  ///< the surface (Staircase::surface index)
+  ///@{
   double x0 = 0.0, x1 = 0.0;       ///< along travel [m]
+  ///@}
   StairPart part = StairPart::kOther;  ///< what the leg would hit
   int leg = -1;                    ///< the first leg found hitting it
 };

@@ -13,6 +13,8 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
+#include "collision/shape_support.h"
+
 namespace stairplan {
 namespace {
 
@@ -32,62 +34,6 @@ SignedDistanceResult Fallback(const Eigen::Isometry3d& pose_a, const Eigen::Isom
   }
   r.point_a = ca;
   return r;
-}
-
-// The vertex of a mesh shape (hull or triangles) furthest along n_local, in its own frame; null
-// for other shapes. A mesh's support is its hull's, so the triangles' vertices serve as well.
-const Eigen::Vector3d* MeshSupportVertex(const fcl::CollisionGeometryd& g, const Eigen::Vector3d& n_local) {
-  const Eigen::Vector3d* vertices = nullptr;
-  int count = 0;
-  if (g.getNodeType() == fcl::GEOM_CONVEX) {
-    const auto& convex = static_cast<const fcl::Convexd&>(g);
-    vertices = convex.getVertices().data();
-    count = static_cast<int>(convex.getVertices().size());
-  } else if (g.getNodeType() == fcl::BV_OBBRSS) {
-    const auto& model = static_cast<const fcl::BVHModel<fcl::OBBRSSd>&>(g);
-    vertices = model.vertices;
-    count = model.num_vertices;
-  }
-  const Eigen::Vector3d* best = nullptr;
-  double best_value = -std::numeric_limits<double>::infinity();
-  for (int i = 0; i < count; ++i) {
-    const double value = n_local.dot(vertices[i]);
-    if (value > best_value) {
-      best_value = value;
-      best = &vertices[i];
-    }
-  }
-  return best;
-}
-
-bool IsMesh(const fcl::CollisionGeometryd& g) {
-  return g.getNodeType() == fcl::GEOM_CONVEX || g.getNodeType() == fcl::BV_OBBRSS;
-}
-
-// How far a shape reaches from its origin along unit direction n (a primitive's half-extent;
-// a mesh, not centred on its origin, may reach less one way than the other), or NaN for a
-// geometry we do not model.
-double Support(const fcl::CollisionGeometryd& g, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& n) {
-  if (IsMesh(g)) {
-    const Eigen::Vector3d n_local = rotation.transpose() * n;
-    const Eigen::Vector3d* vertex = MeshSupportVertex(g, n_local);
-    return vertex ? n_local.dot(*vertex) : std::numeric_limits<double>::quiet_NaN();
-  }
-  switch (g.getNodeType()) {
-    case fcl::GEOM_BOX: {
-      const Eigen::Vector3d half = 0.5 * static_cast<const fcl::Boxd&>(g).side;
-      return (rotation.transpose() * n).cwiseAbs().dot(half);
-    }
-    case fcl::GEOM_CYLINDER: {
-      const auto& c = static_cast<const fcl::Cylinderd&>(g);
-      const double along = std::abs(rotation.col(2).dot(n));
-      return c.radius * std::sqrt(std::max(0.0, 1.0 - along * along)) + 0.5 * c.lz * along;
-    }
-    case fcl::GEOM_SPHERE:
-      return static_cast<const fcl::Sphered&>(g).radius;
-    default:
-      return std::numeric_limits<double>::quiet_NaN();
-  }
 }
 
 // The point of a furthest along unit direction n (for the deepest point of a penetration).
@@ -123,7 +69,7 @@ double SeparatingAxisDepth(const fcl::CollisionGeometryd& a, const Eigen::Isomet
   double best = std::numeric_limits<double>::infinity();
   const Eigen::Vector3d box_center = box.Center(), box_half = 0.5 * box.Size();
   const auto consider = [&](const Eigen::Vector3d& n) {
-    const double s_hi = Support(a, pose_a.linear(), n), s_lo = Support(a, pose_a.linear(), -n);
+    const double s_hi = SupportAlong(a, pose_a.linear(), n), s_lo = SupportAlong(a, pose_a.linear(), -n);
     if (std::isnan(s_hi) || std::isnan(s_lo)) return;
     const double c = pose_a.translation().dot(n), b = box_center.dot(n), h = n.cwiseAbs().dot(box_half);
     // Push a towards +n (its low end past the box's high end) or towards -n.
@@ -138,7 +84,7 @@ double SeparatingAxisDepth(const fcl::CollisionGeometryd& a, const Eigen::Isomet
     }
   };
   for (int i = 0; i < 3; ++i) consider(Eigen::Vector3d::Unit(i));
-  if (a.getNodeType() == fcl::GEOM_SPHERE || IsMesh(a)) {
+  if (a.getNodeType() == fcl::GEOM_SPHERE || IsMeshGeometry(a)) {
     // Its centre outside the box (near an edge or corner): the axis from the box's nearest point.
     const Eigen::Vector3d c = pose_a.translation(), out = c - c.cwiseMax(box.min).cwiseMin(box.max);
     if (out.norm() > 1e-12) consider(out.normalized());
@@ -177,7 +123,7 @@ SignedDistanceResult SignedDistance(const fcl::CollisionGeometryd& a, const Eige
     // Touching or penetrating a stair box: the separating axes (exact for face contacts and for
     // box-box, no allocation, never into EPA, which may throw).
     const fcl::NODE_TYPE type = a.getNodeType();
-    if (hints.box_b && (type == fcl::GEOM_CYLINDER || type == fcl::GEOM_BOX || type == fcl::GEOM_SPHERE || IsMesh(a))) {
+    if (hints.box_b && (type == fcl::GEOM_CYLINDER || type == fcl::GEOM_BOX || type == fcl::GEOM_SPHERE || IsMeshGeometry(a))) {
       Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
       const double depth = std::max(0.0, SeparatingAxisDepth(a, pose_a, *hints.box_b, &axis));
       if (std::isfinite(depth)) {

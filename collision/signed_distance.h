@@ -24,9 +24,9 @@ struct SignedDistanceResult {
 /// What the caller knows about the shapes, for the fallback: the radius of a sphere about a's
 /// centre enclosing a, and either b's enclosing radius or, for stair solids, b as an axis-aligned box.
 struct SignedDistanceHints {
-  double bounding_radius_a = 0.0;
-  double bounding_radius_b = 0.0;
-  const Box3* box_b = nullptr;
+  double bounding_radius_a = 0.0;  ///< radius about a's centre enclosing a [m]
+  double bounding_radius_b = 0.0;  ///< radius about b's centre enclosing b [m]; unused when `box_b` is set
+  const Box3* box_b = nullptr;  ///< b as a stair solid's axis-aligned box, or null
 };
 
 /// Signed distance between a at pose_a and b at pose_b (both convex primitives).

@@ -19,16 +19,18 @@ const char* ToString(StairPart part);
 
 /// One solid: the geometry box, its FCL box centred at `pose`.
 struct StairSolid {
-  Box3 box;
-  std::shared_ptr<const fcl::CollisionGeometryd> geometry;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Box3 box;  ///< the solid in the world frame
+  std::shared_ptr<const fcl::CollisionGeometryd> geometry;  ///< its FCL box, centred at `pose`
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< the box's centre in the world frame
 };
 
 /// Const model of the stairs for clearance queries.
 class StairCollisionModel {
  public:
+  /// One solid per box of `stairs`.Solids() (blocks and nosing lips).
   explicit StairCollisionModel(const Staircase& stairs);
 
+  /// Every solid of the stairs.
   const std::vector<StairSolid>& solids() const { return solids_; }
   /// The part of solid `index` nearest to `point_W` (on or inside it): nosing lips are kNosing; on
   /// a block, the top face is kTread, the vertical faces across x are kRiser, the rest kOther.

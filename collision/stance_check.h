@@ -19,12 +19,13 @@ struct StanceSettings {
   /// Return at the first failing leg or pair (searches that need only the verdict); the figures
   /// of the legs not reached are then left at their defaults.
   bool stop_at_first_failure = false;
-  ClearanceOptions clearance;
+  ClearanceOptions clearance;  ///< how leg-to-stairs clearances are computed
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
 };
 
+/// How a stance check ended: the first failure found.
 enum class StanceStatus {
   kOk,
   kOutOfReach,   ///< some foot cannot be reached
@@ -42,13 +43,14 @@ struct LegStance {
 
 /// The answer: per leg IK and clearances, the worst figures and an overall status.
 struct StanceResult {
-  StanceStatus status = StanceStatus::kOk;
+  StanceStatus status = StanceStatus::kOk;  ///< the first failure found, or kOk
   std::array<LegStance, 4> legs;   ///< in RobotKinematics leg order
   double min_clearance = 0.0;      ///< smallest leg-to-stairs clearance [m]
   int worst_leg = -1;              ///< the leg with that clearance
   Clearance front_pair;            ///< LF-RF (legs 0, 1) when checked
   Clearance hind_pair;             ///< LH-RH (legs 2, 3) when checked
   Clearance body;                  ///< the body's shapes to the stairs
+  /// True when every check passed.
   bool ok() const { return status == StanceStatus::kOk; }
 };
 
@@ -65,6 +67,7 @@ StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollision
 /// workspace); make one per thread.
 class StanceChecker {
  public:
+  /// Builds the kinematics, collision models and workspace of `robot` on `stairs` once.
   StanceChecker(const RobotModel& robot, const Staircase& stairs, const StanceSettings& settings = {});
 
   /// CheckStance with this checker's models and settings.
@@ -76,9 +79,13 @@ class StanceChecker {
   Interval1 FeasibleBodyHeights(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W, double z_lo,
                                 double z_hi, double step = 0.01, double tolerance = 1e-3);
 
+  /// The robot's kinematics.
   const RobotKinematics& kinematics() const { return kinematics_; }
+  /// The robot's collision shapes.
   const RobotCollisionModel& collision_model() const { return collision_; }
+  /// The stairs' solids.
   const StairCollisionModel& stairs() const { return stairs_; }
+  /// The workspace Check() uses; callers may use it for their own FK and IK between checks.
   RobotWorkspace& workspace() { return ws_; }
 
  private:
@@ -97,8 +104,8 @@ Eigen::Vector3d FootOriginForContact(const LegModel& leg, const Eigen::Vector3d&
 
 /// A body pose with the contacts its feet make standing level in their nominal joint angles.
 struct NominalStance {
-  BodyPose body;
-  std::array<Eigen::Vector3d, 4> contacts_W;
+  BodyPose body;  ///< the base, level, at the nominal height
+  std::array<Eigen::Vector3d, 4> contacts_W;  ///< contact points, in leg order [m]
 };
 /// The robot standing level in its nominal joint angles, its base at x along the stairs and
 /// LF's contact (the bottom of its foot sphere, or a mesh foot's contact sphere) at height 0.

@@ -13,6 +13,7 @@ namespace stairplan {
 
 /// Which way the robot's front faces relative to the direction of travel.
 enum class Facing { kForward, kBackward };
+/// Returns "forward" or "backward".
 const char* ToString(Facing facing);
 
 /// Why a part of a surface is a collision region.
@@ -23,6 +24,7 @@ enum class RegionKind {
   kRobot,  ///< found by checking the robot's legs against the stairs (collision module)
   kData,   ///< poor or missing sensor data (perception)
 };
+/// Returns "edge", "riser", "side", "robot" or "data".
 const char* ToString(RegionKind kind);
 
 /// Margins of the analytic map [m]. Defaults suit a medium quadruped on building-code stairs.
@@ -30,7 +32,7 @@ struct ConstrainedMapSettings {
   double edge_margin = 0.05;      ///< keep-out from the walking edge of a tread
   double riser_margin = 0.07;     ///< keep-out from the riser / nosing above a tread
   double side_margin = 0.10;      ///< keep-out from the stair's sides
-  /// Descending backwards, feet go to this middle fraction of each tread (seed 000 [0047]).
+  /// Descending backwards, feet go to this middle fraction of each tread (US 2020/0324412 [0047]).
   double backward_middle_fraction = 0.6;
   /// Narrowest step region kept; narrower treads get none (the planner must pass over them).
   double min_region_depth = 0.04;
@@ -41,8 +43,8 @@ struct ConstrainedMapSettings {
 
 /// A part of a surface to avoid, with the reason.
 struct CollisionRegion {
-  Polygon2 polygon;
-  RegionKind kind = RegionKind::kEdge;
+  Polygon2 polygon;  ///< the region on the surface (at its height)
+  RegionKind kind = RegionKind::kEdge;  ///< why it is avoided
 };
 
 /// The regions of one stair surface (landing or tread).
@@ -51,19 +53,25 @@ struct StairRegions {
   double z = 0.0;                    ///< surface height [m]
   Polygon2 surface;                  ///< the whole walkable top
   Polygon2 step_region;              ///< where a foot may land; empty when none is safe
-  std::vector<CollisionRegion> collision_regions;
+  std::vector<CollisionRegion> collision_regions;  ///< the parts of the surface to avoid
 };
 
+/// The step and collision regions of every surface of a staircase, in travel order.
 class ConstrainedMap {
  public:
   ConstrainedMap() = default;
   /// The analytic map of `stairs` for a robot travelling in the stairs' direction facing `facing`.
   static ConstrainedMap FromStaircase(const Staircase& stairs, Facing facing, const ConstrainedMapSettings& settings = {});
 
+  /// Every surface's regions, in travel order.
   const std::vector<StairRegions>& stairs() const { return stairs_; }
+  /// The regions of surface `index`; throws std::out_of_range for a bad index.
   const StairRegions& stair(int index) const;
+  /// Number of surfaces (the landings included).
   int size() const { return static_cast<int>(stairs_.size()); }
+  /// Which way the robot faces when it travels the stairs.
   Facing facing() const { return facing_; }
+  /// Up or down: the stairs' direction of travel.
   TravelDirection direction() const { return direction_; }
 
   /// The surface whose top contains (x, y), or -1.

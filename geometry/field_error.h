@@ -9,11 +9,15 @@
 
 namespace stairplan {
 
+/// An std::invalid_argument that remembers the input field that was wrong, so a caller can name it.
 class FieldError : public std::invalid_argument {
  public:
+  /// `field` names the input (a flag, a file field); `problem` says what is wrong with it.
   FieldError(std::string field, const std::string& problem)
       : std::invalid_argument(field + ": " + problem), field_(std::move(field)), problem_(problem) {}
+  /// The input that was wrong.
   const std::string& field() const { return field_; }
+  /// What is wrong with it.
   const std::string& problem() const { return problem_; }
 
  private:

@@ -1,5 +1,6 @@
-// Footfalls: where and when a foot touched the ground, as logged by a robot (seed 001 [0045]).
-// CSV columns t, leg, x, y, z with a header line; the readers name the file and line of errors.
+// Footfalls: where and when a foot touched the ground, as logged by a robot (PCT/US2021/022953
+// ("Identifying stairs from footfalls") [0045]). CSV columns t, leg, x, y, z with a header line;
+// the readers name the file and line of errors.
 #pragma once
 
 #include <string>
@@ -9,6 +10,7 @@
 
 namespace stairplan {
 
+/// One footfall: when and where a foot touched down.
 struct Footfall {
   double t = 0.0;          ///< touchdown time [s]
   std::string leg;         ///< e.g. "LF"

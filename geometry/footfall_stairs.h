@@ -1,9 +1,10 @@
-// Identifying stairs from footfalls (seed 001): pairs of footfalls whose height and horizontal
-// separation look like a step from one tread to the next, with no footfall between them and the
-// most adjacent pairs first; pairs linked by shared footfalls and a common direction form one
-// staircase; its footfalls clustered by height are its treads (each at its cluster's mean
-// height), and its edges pass through the midpoint of the closest footfalls of adjacent clusters,
-// perpendicular to the direction through the clusters' centroids. A path may hold several.
+// Identifying stairs from footfalls (PCT/US2021/022953 ("Identifying stairs from footfalls")):
+// pairs of footfalls whose height and horizontal separation look like a step from one tread to the
+// next, with no footfall between them and the most adjacent pairs first; pairs linked by shared
+// footfalls and a common direction form one staircase; its footfalls clustered by height are its
+// treads (each at its cluster's mean height), and its edges pass through the midpoint of the
+// closest footfalls of adjacent clusters, perpendicular to the direction through the clusters'
+// centroids. A path may hold several.
 #pragma once
 
 #include <vector>
@@ -16,12 +17,14 @@
 
 namespace stairplan {
 
+/// Thresholds and tolerances of StairsFromFootfalls().
 struct FootfallStairsSettings {
-  double min_rise = 0.08;   ///< stair height threshold, lower end [m] (seed 001 [0050])
-  double max_rise = 0.30;   ///< stair height threshold, upper end [m] ([0051])
+  double min_rise = 0.08;   ///< stair height threshold, lower end [m] (PCT/US2021/022953 [0050])
+  double max_rise = 0.30;   ///< stair height threshold, upper end [m] (PCT/US2021/022953 [0051])
   double min_depth = 0.12;  ///< stair depth threshold, lower end: horizontal separation [m]
   double max_depth = 0.60;  ///< stair depth threshold, upper end [m]
-  /// Another footfall within this band around the segment between a pair intervenes ([0052]) [m].
+  /// Another footfall within this band around the segment between a pair intervenes
+  /// (PCT/US2021/022953 [0052]) [m].
   double corridor = 0.30;
   /// Footfalls sorted by height start a new cluster across a gap larger than this [m].
   double height_tolerance = 0.04;
@@ -41,6 +44,7 @@ struct FootfallEdge {
   Eigen::Vector2d along = Eigen::Vector2d::UnitY();    ///< unit, perpendicular to the stairs' direction
 };
 
+/// One staircase found from footfalls.
 struct FootfallStaircase {
   StairModel model;                   ///< regular fit: rise and run by least squares over treads and edges
   TravelDirection traversal = TravelDirection::kUp;  ///< how the robot walked it

@@ -16,7 +16,7 @@ namespace stairplan {
 
 /// A flight in the world, walked along its own +x (its StairSpec's direction says up or down).
 struct PlacedFlight {
-  Staircase stairs{StairSpec{}};
+  Staircase stairs{StairSpec{}};  ///< the flight in its own frame
   Eigen::Vector3d origin_W = Eigen::Vector3d::Zero();  ///< where the Staircase frame's origin is
   double yaw = 0.0;                                     ///< heading of the Staircase frame's +x
 
@@ -24,13 +24,14 @@ struct PlacedFlight {
   StairModel Model() const { return ModelOfStaircase(stairs, origin_W, yaw); }
 };
 
+/// How WalkFootfalls() steps and how noisy the footfalls are.
 struct FootfallWalkSettings {
   double stride = 0.30;          ///< foothold spacing on flat ground [m]
   double half_stance = 0.15;     ///< feet left and right of the path [m]
   double step_period = 0.8;      ///< time between footholds of one foot [s]
   double placement_scatter = 0.02;  ///< uniform +- scatter of each foothold along and across [m]
   double sigma = 0.01;           ///< Gaussian measurement noise per axis [m]
-  std::uint32_t seed = 1;
+  std::uint32_t seed = 1;  ///< random seed of the scatter and the noise
 
   /// Throws FieldError naming the field.
   void Validate() const;

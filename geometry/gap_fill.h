@@ -1,13 +1,15 @@
-// Filling the holes of a HeightMap the way seed 000 [0042] describes: a hole between a near, high
-// surface and a far, low one (a near-far contrast) is an occlusion and is filled flat at the low
-// surface's height (the tread hidden behind a nosing or seen only from below); a hole without
-// contrast is poor vision and is filled smoothly. Holes too wide to bridge stay unknown.
+// Filling the holes of a HeightMap the way US 2020/0324412 A1 ("Robotically negotiating stairs")
+// [0042] describes: a hole between a near, high surface and a far, low one (a near-far contrast) is
+// an occlusion and is filled flat at the low surface's height (the tread hidden behind a nosing or
+// seen only from below); a hole without contrast is poor vision and is filled smoothly. Holes too
+// wide to bridge stay unknown.
 #pragma once
 
 #include "geometry/height_map.h"
 
 namespace stairplan {
 
+/// How FillGaps() tells occlusions from poor vision, and how far it bridges.
 struct GapFillSettings {
   /// A height difference across a hole above this is a near-far contrast (an occlusion) [m].
   double contrast = 0.05;
@@ -22,6 +24,7 @@ struct GapFillSettings {
   void Validate() const;
 };
 
+/// What FillGaps() did, in cells.
 struct GapFillReport {
   int occluded = 0;  ///< cells filled flat
   int smoothed = 0;  ///< cells filled smoothly (kPoor ones included)

@@ -17,12 +17,14 @@ namespace stairplan {
 enum class CellState : std::uint8_t {
   kUnknown,   ///< no data and not inferred: height is NaN
   kMeasured,  ///< from points in the cell
-  kOccluded,  ///< hidden behind a near-far contrast: filled flat (seed 000 [0042])
+  kOccluded,  ///< hidden behind a near-far contrast: filled flat (US 2020/0324412 [0042])
   kSmoothed,  ///< missing without contrast: filled smoothly
   kPoor,      ///< filled smoothly but far from any data: not to be trusted for stepping
 };
+/// Returns "unknown", "measured", "occluded", "smoothed" or "poor".
 const char* ToString(CellState state);
 
+/// How a cloud is binned into a HeightMap.
 struct HeightMapSettings {
   double resolution = 0.02;  ///< cell size [m]
   /// A cell's height is the mean of its points within this band below its highest point, so the
@@ -34,6 +36,7 @@ struct HeightMapSettings {
   void Validate() const;
 };
 
+/// A 2.5-D elevation grid with per-cell bookkeeping (see the file's top comment for the cell layout).
 class HeightMap {
  public:
   HeightMap() = default;
@@ -42,22 +45,31 @@ class HeightMap {
   /// Bins the cloud's points. Throws std::invalid_argument for an empty cloud or a too-large extent.
   static HeightMap FromCloud(const PointCloud& cloud, const HeightMapSettings& settings = {});
 
+  /// Number of cells along x.
   int nx() const { return nx_; }
+  /// Number of cells along y.
   int ny() const { return ny_; }
+  /// Cell size [m].
   double resolution() const { return resolution_; }
+  /// The corner of cell (0, 0) [m].
   const Eigen::Vector2d& origin() const { return origin_; }
+  /// True when (ix, iy) is a cell of the grid.
   bool Inside(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_; }
 
+  /// The cell's height: NaN when unknown [m].
   float height(int ix, int iy) const { return height_[Index(ix, iy)]; }
+  /// Where the cell's height came from.
   CellState state(int ix, int iy) const { return state_[Index(ix, iy)]; }
   /// Highest minus lowest point in the cell (0 for inferred cells) [m].
   float spread(int ix, int iy) const { return spread_[Index(ix, iy)]; }
   /// The highest point in the cell (the height itself for inferred cells) [m].
   float top(int ix, int iy) const { return height_[Index(ix, iy)] + top_above_[Index(ix, iy)]; }
+  /// Number of points binned into the cell (0 for inferred cells).
   int count(int ix, int iy) const { return count_[Index(ix, iy)]; }
   /// Sets a cell's height and state (tests and gap filling build maps this way).
   void Set(int ix, int iy, float height, CellState state, float spread = 0.0f);
 
+  /// The centre of cell (ix, iy) in the xy plane [m].
   Eigen::Vector2d CellCenter(int ix, int iy) const;
   /// The cell containing p; false when p is outside the grid.
   bool CellOf(const Eigen::Vector2d& p, int* ix, int* iy) const;

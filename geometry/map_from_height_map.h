@@ -1,8 +1,9 @@
-// A ConstrainedMap from data (seed 000 [0043]-[0048], claim 1): the stairs the tracker fitted give
-// each stair's surface and its step region; the height map then adds what the data says: height
-// discontinuities become edge and riser collision regions (dilated for the nosing and the cell
-// size), poorly seen cells and cells off their surface become data collision regions, and each
-// step region is trimmed so it stays convex. The map is in the fitted Staircase's frame.
+// A ConstrainedMap from data (US 2020/0324412 A1 ("Robotically negotiating stairs") [0043]-[0048],
+// claim 1): the stairs the tracker fitted give each stair's surface and its step region; the height
+// map then adds what the data says: height discontinuities become edge and riser collision regions
+// (dilated for the nosing and the cell size), poorly seen cells and cells off their surface become
+// data collision regions, and each step region is trimmed so it stays convex. The map is in the
+// fitted Staircase's frame.
 #pragma once
 
 #include "geometry/constrained_map.h"
@@ -12,9 +13,10 @@
 
 namespace stairplan {
 
+/// How ConstrainedMapFromHeightMap() turns the height map's data into collision regions.
 struct MapFromHeightMapSettings {
   TravelDirection travel = TravelDirection::kUp;  ///< which way the robot will traverse the stairs
-  Facing facing = Facing::kForward;               ///< and facing which way ([0047])
+  Facing facing = Facing::kForward;               ///< and facing which way (US 2020/0324412 [0047])
   ConstrainedMapSettings margins;                 ///< the analytic margins
   double nosing = 0.0;          ///< nosing assumed in the Staircase (the data shows walking edges) [m]
   double jump = 0.05;           ///< a height step between neighbouring cells above this is an edge [m]

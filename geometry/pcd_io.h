@@ -11,6 +11,7 @@
 
 namespace stairplan {
 
+/// The DATA encodings of a PCD file.
 enum class PcdEncoding { kAscii, kBinary, kBinaryCompressed };
 
 /// True when `bytes` start like a PCD file: comment lines, then a VERSION or FIELDS line.

@@ -8,6 +8,7 @@
 
 namespace stairplan {
 
+/// The PLY encodings PlyBytes() writes (ParsePly() also reads them).
 enum class PlyFormat { kAscii, kBinaryLittleEndian };
 
 /// Parses PLY bytes; errors name `source` and the line (ascii, header) or the vertex (binary).

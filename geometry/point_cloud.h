@@ -11,18 +11,23 @@ namespace stairplan {
 
 /// Points in the world frame [m]. Every point is finite (the readers and the sensor guarantee it).
 struct PointCloud {
-  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3d> points;  ///< the points [m]
 
+  /// Number of points.
   std::size_t size() const { return points.size(); }
+  /// True when there are no points.
   bool empty() const { return points.empty(); }
+  ///@{
   /// Componentwise bounds; both zero for an empty cloud.
   Eigen::Vector3d Min() const;
   Eigen::Vector3d Max() const;
+  ///@}
 };
 
 /// The cloud rotated by `yaw` about z, then translated: p_W = Rz(yaw) p + translation.
 PointCloud TransformCloud(const PointCloud& cloud, double yaw, const Eigen::Vector3d& translation);
 
+/// The cloud file formats ReadPointCloud() reads.
 enum class CloudFormat { kPly, kPcd, kXyz };
 
 /// The format of a cloud file by its content: a "ply" first line, a PCD header (comments, then

@@ -10,14 +10,14 @@ namespace stairplan {
 
 /// A closed interval [lo, hi] along one axis.
 struct Extent {
-  double lo = 0.0;
-  double hi = 0.0;
+  double lo = 0.0;  ///< lower end
+  double hi = 0.0;  ///< upper end
 };
 
 /// A convex polygon in the xy plane at height z, vertices counter-clockwise.
 struct Polygon2 {
-  std::vector<Eigen::Vector2d> vertices;
-  double z = 0.0;
+  std::vector<Eigen::Vector2d> vertices;  ///< the corners, counter-clockwise [m]
+  double z = 0.0;  ///< the plane's height [m]
 
   /// True when p lies inside or on the boundary (within tol).
   bool Contains(const Eigen::Vector2d& p, double tol = 1e-12) const;
@@ -27,9 +27,11 @@ struct Polygon2 {
   double Distance(const Eigen::Vector2d& p) const;
   /// Signed distance: negative inside (depth to the boundary), positive outside.
   double SignedDistance(const Eigen::Vector2d& p) const;
+  /// The enclosed area [m^2].
   double Area() const;
   /// The polygon's extent along x (step regions are rectangles along the flight).
   Extent XExtent() const;
+  /// True when the polygon has fewer than three vertices and so encloses nothing.
   bool empty() const { return vertices.size() < 3; }
 };
 
@@ -44,12 +46,14 @@ enum class SolidKind { kBlock, kNosing };
 
 /// An axis-aligned box.
 struct Box3 {
-  Eigen::Vector3d min = Eigen::Vector3d::Zero();
-  Eigen::Vector3d max = Eigen::Vector3d::Zero();
-  SolidKind kind = SolidKind::kBlock;
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< the corner with the smallest coordinates [m]
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();  ///< the corner with the largest coordinates [m]
+  SolidKind kind = SolidKind::kBlock;  ///< a tread block or a nosing lip
   int surface_index = 0;  ///< the surface (block) or edge (nosing) it belongs to
 
+  /// The box's centre [m].
   Eigen::Vector3d Center() const { return 0.5 * (min + max); }
+  /// The box's side lengths [m].
   Eigen::Vector3d Size() const { return max - min; }
   /// Signed distance from p: negative inside.
   double SignedDistance(const Eigen::Vector3d& p) const;

@@ -17,6 +17,7 @@ struct EdgeLine {
   Eigen::Vector3d b = Eigen::Vector3d::Zero();  ///< the end on the left
 };
 
+/// A staircase located in the world: the way it ascends, its levels and its walking edges.
 struct StairModel {
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  ///< unit, horizontal, the way the stairs ascend
   Eigen::Vector2d center = Eigen::Vector2d::Zero();      ///< the lowest edge's midpoint across the width [m]
@@ -36,9 +37,11 @@ struct StairModel {
   /// The regular Staircase traversed `travel`, with the given nosing and landings. Throws
   /// std::invalid_argument when the model has no steps or its numbers are out of StairSpec's range.
   Staircase ToStaircase(TravelDirection travel, double nosing = 0.0, double landing = 1.2) const;
+  ///@{
   /// A point of ToStaircase(travel, nosing)'s frame in the world, and back.
   Eigen::Vector3d StairToWorld(const Eigen::Vector3d& p_S, TravelDirection travel, double nosing = 0.0) const;
   Eigen::Vector3d WorldToStair(const Eigen::Vector3d& p_W, TravelDirection travel, double nosing = 0.0) const;
+  ///@}
 };
 
 /// The model of `stairs` placed in the world: p_W = origin_W + Rz(yaw) p_S (e.g. the ground truth

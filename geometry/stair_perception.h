@@ -1,6 +1,7 @@
-// Perception end to end (seed 000 claim 1, step regions from image data): a point cloud becomes a
-// height map with its gaps filled, the stair tracker's model, and the constrained map the planners
-// use. One call for `stairplan plan --cloud` and `stairplan map`.
+// Perception end to end (US 2020/0324412 A1 ("Robotically negotiating stairs") claim 1, step
+// regions from image data): a point cloud becomes a height map with its gaps filled, the stair
+// tracker's model, and the constrained map the planners use. One call for `stairplan plan --cloud`
+// and `stairplan map`.
 #pragma once
 
 #include <optional>
@@ -13,16 +14,18 @@
 
 namespace stairplan {
 
+/// The settings of each stage of PerceiveStairs().
 struct StairPerceptionSettings {
-  HeightMapSettings height_map;
-  GapFillSettings gap_fill;
-  StairTrackerSettings tracker;
-  MapFromHeightMapSettings regions;
+  HeightMapSettings height_map;  ///< binning the cloud
+  GapFillSettings gap_fill;  ///< filling the height map's holes
+  StairTrackerSettings tracker;  ///< fitting the staircase
+  MapFromHeightMapSettings regions;  ///< collision regions from the data
 };
 
+/// What PerceiveStairs() found, stage by stage.
 struct StairPerception {
   HeightMap height_map;                  ///< with gaps filled
-  GapFillReport gap_fill;
+  GapFillReport gap_fill;  ///< what gap filling did
   StairFit fit;                          ///< the tracker's answer (found or why not)
   std::optional<PerceivedStairs> stairs; ///< the Staircase and ConstrainedMap, when stairs were found
 };

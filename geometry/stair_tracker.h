@@ -1,7 +1,8 @@
-// The stair tracker (seed 000 [0071]): fits a regular staircase to a noisy point cloud by leaning
-// on the structure every staircase shares: parallel edges at a constant run, flat treads at a
-// constant rise. Terrain that does not fit (a ramp, a flat floor, a single box) is rejected with
-// the reason, and a fit reports how well the model explains the data.
+// The stair tracker (US 2020/0324412 A1 ("Robotically negotiating stairs") [0071]): fits a regular
+// staircase to a noisy point cloud by leaning on the structure every staircase shares: parallel
+// edges at a constant run, flat treads at a constant rise. Terrain that does not fit (a ramp, a
+// flat floor, a single box) is rejected with the reason, and a fit reports how well the model
+// explains the data.
 #pragma once
 
 #include <string>
@@ -12,6 +13,7 @@
 
 namespace stairplan {
 
+/// The stair tracker's ranges and tolerances: what it accepts as stairs.
 struct StairTrackerSettings {
   double min_rise = 0.08;   ///< [m]
   double max_rise = 0.30;   ///< [m]
@@ -33,8 +35,9 @@ struct StairTrackerSettings {
   void Validate() const;
 };
 
+/// The tracker's answer: the fitted stairs and how well they explain the data, or why there are none.
 struct StairFit {
-  bool found = false;
+  bool found = false;  ///< true when the cloud is stairs
   std::string reason;      ///< why the cloud is not stairs (empty when found)
   StairModel model;        ///< the stairs, valid when found
   std::vector<double> level_residuals;  ///< measured minus fitted level heights, lowest first [m]

@@ -11,6 +11,7 @@
 
 namespace stairplan {
 
+/// Which way the robot travels the stairs: up or down.
 enum class TravelDirection { kUp, kDown };
 
 /// Returns "up" or "down".
@@ -29,7 +30,7 @@ struct StairSpec {
   double nosing_thickness = 0.03; ///< vertical thickness of the nosing lip [m]
   std::vector<double> rises;      ///< optional per-step rises (size == steps)
   std::vector<double> runs;       ///< optional per-tread runs (size == steps - 1)
-  TravelDirection direction = TravelDirection::kUp;
+  TravelDirection direction = TravelDirection::kUp;  ///< which way the robot travels: up or down the stairs
 
   /// Throws std::invalid_argument naming the offending field (e.g. "run", "rises[3]").
   void Validate() const;
@@ -38,7 +39,7 @@ struct StairSpec {
 /// One walkable surface: the bottom landing (index 0), a tread (1..steps-1) or the top landing
 /// (index steps). Its top is the rectangle [x_begin, x_end] x [-width/2, width/2] at height z.
 struct StairSurface {
-  int index = 0;
+  int index = 0;  ///< in travel order: 0 the landing the robot starts on, steps the one it ends on
   double x_begin = 0.0;  ///< where the visible top starts along travel [m]
   double x_end = 0.0;    ///< where the visible top ends along travel [m]
   double z = 0.0;        ///< height of the top [m]
@@ -59,18 +60,29 @@ class Staircase {
   /// Validates `spec` (throws std::invalid_argument naming the field) and resolves the geometry.
   explicit Staircase(const StairSpec& spec);
 
+  /// The spec it was resolved from.
   const StairSpec& spec() const { return spec_; }
+  /// Up or down: the way the robot travels along +x.
   TravelDirection direction() const { return spec_.direction; }
+  /// Number of risers.
   int steps() const { return spec_.steps; }
   /// Number of surfaces: landings included (steps + 1).
   int surface_count() const { return static_cast<int>(surfaces_.size()); }
+  /// Surface `index` (0 .. steps); throws std::out_of_range for a bad index.
   const StairSurface& surface(int index) const;
+  /// Every surface, in travel order.
   const std::vector<StairSurface>& surfaces() const { return surfaces_; }
+  /// Every edge (riser and nosing), in travel order.
   const std::vector<StairEdge>& edges() const { return edges_; }
+  /// Height of riser `step` (0-based, travel order) [m].
   double rise(int step) const { return rises_.at(static_cast<std::size_t>(step)); }
+  /// Half the stair width [m].
   double half_width() const { return 0.5 * spec_.width; }
+  /// Where the first landing starts along travel [m].
   double x_min() const { return surfaces_.front().x_begin; }
+  /// Where the last landing ends along travel [m].
   double x_max() const { return surfaces_.back().x_end; }
+  /// Height difference between the two landings [m].
   double total_rise() const { return total_rise_; }
 
   /// Height of the walkable surface at (x, y); NaN outside the stairs' footprint.

@@ -1,8 +1,9 @@
 // The XML of an untrusted robot file, checked with a maintained parser (tinyxml2) before anything
 // else reads it, and written back out in one canonical form. urdfdom 3.0.1 parses with TinyXML
 // 2.6.2, unmaintained since 2011, whose multi-byte character handling can read past the end of its
-// buffer (issue #28): it is only ever given the canonical text, which is pure ASCII, well-formed
-// XML with one root element, ASCII names and no character it cannot represent.
+// buffer (the URDF fuzzer caught it; third_party_notes/tinyxml2.md): it is only ever given the
+// canonical text, which is pure ASCII, well-formed XML with one root element, ASCII names and no
+// character it cannot represent.
 #pragma once
 
 #include <memory>
@@ -25,6 +26,7 @@ namespace stairplan {
 /// bytes. Comments, the DOCTYPE and processing instructions are dropped.
 class CheckedXml {
  public:
+  /// Checks and parses `text`; `source_name` starts every error message.
   CheckedXml(const std::string& text, const std::string& source_name);
   ~CheckedXml();
   CheckedXml(const CheckedXml&) = delete;

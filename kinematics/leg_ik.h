@@ -27,10 +27,11 @@ struct IkSettings {
 
 /// The result of one solve: the best joint angles found (within limits), the remaining error.
 struct IkResult {
-  IkStatus status = IkStatus::kOutOfReach;
+  IkStatus status = IkStatus::kOutOfReach;  ///< how the solve ended
   Eigen::Vector3d q = Eigen::Vector3d::Zero();  ///< joint angles [rad], always within limits
   double error = 0.0;                           ///< |FK(q) - target| [m]
   int iterations = 0;                           ///< Gauss-Newton iterations over all attempts
+  /// True when the foot reached the target within the limits.
   bool ok() const { return status == IkStatus::kSolved; }
 };
 

@@ -30,8 +30,9 @@ class LegWorkspace;
 
 /// Closed interval [lo, hi]; empty when lo > hi.
 struct Interval1 {
-  double lo = 1.0;
-  double hi = 0.0;
+  double lo = 1.0;  ///< lower end
+  double hi = 0.0;  ///< upper end
+  /// True when the interval holds no value (lo > hi).
   bool empty() const { return lo > hi; }
 };
 
@@ -42,9 +43,13 @@ class LegKinematics {
   /// leg when the chain is missing or the leg does not have exactly 3 movable joints.
   LegKinematics(const LegModel& leg, const KDL::Tree& tree, const std::string& base_link);
 
+  /// The leg as the robot model describes it.
   const LegModel& model() const { return leg_; }
+  /// The leg's name: "LF", "RF", "LH" or "RH".
   const std::string& name() const { return leg_.name; }
+  /// The KDL chain base -> foot link.
   const KDL::Chain& chain() const { return *chain_; }
+  /// The same chain, shared (workspaces keep it alive).
   std::shared_ptr<const KDL::Chain> chain_ptr() const { return chain_; }
   /// Number of chain segments (fixed and movable), i.e. of link frames.
   int segment_count() const { return static_cast<int>(segment_links_.size()); }
@@ -53,7 +58,9 @@ class LegKinematics {
   /// Index of the segment whose frame sits on the knee (the last movable joint).
   int knee_segment() const { return knee_segment_; }
 
+  /// Lower joint limits [rad].
   const Eigen::Vector3d& lower() const { return lower_; }
+  /// Upper joint limits [rad].
   const Eigen::Vector3d& upper() const { return upper_; }
   /// A standing configuration: foot below the hip at 3/4 of reach().hi, knee pointing towards the
   /// body centre where the limits allow (ANYmal's front and hind knees bend opposite ways).
@@ -122,9 +129,12 @@ class LegKinematics {
 /// Mutable scratch space of one leg's queries: KDL solvers and buffers, sized once.
 class LegWorkspace {
  public:
+  /// Sizes the solvers and buffers for `leg`; no query allocates afterwards.
   explicit LegWorkspace(const LegKinematics& leg);
   ~LegWorkspace();
+  /// Moves the solvers and buffers.
   LegWorkspace(LegWorkspace&&) noexcept;
+  /// Moves the solvers and buffers.
   LegWorkspace& operator=(LegWorkspace&&) noexcept;
 
  private:

@@ -18,9 +18,12 @@ namespace stairplan {
 struct TriangleMesh {
   std::string file;                          ///< the file it was read from
   std::vector<Eigen::Vector3d> vertices;     ///< [m]
+  /// Index triples into `vertices`, counter-clockwise seen from outside.
   std::vector<std::array<int, 3>> triangles;
 
+  /// Componentwise lower bounds of the vertices [m].
   Eigen::Vector3d Min() const;
+  /// Componentwise upper bounds of the vertices [m].
   Eigen::Vector3d Max() const;
 };
 
@@ -31,8 +34,8 @@ constexpr double kMaxMeshExtent = 10.0;  // [m]
 constexpr double kMinMeshExtent = 1e-4;  // [m]
 
 /// Reads `path` (.stl, .obj or .dae, case-insensitive) and scales it by `scale` (the URDF
-/// <mesh scale>). Units and up axis: STL and OBJ carry neither and are taken as metres in the
-/// URDF's frame (as ROS does); COLLADA's <unit meter> and <up_axis> are honoured, so its up axis
+/// `<mesh scale>`). Units and up axis: STL and OBJ carry neither and are taken as metres in the
+/// URDF's frame (as ROS does); COLLADA's `<unit meter>` and `<up_axis>` are honoured, so its up axis
 /// becomes +z. Throws std::invalid_argument starting with the file's path: missing or unreadable,
 /// not a mesh assimp can read (a truncated STL), no triangles (an empty OBJ, a DAE without
 /// geometry), non-finite coordinates, or a scale that is zero, not finite, or makes the mesh

@@ -10,7 +10,7 @@ namespace stairplan {
 
 /// Folders searched for `package://` URIs, in order.
 struct PackagePath {
-  std::vector<std::string> folders;
+  std::vector<std::string> folders;  ///< search folders, in order
 
   /// Splits "DIR[:DIR...]" (empty entries are dropped).
   static PackagePath FromString(const std::string& colon_separated);
@@ -27,7 +27,7 @@ struct ResolvedUri {
 };
 
 /// Resolves `uri` as ROS does. A package is found as a folder named NAME, or holding a package.xml
-/// whose <name> is NAME, in or below a search folder (a bounded crawl that does not descend into
+/// whose `<name>` is NAME, in or below a search folder (a bounded crawl that does not descend into
 /// packages, hidden folders or folders marked COLCON_IGNORE/CATKIN_IGNORE/AMENT_IGNORE). Throws
 /// std::invalid_argument starting with `context` (e.g. "robot.urdf: <link name=\"x\">") that names
 /// the URI and, for an unknown package, every folder searched; for a missing file, its path.

@@ -23,13 +23,19 @@ class RobotKinematics {
   /// one is not a 3-DoF chain.
   explicit RobotKinematics(const RobotModel& robot);
 
+  /// The robot model it was built from.
   const RobotModel& robot() const { return robot_; }
+  /// The KDL tree of the whole robot.
   const KDL::Tree& tree() const { return *tree_; }
+  /// Number of legs (four).
   int leg_count() const { return static_cast<int>(legs_.size()); }
+  /// Leg `index` (LF, RF, LH, RH order); throws std::out_of_range for a bad index.
   const LegKinematics& leg(int index) const { return legs_.at(static_cast<std::size_t>(index)); }
   /// Throws std::invalid_argument for an unknown name.
   const LegKinematics& leg(const std::string& name) const;
+  /// Index of the leg with that name; throws std::invalid_argument for an unknown name.
   int LegIndex(const std::string& name) const;
+  /// Every leg, in the RobotModel's order.
   const std::vector<LegKinematics>& legs() const { return legs_; }
 
   /// IK for leg `index` with the foot link origin at `foot_W` and the body at `body`.
@@ -51,7 +57,9 @@ class RobotKinematics {
 /// One thread's scratch space for a RobotKinematics: one LegWorkspace per leg.
 class RobotWorkspace {
  public:
+  /// One LegWorkspace per leg of `kinematics`, sized once.
   explicit RobotWorkspace(const RobotKinematics& kinematics);
+  /// The scratch space of leg `index`; throws std::out_of_range for a bad index.
   LegWorkspace& leg(int index) { return legs_.at(static_cast<std::size_t>(index)); }
 
  private:

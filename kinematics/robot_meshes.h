@@ -33,7 +33,7 @@ struct MeshSettings {
   PackagePath package_path;
   /// Also search the folders of the ROS_PACKAGE_PATH environment variable.
   bool use_ros_package_path = true;
-  MeshCollision collision = MeshCollision::kConvexHull;
+  MeshCollision collision = MeshCollision::kConvexHull;  ///< hull or exact triangles
 };
 
 /// The loaded collision meshes of a URDF, by link and collision element.
@@ -50,6 +50,7 @@ class RobotMeshes {
   std::shared_ptr<const TriangleMesh> Find(const std::string& link, int index) const;
   /// Number of mesh collision elements (the same file used twice counts twice).
   int size() const { return static_cast<int>(meshes_.size()); }
+  /// How the meshes become FCL shapes.
   MeshCollision collision() const { return collision_; }
 
  private:

@@ -17,7 +17,7 @@ class ModelInterface;
 
 namespace stairplan {
 
-/// Limits of one movable joint, from the URDF <limit> tag.
+/// Limits of one movable joint, from the URDF's `<limit>` element.
 struct JointLimits {
   double lower = 0.0;     ///< [rad]
   double upper = 0.0;     ///< [rad]
@@ -85,13 +85,17 @@ class RobotModel {
   static RobotModel FromUrdfString(const std::string& xml, const std::string& source_name,
                                    const LegDetectionSettings& settings = {}, const MeshSettings& meshes = {});
 
+  /// The robot's name, from the URDF.
   const std::string& name() const { return name_; }
+  /// Where the robot came from (the file, or the name given for URDF text), for messages.
   const std::string& source() const { return source_; }
+  /// The URDF link the legs hang from.
   const std::string& base_link() const { return base_link_; }
   /// The four legs in the order LF, RF, LH, RH.
   const std::vector<LegModel>& legs() const { return legs_; }
   /// The leg with that name; throws std::invalid_argument when there is none.
   const LegModel& leg(const std::string& name) const;
+  /// Sum of every link's mass [kg].
   double total_mass() const { return total_mass_; }
   /// Distance along x between the mean front and mean hind hip [m].
   double hip_length() const;
@@ -99,6 +103,7 @@ class RobotModel {
   double hip_width() const;
   /// The parsed URDF, for the kinematics and collision builders.
   const urdf::ModelInterface& urdf() const { return *urdf_; }
+  /// The parsed URDF, shared.
   std::shared_ptr<const urdf::ModelInterface> urdf_ptr() const { return urdf_; }
   /// The collision meshes, read once when the model was loaded (empty for a robot of primitives).
   const RobotMeshes& meshes() const { return *meshes_; }

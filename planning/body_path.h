@@ -19,6 +19,7 @@
 
 namespace stairplan {
 
+/// How the quasi-static body path is laid over a crawl's footsteps.
 struct BodyPathSettings {
   /// Hip above the feet, as a fraction of the leg's reach: 0.6 leaves the legs room to pitch with
   /// the flight and to lift the swing foot over a nosing (0.75 overextends stairbot's front legs).
@@ -37,7 +38,7 @@ struct BodyPathSettings {
   /// liftoff, touchdown and every height_key_period); it changes, eased, while four feet are down
   /// (planning/posture_fit.h). Negative: off.
   double touchdown_clearance = 0.005;
-  double height_margin = 0.01;
+  double height_margin = 0.01;  ///< the body stays this far inside the passing height range [m]
   /// The height is kept at least this share of the feasible range away from either end of it, so
   /// the clearance between the instants checked is not left to chance (0: only height_margin).
   double height_centering = 0.3;
@@ -51,9 +52,9 @@ struct BodyPathSettings {
   /// makes the fit try other shifts along the flight, in shift_step up to max_shift either way, as
   /// long as the COM target stays shift_margin inside the support polygon [m].
   double wide_height_range = 0.06;
-  double max_shift = 0.09;
-  double shift_step = 0.03;
-  double shift_margin = 0.04;
+  double max_shift = 0.09;  ///< largest shift tried either way [m]
+  double shift_step = 0.03;  ///< spacing of the shifts tried [m]
+  double shift_margin = 0.04;  ///< the COM target stays this far inside the support polygon [m]
   /// When no one eased height suits a whole swing, its height eases through a chain of its
   /// checked instants, no ease faster than this at its peak [m/s^2]: a quarter of the
   /// validator's 2 g, as the stance feet carry the body (a downward 1 g would unload them).

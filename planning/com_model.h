@@ -13,12 +13,15 @@
 
 namespace stairplan {
 
+/// The robot's centre of mass from the body pose and the legs' joint angles (every link's inertial).
 class ComModel {
  public:
+  /// Collects every link's mass and centre from the URDF of `kinematics`' robot.
   explicit ComModel(const RobotKinematics& kinematics);
 
   /// The centre of mass in the world for the body pose and the four legs' joint angles.
   Eigen::Vector3d Com(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& q, RobotWorkspace& ws) const;
+  /// Sum of every link's mass [kg].
   double total_mass() const { return total_mass_; }
 
  private:

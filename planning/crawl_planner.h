@@ -13,6 +13,7 @@
 
 namespace stairplan {
 
+/// The crawl planner's timing, foothold layout and search.
 struct CrawlSettings {
   double swing_duration = 0.40;       ///< one leg's swing [s]
   double shift_duration = 0.60;       ///< four feet down between swings, moving the COM [s]
@@ -30,11 +31,11 @@ struct CrawlSettings {
   /// Leading and trailing feet this far forward (along travel) of their step region's centre,
   /// kept trailing_margin inside the region [m].
   double lead_offset = 0.0;
-  double trail_offset = 0.0;
+  double trail_offset = 0.0;  ///< trailing feet's offset, as lead_offset [m]
   /// The leading and trailing legs' first stride as a share of the others: they start that far
   /// behind their first touchdown (1: on the lattice).
   double lead_first_stride = 1.0;
-  double trail_first_stride = 1.0;
+  double trail_first_stride = 1.0;  ///< the trailing legs' first stride, as lead_first_stride
   /// When a touchdown of the plan fails the stance check (a leg out of reach, beyond its limits or
   /// against the stairs), other foothold layouts fitted to the robot's hip spacing are screened
   /// (stance checks at their touchdowns) and up to this many of them planned in full; the first

@@ -13,19 +13,25 @@
 
 namespace stairplan {
 
+/// Reads typed fields of a JSON document; every error is std::invalid_argument naming the source
+/// and the field's path.
 class JsonFieldReader {
  public:
-  using json = nlohmann::json;
+  using json = nlohmann::json;  ///< nlohmann's JSON value
 
+  /// `source` names the document (e.g. its file) in errors.
   explicit JsonFieldReader(std::string source) : source_(std::move(source)) {}
 
+  /// Throws "<source>: field '<path>': <problem>".
   [[noreturn]] void Fail(const std::string& path, const std::string& problem) const {
     throw std::invalid_argument(source_ + ": field '" + path + "': " + problem);
   }
+  /// `node[key]`; fails when `node` is not an object holding `key`. `path` is the key's prefix in errors.
   const json& At(const json& node, const std::string& key, const std::string& path) const {
     if (!node.is_object() || !node.contains(key)) Fail(path + key, "missing");
     return node.at(key);
   }
+  /// `node[key]` as a finite number.
   double Number(const json& node, const std::string& key, const std::string& path) const {
     const json& v = At(node, key, path);
     if (!v.is_number()) Fail(path + key, "must be a number");
@@ -33,16 +39,19 @@ class JsonFieldReader {
     if (!std::isfinite(d)) Fail(path + key, "must be finite");
     return d;
   }
+  /// `node[key]` as a string.
   std::string Text(const json& node, const std::string& key, const std::string& path) const {
     const json& v = At(node, key, path);
     if (!v.is_string()) Fail(path + key, "must be a string");
     return v.get<std::string>();
   }
+  /// `node[key]` as an array.
   const json& Array(const json& node, const std::string& key, const std::string& path) const {
     const json& v = At(node, key, path);
     if (!v.is_array()) Fail(path + key, "must be an array");
     return v;
   }
+  /// The point of `node`'s x, y and z fields.
   Eigen::Vector3d Point(const json& node, const std::string& path) const {
     return {Number(node, "x", path), Number(node, "y", path), Number(node, "z", path)};
   }

@@ -22,7 +22,7 @@ struct Footstep {
   Eigen::Vector3d position_W = Eigen::Vector3d::Zero();  ///< contact point [m]
   Eigen::Vector3d from_W = Eigen::Vector3d::Zero();      ///< the foothold it left [m]
   int stair_index = -1;       ///< the surface it lands on
-  bool in_step_region = false;
+  bool in_step_region = false;  ///< it lands inside its stair's step region
   /// Top of the swing's contact-point path [m]; NaN: derived from the stairs (SwingTrajectory).
   double swing_apex_z = std::numeric_limits<double>::quiet_NaN();
   /// Share of the horizontal travel the foot makes low over its old foothold before it rises, in
@@ -37,14 +37,14 @@ struct Footstep {
 /// com_shift_y its shift toward the body's left (the body QP's weight shift over the support
 /// triangle) [m]. Both are already included in x and y.
 struct BodyState {
-  double t = 0.0;
-  double x = 0.0;
-  double y = 0.0;
-  double z = 0.0;
-  double pitch = 0.0;
-  double yaw = 0.0;
-  double com_shift = 0.0;
-  double com_shift_y = 0.0;
+  double t = 0.0;  ///< time [s]
+  double x = 0.0;  ///< along travel [m]
+  double y = 0.0;  ///< to the left [m]
+  double z = 0.0;  ///< height [m]
+  double pitch = 0.0;  ///< about y, nose-up negative [rad]
+  double yaw = 0.0;  ///< heading about z [rad]
+  double com_shift = 0.0;  ///< forward shift of the centre of mass [m]
+  double com_shift_y = 0.0;  ///< leftward shift of the centre of mass [m]
 };
 
 /// How a gait keeps its balance; it decides what the validator asks of a plan's motion.
@@ -55,7 +55,9 @@ enum class GaitBalance {
 /// "quasi_static", "dynamic".
 const char* ToString(GaitBalance balance);
 
+/// Whether a plan was found.
 enum class PlanStatus { kOk, kInfeasible };
+/// Returns "ok" or "infeasible".
 const char* ToString(PlanStatus status);
 
 /// What made a plan's body trajectory.
@@ -79,7 +81,7 @@ const char* ToString(BodyPlanStatus status);
 /// One cycle of the receding-horizon body planner as the offline driver ran it.
 struct BodyCycleStats {
   double t = 0.0;          ///< the cycle's time [s]
-  BodyPlanStatus status = BodyPlanStatus::kOk;
+  BodyPlanStatus status = BodyPlanStatus::kOk;  ///< how the cycle went
   int solves = 0;          ///< QPs solved (more than one only at warm-up)
   int iterations = 0;      ///< the QPs' active-set changes
   double solve_us = 0.0;   ///< wall time in the QP solver [us]
@@ -96,11 +98,12 @@ struct ControllerScore {
   int cycles_ruled_out = 0;       ///< cycles in which a hard rule excluded it
 };
 
+/// A plan: footsteps, body trajectory and timings for one traversal of a staircase.
 struct Plan {
-  std::string robot_name;
-  std::string robot_source;
+  std::string robot_name;  ///< the robot's name
+  std::string robot_source;  ///< where the robot came from (its file)
   std::vector<std::string> legs;              ///< leg names in the robot's order
-  Facing facing = Facing::kForward;
+  Facing facing = Facing::kForward;  ///< which way the body faces relative to the travel
   double cadence_s = 0.0;                     ///< swing duration of the chosen controller [s]
   std::string gait;                           ///< e.g. "crawl"
   GaitBalance balance = GaitBalance::kQuasiStatic;  ///< of `gait`
@@ -110,14 +113,15 @@ struct Plan {
   std::vector<Eigen::Vector3d> initial_feet_W;  ///< contact points at t = 0, in `legs` order
   std::vector<Footstep> footsteps;            ///< sorted by touchdown time
   std::vector<BodyState> body;                ///< sampled body trajectory
-  BodyPlannerKind body_planner = BodyPlannerKind::kQuasiStaticPath;
+  BodyPlannerKind body_planner = BodyPlannerKind::kQuasiStaticPath;  ///< what made the body trajectory
   std::vector<BodyCycleStats> body_cycles;    ///< the receding horizon's cycles, empty for the path
-  PlanStatus status = PlanStatus::kOk;
+  PlanStatus status = PlanStatus::kOk;  ///< ok, or infeasible (see status_reason)
   std::string status_reason;                  ///< why it is infeasible, empty when ok
   std::vector<std::pair<std::string, double>> timing_us;  ///< per stage [us]
   std::vector<ControllerScore> controllers;   ///< the step planner's controllers, empty for other planners
   int selected = -1;                          ///< index into `controllers` chosen most often, -1 when none
 
+  /// The time of the last body sample [s].
   double duration() const { return body.empty() ? 0.0 : body.back().t; }
 };
 

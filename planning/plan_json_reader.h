@@ -10,10 +10,11 @@
 
 namespace stairplan {
 
+/// What a plan.json holds: the plan, the stairs it was planned on and the body's facing.
 struct PlanFile {
-  Plan plan;
-  StairSpec stairs;
-  Facing facing = Facing::kForward;
+  Plan plan;  ///< the plan
+  StairSpec stairs;  ///< the stairs, as written in the file
+  Facing facing = Facing::kForward;  ///< which way the body faced
 };
 
 /// Parses plan.json text. Throws std::invalid_argument "<source>: field '<path>': <problem>", also

@@ -45,37 +45,38 @@ StepPlannerSettings CrawlControllers();
 /// over the support triangle while a leg swings (BodyPathSettings::stability_shift; 0:
 /// crawl.body's).
 struct BodyPosture {
-  double hip_height_fraction = 0.6;
-  double pitch_fraction = 0.75;
-  bool keep_stance_length = false;
-  double height_key_period = 0.0;
+  double hip_height_fraction = 0.6;  ///< BodyPathSettings::hip_height_fraction
+  double pitch_fraction = 0.75;  ///< BodyPathSettings::pitch_fraction
+  bool keep_stance_length = false;  ///< CrawlSettings::keep_stance_length
+  double height_key_period = 0.0;  ///< BodyPathSettings::height_key_period (0: crawl.body's)
   /// Tried only after a near miss: the first attempt rejected for body jumps, legs at their reach
   /// or limits or on the stairs alone (or a later one that also jumps, every leg reaching), what
   /// the postures for steep steps address. They do
   /// nothing for a plan that tips or puts the body on the stairs, and a robot whose plans fail
   /// that way everywhere would pay for each of them.
   bool near_miss_only = false;
-  double stability_shift = 0.0;
+  double stability_shift = 0.0;  ///< BodyPathSettings::stability_shift (0: crawl.body's)
   bool check_swing_corners = false;  ///< BodyPathSettings::check_swing_corners
   /// The crawl's foothold search also runs for a body that jumps beyond the validator's bound
   /// (CrawlSettings::refit_body_acceleration).
   bool refit_body_jumps = false;
 };
 
+/// What RunPipeline() plans with: the planners chosen and every stage's settings.
 struct PipelineOptions {
-  Facing facing = Facing::kForward;
-  FootstepSource footsteps = FootstepSource::kSelectedCrawl;
+  Facing facing = Facing::kForward;  ///< which way the body faces relative to the travel
+  FootstepSource footsteps = FootstepSource::kSelectedCrawl;  ///< which planner places the footsteps
   /// The step planner's controllers; the executed gait is quasi-static, so crawls only by default.
   StepPlannerSettings step = CrawlControllers();
-  BodySource body = BodySource::kQuasiStaticPath;
+  BodySource body = BodySource::kQuasiStaticPath;  ///< which planner makes the body trajectory
   BodyPlannerSettings body_qp;   ///< for kRecedingHorizonQp (knots = the horizon)
   std::string body_nlp;          ///< "", "ipopt" or "nlopt": refine the QP body with the NLP
-  BodyNlpSettings nlp;
-  ConstrainedMapSettings map;
+  BodyNlpSettings nlp;  ///< the NLP's solver settings, with body_nlp
+  ConstrainedMapSettings map;  ///< the analytic map's margins
   /// Trim step regions where this robot's legs would hit a riser or nosing (collision module).
   bool robot_regions = true;
-  RobotRegionSettings regions;
-  CrawlSettings crawl;
+  RobotRegionSettings regions;  ///< how the robot's own collision regions are found
+  CrawlSettings crawl;  ///< the crawl planner's settings (and its body path's, crawl.body)
   /// Going down, the crawl's four-feet phases last at least this long [s] (0: crawl.shift_duration
   /// as it is). The COM rides high above the lower front feet (0.57 m for the built-in robot on
   /// the default stairs), so the deceleration that ends a 0.6 s shift (about 2 m/s^2) pushes the
@@ -107,13 +108,14 @@ struct PipelineOptions {
                                               {0.8, 0.75, false, 0.05, true},
                                               {0.6, 0.75, false, 0.05, true},
                                               {0.6, 0.75, false, 0.0, true, 0.6, true, true}};
-  ValidationSettings validation;
+  ValidationSettings validation;  ///< what the validator checks and with what margins
 };
 
+/// What RunPipeline() produced: the map planned on, the plan and its validation.
 struct PipelineResult {
-  ConstrainedMap map;
-  Plan plan;
-  bool validated = false;
+  ConstrainedMap map;  ///< the constrained map planned on
+  Plan plan;  ///< the plan
+  bool validated = false;  ///< the validator ran
   ValidationReport validation;  ///< meaningful when validated
 };
 

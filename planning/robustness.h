@@ -12,18 +12,20 @@
 
 namespace stairplan {
 
+/// How EvaluateRobustness() perturbs the stairs: per-step Gaussian errors of rise and run.
 struct RobustnessSettings {
   double sigma_rise = 0.005;  ///< standard deviation of each rise's error [m]
   double sigma_run = 0.01;    ///< standard deviation of each run's error [m]
-  int trials = 20;
-  std::uint32_t seed = 1;
+  int trials = 20;  ///< perturbed staircases drawn
+  std::uint32_t seed = 1;  ///< random seed: the same seed draws the same staircases
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
 };
 
+/// How a nominal plan fared on perturbed stairs, open loop and replanned.
 struct RobustnessReport {
-  int trials = 0;
+  int trials = 0;  ///< perturbed staircases evaluated
   int nominal_valid = 0;  ///< 1 when the plan is valid on the nominal stairs
   int open_loop_ok = 0;   ///< trials where the nominal plan is still valid on the true stairs
   int replanned_ok = 0;   ///< trials where a plan made on the true stairs is valid
@@ -37,6 +39,8 @@ std::vector<StairSpec> PerturbedStaircases(const StairSpec& nominal, const Robus
 /// The nominal plan moved onto `true_stairs`: footholds keep x and y and take the true height.
 Plan PlanOnTrueStairs(const Plan& nominal, const Staircase& true_stairs, const ConstrainedMap& true_map);
 
+/// Plans `nominal`, then for each of PerturbedStaircases(): the nominal plan executed open loop on
+/// the perturbed stairs, and a new plan made on them, both validated there (not per cycle).
 RobustnessReport EvaluateRobustness(const RobotModel& robot, const StairSpec& nominal, const PipelineOptions& options,
                                     const RobustnessSettings& settings);
 

@@ -17,6 +17,7 @@ namespace stairplan {
 /// 0 -> 1 as u goes 0 -> 1 (clamped), with zero slope at both ends: motions that start and stop smoothly.
 double SmoothStep(double u);
 
+/// The shape of a swing: clearance over the stairs and how it rises, travels and lowers.
 struct SwingSettings {
   double clearance = 0.06;      ///< foot contact point above the highest obstacle on the way [m]
   double min_lift = 0.05;       ///< at least this far above the higher foothold [m]
@@ -30,6 +31,7 @@ struct SwingSettings {
 /// One foot's swing: contact-point positions over the swing phase 0..1.
 class SwingTrajectory {
  public:
+  /// A swing from `from_W` to `to_W` clearing the highest obstacle of `stairs` between them.
   SwingTrajectory(const Eigen::Vector3d& from_W, const Eigen::Vector3d& to_W, const Staircase& stairs,
                   const SwingSettings& settings = {});
   /// A swing with its apex given (as a plan states it), making `approach_share` of its horizontal

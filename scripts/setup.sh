@@ -11,6 +11,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
   libopenmpi-dev openmpi-bin
   libassimp-dev
+  doxygen
 )
 # `setup.sh sanitize` (scripts/sanitize.sh, run by scripts/test.sh) also installs the sanitizer
 # toolchain: clang 14 with its ASan/UBSan/libFuzzer runtimes, lld and Ninja for a faster build.

@@ -13,7 +13,7 @@ namespace stairplan {
 
 /// A box of hip placements relative to one foothold.
 struct HipBox {
-  int leg = -1;
+  int leg = -1;  ///< the stance leg (kinematics order)
   int foothold = -1;       ///< index into the footholds given to SetFootholds()
   double dx_lo = 0.0;      ///< hip minus contact along the body's heading, lowest [m]
   double dx_hi = 0.0;      ///< ... highest [m]
@@ -23,11 +23,13 @@ struct HipBox {
 
 /// Hip height above the contact point [m]; empty when lo > hi.
 struct HeightRange {
-  double lo = 0.0;
-  double hi = 0.0;
+  double lo = 0.0;  ///< lowest hip height [m]
+  double hi = 0.0;  ///< highest hip height [m]
+  /// True when no height is valid (lo > hi, or NaN).
   bool empty() const { return !(lo <= hi); }
 };
 
+/// Where the body may be for a stance leg: the hip heights the leg allows over a box of placements.
 class BodyBounds {
  public:
   virtual ~BodyBounds() = default;

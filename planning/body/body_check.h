@@ -12,11 +12,13 @@
 
 namespace stairplan {
 
+/// What CheckBodyTrajectory() found.
 struct BodyPlanCheck {
   int samples = 0;              ///< body samples checked
   int violations = 0;           ///< stance legs failing IK or the clearance
   double min_clearance = 0.0;   ///< smallest stance-leg clearance seen [m]
   std::string first_violation;  ///< e.g. "t=2.350 s, LF: joint_limits"; empty when none
+  /// True when no stance leg failed.
   bool ok() const { return violations == 0; }
 };
 

@@ -29,10 +29,11 @@
 
 namespace stairplan {
 
+/// The NLP's solver and its stopping rules.
 struct BodyNlpSettings {
   std::string solver = "ipopt";  ///< "ipopt" or "nlopt" (SLSQP)
   double tolerance = 1e-4;       ///< the solver's convergence tolerance
-  int max_iterations = 200;
+  int max_iterations = 200;  ///< the solver's iteration limit per solve
   /// Solve with the constraints near active at the initial point first and add the ones the
   /// solution breaks (same answer, smaller linear systems); false: every constraint at once.
   bool screen_constraints = true;
@@ -42,7 +43,7 @@ struct BodyNlpSettings {
 
 /// One NLP solve and how it compares with the QP plan it started from.
 struct BodyNlpWindow {
-  optim::SolveStatus status = optim::SolveStatus::kInvalidInput;
+  optim::SolveStatus status = optim::SolveStatus::kInvalidInput;  ///< how the solve ended
   double qp_objective = 0.0;   ///< the NLP's objective at the QP plan
   double nlp_objective = 0.0;  ///< ... at its own solution
   double qp_bound_distance = 0.0;   ///< smallest distance of a stance hip from its exact bounds, QP plan [m]
@@ -63,6 +64,7 @@ struct BodyNlpSolution {
   /// Per knot k and leg l (index k * kBodyLegs + l): the stance foothold (-1: swing) and the
   /// multipliers of its lowest- and highest-hip bounds.
   std::vector<int> stance_foothold;
+  /// Per knot and leg, as stance_foothold: the multipliers of its two bounds.
   std::vector<std::array<double, 2>> stance_duals;
   /// Per acceleration row: quantity q (0 height, 1 pitch, 2 shift) over knots k .. k + 2 at
   /// q * (knots - 2) + k.

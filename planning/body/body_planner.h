@@ -1,8 +1,8 @@
-// The control-loop body planner (seed 000 [0050]-[0052], claims 3-4): a receding-horizon QP over
-// the body's height, pitch and forward and sideways weight shift, bounded by every stance leg's
-// reach, by the height below which a leg would touch the stairs and by the support polygon the
-// centre of mass must stay over (quasi-static gaits), re-linearised around the previous solution
-// and re-solved warm once per cycle.
+// The control-loop body planner (US 2020/0324412 A1 ("Robotically negotiating stairs")
+// [0050]-[0052], claims 3-4): a receding-horizon QP over the body's height, pitch and forward and
+// sideways weight shift, bounded by every stance leg's reach, by the height below which a leg would
+// touch the stairs and by the support polygon the centre of mass must stay over (quasi-static
+// gaits), re-linearised around the previous solution and re-solved warm once per cycle.
 //
 //   BodyPlanner planner(robot, stairs, map, PlanCrawl(robot, stairs, map), settings);  // once
 //   BodyState state = planner.StartState();
@@ -44,35 +44,40 @@ struct BodyCommand {
 
 /// One leg's footstep target at the current time.
 struct LegTarget {
-  bool stance = true;
+  bool stance = true;  ///< in stance now (false: swinging)
   Eigen::Vector3d foot_W = Eigen::Vector3d::Zero();    ///< contact point now (interpolated in swing)
   Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< where the foot lands next (= foot_W in stance)
   double t_liftoff = 0.0;    ///< swing start (in stance: the next one, +inf when none)
   double t_touchdown = 0.0;  ///< swing end (in stance: the last one)
 };
 
+/// How long the parts of one Update() took [us].
 struct BodyPlannerTimings {
   double bounds_us = 0.0;  ///< linearisation and bounds
   double solve_us = 0.0;   ///< the QP
   double total_us = 0.0;   ///< the whole Update
 };
 
+/// What one Update() produced: the body references over the horizon, the foot targets and how the cycle went.
 struct BodyPlannerOutput {
-  BodyPlanStatus status = BodyPlanStatus::kOk;
-  optim::SolveStatus solve_status = optim::SolveStatus::kSolved;
-  std::array<LegTarget, kBodyLegs> feet{};
+  BodyPlanStatus status = BodyPlanStatus::kOk;  ///< how the cycle went
+  optim::SolveStatus solve_status = optim::SolveStatus::kSolved;  ///< how the QP solve ended
+  std::array<LegTarget, kBodyLegs> feet{};  ///< each leg's foothold or swing target now, in kinematics order
   std::vector<BodyState> knots;  ///< body references at now + k * knot_dt (sized once)
   /// Stance legs at knots 1.. whose bounds the new plan breaks: no valid hip height, or a row
   /// that gave way to the previous plan (rows never exclude the previous plan, the centre of the
   /// trust region, so the QP stays feasible while the cost pulls the plan back inside).
   int conflicts = 0;
+  ///@{
   int conflict_knot = -1, conflict_leg = -1;  ///< the first one
+  ///@}
   double next_violation = 0.0;   ///< how far the next knot breaks a stance leg's bound [m]
   int iterations = 0;            ///< active-set changes
   int solves = 0;                ///< QPs solved in this Update (> 1 only at warm-up)
-  BodyPlannerTimings timings;
+  BodyPlannerTimings timings;  ///< how long the cycle's parts took
 };
 
+/// The receding-horizon body planner of a control loop (see the file's top comment for its use).
 class BodyPlanner {
  public:
   /// Builds the bounds (KDL IK and FCL clearances) and the QP for `footsteps`' footholds. Throws
@@ -93,21 +98,29 @@ class BodyPlanner {
   BodyState StartState() const;
   /// The body reference at time t from the latest plan (interpolated between knots).
   BodyState Interpolate(double t) const;
+  /// The latest cycle's output.
   const BodyPlannerOutput& output() const { return output_; }
+  /// The footholds and each leg's stance and swing phases over time.
   const FootSchedule& schedule() const { return schedule_; }
+  /// The settings it was built with.
   const BodyPlannerSettings& settings() const { return settings_; }
+  /// The hip-height bounds the QP is linearised from.
   BodyBounds& bounds() { return *bounds_; }
+  /// The QP solved every cycle (inputs and program, for inspection).
   BodyQp& qp() { return *qp_; }
   /// The desired hip height above the contact points [m].
   double desired_hip_height() const { return hip_height_; }
+  /// Heading of the flight's travel in the world [rad].
   double yaw() const { return schedule_.yaw(); }
   /// The hip (first joint) of leg `leg` in the base frame.
   const Eigen::Vector3d& hip_B(int leg) const { return hips_B_[static_cast<std::size_t>(leg)]; }
   /// |pitch| of the flight's slope line [rad].
   double stairs_pitch() const { return stairs_pitch_; }
+  ///@{
   /// The hip's offset from the body origin at `pitch`: vertical, and along the heading [m].
   double HipDz(int leg, double pitch) const;
   double HipDx(int leg, double pitch) const;
+  ///@}
 
  private:
   void Initialise(const RobotModel& robot, const Staircase& stairs);

@@ -1,22 +1,26 @@
-// Settings of the body planner (seed 000 [0050]-[0052]): the horizon, the cost weights, the hard
-// limits, the margins of the kinematic and collision bounds, the trust region of the per-cycle
-// linearisation and the cycle budget. Defaults suit a medium quadruped on building-code stairs.
+// Settings of the body planner (US 2020/0324412 A1 ("Robotically negotiating stairs")
+// [0050]-[0052]): the horizon, the cost weights, the hard limits, the margins of the kinematic and
+// collision bounds, the trust region of the per-cycle linearisation and the cycle budget. Defaults
+// suit a medium quadruped on building-code stairs.
 #pragma once
 
 #include <string>
 
 namespace stairplan {
 
+/// The body planner's settings: horizon, cost weights, hard limits, margins, trust region, budget.
 struct BodyPlannerSettings {
   // --- Horizon.
   int knots = 40;             ///< knots over the horizon
   double knot_dt = 0.025;     ///< spacing of the knots [s]
 
   // --- Targets.
-  /// Desired hip height above the feet' contact points (the soft equality of [0052]): the foot
-  /// radius plus this fraction of the legs' longest hip-to-foot reach within their joint limits.
+  /// Desired hip height above the feet' contact points (the soft equality of US 2020/0324412
+  /// [0052]): the foot radius plus this fraction of the legs' longest hip-to-foot reach within
+  /// their joint limits.
   double hip_height_fraction = 0.8;
-  /// Forward shift of the centre of mass wanted on the flight (toward the front legs, [0049]) [m].
+  /// Forward shift of the centre of mass wanted on the flight (toward the front legs, US
+  /// 2020/0324412 [0049]) [m].
   double stairs_com_shift = 0.03;
 
   // --- Cost weights (per knot).

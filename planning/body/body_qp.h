@@ -1,7 +1,8 @@
-// The body planner's QP (seed 000 [0050]-[0052]): per knot the body height z, the pitch and the
-// forward and sideways shifts of the centre of mass. Built once; every cycle the bounds and linear
-// terms change, and the few support rows whose feet changed get new coefficients (inactive rows:
-// ActiveSetQpSolver keeps its factorisation), so it re-solves warm without allocating.
+// The body planner's QP (US 2020/0324412 A1 ("Robotically negotiating stairs") [0050]-[0052]): per
+// knot the body height z, the pitch and the forward and sideways shifts of the centre of mass.
+// Built once; every cycle the bounds and linear terms change, and the few support rows whose feet
+// changed get new coefficients (inactive rows: ActiveSetQpSolver keeps its factorisation), so it
+// re-solves warm without allocating.
 //
 //   min  sum_k [ sum_legs w_h (z_k + c_l pitch_k - height_ref_kl)^2       hip height above the feet
 //              + w_p (pitch_k - pitch_ref_k)^2 + w_s (shift_k - shift_ref_k)^2 ]
@@ -34,8 +35,11 @@
 
 namespace stairplan {
 
+/// Number of legs the body planner plans for (quadrupeds).
 constexpr int kBodyLegs = 4;
 
+/// The body planner's QP over the horizon's knots, built once and re-solved warm every cycle (see
+/// the file's top comment).
 class BodyQp {
  public:
   /// `row_coefficients`: c_l per leg; legs within kRowMergeTolerance share a row (and the mean
@@ -45,25 +49,37 @@ class BodyQp {
   /// Coefficients closer than this share one row [m/rad].
   static constexpr double kRowMergeTolerance = 1e-3;
 
+  /// Number of knots over the horizon.
   int knots() const { return knots_; }
+  ///@{
   /// Rows per knot (hip groups) and each leg's group.
   int groups() const { return groups_; }
   int group_of(int leg) const { return group_of_[static_cast<std::size_t>(leg)]; }
+  ///@}
   /// The row coefficient used for leg `leg` (its group's).
   double row_coefficient(int leg) const { return group_c_[static_cast<std::size_t>(group_of(leg))]; }
 
   /// Support rows per knot: one per pair of legs (i < j), in the order of SupportPair().
   static constexpr int kSupportRows = 6;
+  /// The legs (i < j) of support row `r` (0 .. kSupportRows - 1).
   static std::array<int, 2> SupportPair(int r);
 
   // ---- per-cycle inputs, filled in place by the planner (sizes fixed at construction) ----
+  ///@{
   Eigen::VectorXd z_lo, z_hi, pitch_lo, pitch_hi, shift_lo, shift_hi, lateral_lo, lateral_hi;  ///< knots
+  ///@}
+  ///@{
   Eigen::VectorXd hip_lo, hip_hi;      ///< knots * groups(), row k * groups() + group; +-inf: none
+  ///@}
   Eigen::VectorXd height_ref;          ///< knots * 4: wanted value of z + c_l pitch
+  ///@{
   Eigen::VectorXd pitch_ref, shift_ref, lateral_ref;  ///< knots
+  ///@}
+  ///@{
   /// Support rows, k * kSupportRows + r: coefficients of shift_k and lateral_k and the bounds
   /// (+-inf: none). Coefficients are pushed only where they changed.
   Eigen::VectorXd support_cx, support_cy, support_lo, support_hi;
+  ///@}
 
   /// Pushes the inputs into the program(s) and solves warm; `time_limit_s` may be +inf.
   /// Allocation-free after the first call. Without support rows the sideways shift is its own
@@ -80,14 +96,21 @@ class BodyQp {
   /// True when no support row couples the sideways shift to the rest (stability_margin < 0):
   /// it is then a separate QP, lateral_program(), and program() holds the rest.
   bool lateral_apart() const { return lateral_apart_; }
+  /// The QP over height, pitch and forward shift (and the sideways shift unless lateral_apart()).
   const optim::Program& program() const { return program_; }
+  /// The sideways shift's own QP when lateral_apart(), else program().
   const optim::Program& lateral_program() const { return lateral_apart_ ? lateral_program_ : program_; }
+  /// Body heights, one per knot, in program().
   const optim::VariableBlock& z() const { return z_; }
+  /// Pitches, one per knot, in program().
   const optim::VariableBlock& pitch() const { return pitch_; }
+  /// Forward shifts of the centre of mass, one per knot, in program().
   const optim::VariableBlock& shift() const { return shift_; }
   /// In lateral_program().
   const optim::VariableBlock& lateral() const { return lateral_; }
+  /// The support rows (the COM inside the support polygon), in program().
   const optim::ConstraintRows& support_rows() const { return support_rows_; }
+  /// The hip-height rows, in program().
   const optim::ConstraintRows& hip_rows() const { return hip_rows_; }
   /// Writes the linear cost of the current inputs into the program (done by Solve too); lets
   /// other solvers (Ipopt, for comparison) solve the same QP.

@@ -16,6 +16,7 @@
 
 namespace stairplan {
 
+/// The body QP's affine model of the centre of mass (see the file's top comment).
 struct ComEstimate {
   Eigen::Vector2d gain = Eigen::Vector2d::Ones();       ///< d COM / d body, per world axis
   Eigen::Vector2d foot_gain = Eigen::Vector2d::Zero();  ///< d COM / d foot, per foot and axis

@@ -24,7 +24,7 @@ struct Foothold {
 
 /// A leg at one instant.
 struct LegPhase {
-  bool stance = true;
+  bool stance = true;  ///< in stance (false: swinging)
   int foothold = -1;       ///< standing on (stance) or leaving (swing)
   int next_foothold = -1;  ///< the next foothold (the target during a swing), -1 after the last
   double progress = 0.0;   ///< swing progress in [0, 1]; 0 in stance
@@ -36,6 +36,7 @@ struct LegPhase {
   int swing = -1;          ///< in swing: the leg's swing number (for SwingFoot()), else -1
 };
 
+/// The feet's timeline of a footstep plan: each leg's stances and swings, queried allocation-free.
 class FootSchedule {
  public:
   FootSchedule() = default;
@@ -47,12 +48,17 @@ class FootSchedule {
   FootSchedule(const RobotModel& robot, const Plan& plan, const Staircase* stairs = nullptr,
                const SwingSettings& swing = {});
 
+  /// Every foothold of the plan (the initial ones included).
   const std::vector<Foothold>& footholds() const { return footholds_; }
+  /// Number of legs.
   int leg_count() const { return static_cast<int>(legs_.size()); }
+  /// When the last swing ends [s].
   double end_time() const { return end_time_; }
+  ///@{
   /// Body yaw (0 facing forward, pi facing backward) and its cosine along x (+1 or -1).
   double yaw() const { return yaw_; }
   double heading() const { return heading_; }
+  ///@}
 
   /// Leg `leg` at time t (clamped to [0, end_time()]). Allocation-free.
   LegPhase Phase(int leg, double t) const;
@@ -63,12 +69,15 @@ class FootSchedule {
   Eigen::Vector2d NeutralBodyXY(double t) const;
   /// The pitch of the line from the hind feet to the front feet at t (nose-up negative).
   double FeetPitch(double t) const;
+  ///@{
   /// The same two from the legs' phases at one instant (leg_count() of them, in leg order, as
   /// Phase() gives them), for callers that have the phases already.
   Eigen::Vector2d NeutralBodyXY(const LegPhase* phases) const;
   double FeetPitch(const LegPhase* phases) const;
+  ///@}
   /// The leg's neutral foot offset from the body origin in the world, horizontal [m].
   const Eigen::Vector2d& NeutralOffset(int leg) const { return legs_[static_cast<std::size_t>(leg)].offset_W; }
+  /// True for a front leg.
   bool IsFront(int leg) const { return legs_[static_cast<std::size_t>(leg)].front; }
 
  private:

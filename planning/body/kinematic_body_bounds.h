@@ -24,11 +24,14 @@ namespace stairplan {
 
 /// The exact test of one stance leg: IK onto the contact point and the leg's clearance to the stairs.
 struct StanceLegCheck {
-  IkResult ik;
+  IkResult ik;  ///< IK onto the contact point
   double clearance = 0.0;  ///< smallest leg-link to stair distance [m]
+  /// True when IK reached the contact and the leg keeps at least `min_clearance` from the stairs.
   bool ok(double min_clearance) const { return ik.ok() && clearance >= min_clearance; }
 };
 
+/// BodyBounds from the robot's kinematics (KDL IK) and collision model (FCL clearances), cached
+/// per leg and foothold.
 class KinematicBodyBounds final : public BodyBounds {
  public:
   /// Builds the robot's kinematics and collision model and the stairs' solids. The body faces
@@ -46,11 +49,15 @@ class KinematicBodyBounds final : public BodyBounds {
   /// clearance of leg `leg` with its foot on `contact_W` and the body at `body`. Not per cycle.
   StanceLegCheck CheckLeg(int leg, const Eigen::Vector3d& contact_W, const BodyPose& body);
 
+  /// The robot's leg kinematics.
   const RobotKinematics& kinematics() const { return *kinematics_; }
+  /// The robot's collision shapes.
   const RobotCollisionModel& collision_model() const { return *collision_; }
+  /// The stairs' solids.
   const StairCollisionModel& stair_model() const { return *stairs_; }
   /// Grid nodes computed so far (reach, clearance), for diagnostics.
   int reach_nodes_computed() const { return reach_computed_; }
+  /// Grid nodes of the clearance bound computed so far, for diagnostics.
   int clearance_nodes_computed() const { return clearance_computed_; }
 
  private:

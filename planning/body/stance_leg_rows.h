@@ -21,9 +21,11 @@ enum BodyVariable { kBodyZ = 0, kBodyPitch = 1, kBodyAlong = 2, kBodySideways = 
 /// the leg's extension (flexion joint to foot). Each row's coefficients have unit length, so its bounds read as the
 /// distance dv may move in metres (or radians of pitch) before it binds.
 struct StanceLegRows {
-  static constexpr int kRows = 4;
-  std::array<Eigen::Vector4d, kRows> a{};
-  std::array<double, kRows> lo{}, hi{};
+  static constexpr int kRows = 4;  ///< rows per stance leg: three joints and the extension
+  std::array<Eigen::Vector4d, kRows> a{};  ///< each row's unit coefficients over (z, pitch, along, sideways)
+  ///@{
+  std::array<double, kRows> lo{}, hi{};  ///< each row's bounds
+  ///@}
   Eigen::Vector3d q = Eigen::Vector3d::Zero();  ///< the joints at the pose (IK; within limits)
   bool reached = false;  ///< IK put the foot on its contact within the limits at the pose
 };

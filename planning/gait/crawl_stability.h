@@ -1,7 +1,7 @@
-// Quasi-static stability of the paper's crawl (seed 003, "Stability Analysis"): over one cycle of
-// hip travel (one CL), the fraction during which the centre of mass, projected on the ground, lies
-// outside the support polygon of the feet on the stairs (the triangle of the three stance feet
-// while one leg swings).
+// Quasi-static stability of the paper's crawl (Chen, Ko, Li, Lin 2012, "Stair Climbing in a
+// Quadruped Robot", "Stability Analysis"): over one cycle of hip travel (one CL), the fraction
+// during which the centre of mass, projected on the ground, lies outside the support polygon of the
+// feet on the stairs (the triangle of the three stance feet while one leg swings).
 //
 // The model is the paper's: hips travel along a line parallel to the edge line at clearance d, the
 // body is inclined with the stairs, the COM is midway between the hips, each leg lifts off when its
@@ -20,7 +20,7 @@ enum class CrawlCase { kRightFirst = 1, kFrontSwitched = 2 };
 
 /// The stability estimate for one arrangement.
 struct CrawlStability {
-  CrawlCase arrangement = CrawlCase::kRightFirst;
+  CrawlCase arrangement = CrawlCase::kRightFirst;  ///< case 1 or case 2
   /// Legs in the order they swing within one cycle, starting with the right hind leg (names as
   /// everywhere in stairplan: LF, RF, LH, RH).
   std::array<const char*, 4> swing_sequence{};

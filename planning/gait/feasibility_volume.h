@@ -1,6 +1,7 @@
-// The paper's design chart (seed 003, eqs. (14)-(16) and Figure 4): the interference conditions
-// (11)-(13) divided through by the body length BL, so that the feasible designs form a volume in
-// (W/BL, H/BL, l_max/BL) for a given buffer fraction p.
+// The paper's design chart (Chen, Ko, Li, Lin 2012, "Stair Climbing in a Quadruped Robot", eqs.
+// (14)-(16) and Figure 4): the interference conditions (11)-(13) divided through by the body length
+// BL, so that the feasible designs form a volume in (W/BL, H/BL, l_max/BL) for a given buffer
+// fraction p.
 //
 // The seed's text of (14)-(16) lost its exponents in extraction; these are the forms that follow
 // from (11)-(13) by squaring (each side is non-negative for CL < BL < 2CL, the paper's assumption):
@@ -27,6 +28,7 @@ struct DimensionlessVerdict {
   bool c16 = false;  ///< l_max >= l_min, from (13)
   /// CL < BL < 2CL, the assumption under which (11)-(13) replace (8)-(10).
   bool in_body_range = false;
+  /// True when (14), (15) and (16) all hold.
   bool feasible() const { return c14 && c15 && c16; }
 };
 

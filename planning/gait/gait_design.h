@@ -1,6 +1,6 @@
-// The gait design of "Stair Climbing in a Quadruped Robot" (Chen, Ko, Li, Lin, 2012; seed 003):
-// minimum leg length, contact offsets, swing separations and the four-leg interference conditions
-// for a quasi-static crawl whose hips travel parallel to the stairs' edge line. Pure geometry.
+// The gait design of "Stair Climbing in a Quadruped Robot" (Chen, Ko, Li, Lin, 2012): minimum leg
+// length, contact offsets, swing separations and the four-leg interference conditions for a
+// quasi-static crawl whose hips travel parallel to the stairs' edge line. Pure geometry.
 //
 // Symbols follow the paper: W tread depth (run), H rise, CL = sqrt(W^2 + H^2), phi = atan(H / W),
 // d hip clearance (hip path to edge line), l leg length (hip to foot), BL body length (hip to hip),
@@ -25,6 +25,7 @@ struct GaitDesignInput {
   /// (d = 8.5 cm for H = 17 cm).
   std::optional<double> hip_clearance;
 
+  /// d: hip_clearance when set, else H / 2 [m].
   double HipClearance() const { return hip_clearance ? *hip_clearance : 0.5 * rise; }
   /// Throws std::invalid_argument naming the field (non-finite, non-positive, p outside [0, 1)).
   void Validate() const;
@@ -34,7 +35,7 @@ struct GaitDesignInput {
 struct GaitCondition {
   const char* name = "";   ///< "(8)", "(9)", "(10)", ...
   const char* text = "";   ///< the inequality in words
-  bool holds = false;
+  bool holds = false;  ///< true when the inequality holds
   double slack = 0.0;      ///< [m]; >= 0 when it holds
 };
 
@@ -53,7 +54,7 @@ struct GaitDesign {
   /// In checking order: (10) l_max > l_min, (8) rem + D_o <= CL, (9) rem >= D_o, then that both
   /// contact offsets lie on the tread: "(4)" a_min >= 0 (d not too large), "(3)" a_max <= W.
   std::array<GaitCondition, 5> conditions{};
-  bool feasible = false;
+  bool feasible = false;  ///< every condition holds
   /// The violated condition checked first when infeasible; the tightest one when feasible.
   std::string binding;
 };

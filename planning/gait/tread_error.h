@@ -1,6 +1,7 @@
-// How much tread depth may differ from the design's W before the crawl loses its footing (seed 003,
-// "Error Adaptation", eqs. (17)-(19)). Errors add up from step to step because the gait runs open
-// loop, so a staircase is checked on the cumulative error.
+// How much tread depth may differ from the design's W before the crawl loses its footing (Chen, Ko,
+// Li, Lin 2012, "Stair Climbing in a Quadruped Robot", "Error Adaptation", eqs. (17)-(19)). Errors
+// add up from step to step because the gait runs open loop, so a staircase is checked on the
+// cumulative error.
 #pragma once
 
 #include <vector>
@@ -28,6 +29,7 @@ TreadErrorTolerance TreadDepthTolerance(const GaitDesign& design, double run, do
 struct CumulativeTreadError {
   std::vector<double> cumulative;  ///< dW_t after each step: the running sum of the errors [m]
   int first_violation = -1;        ///< the first step whose dW_t leaves the range, -1 when none
+  /// True when the cumulative error stays within the range at every step.
   bool within() const { return first_violation < 0; }
 };
 

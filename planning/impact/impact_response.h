@@ -1,6 +1,7 @@
-// Responses to impacts while traversing stairs (seed 000 [0053]-[0068], claims 5-8): given what hit
-// what and where the swing leg is in its swing, decide how the robot reacts. Pure decision logic;
-// the impact detector that produces the events lives with the controller or the simulator.
+// Responses to impacts while traversing stairs (US 2020/0324412 A1 ("Robotically negotiating
+// stairs") [0053]-[0068], claims 5-8): given what hit what and where the swing leg is in its swing,
+// decide how the robot reacts. Pure decision logic; the impact detector that produces the events
+// lives with the controller or the simulator.
 #pragma once
 
 #include <string>
@@ -12,7 +13,7 @@
 
 namespace stairplan {
 
-/// What was detected.
+/// What was detected (paragraphs of US 2020/0324412 A1, "Robotically negotiating stairs").
 enum class ImpactKind {
   kTouchdown,              ///< the swing foot reached its target tread ([0055])
   kKneeBehindBody,         ///< a trailing knee hit something behind the body ([0058])
@@ -37,19 +38,21 @@ enum class ResponseKind {
   kProceed,               ///< no reaction: continue the planned motion
 };
 
+/// Returns the kind's snake_case name, e.g. "knee_behind_body".
 const char* ToString(ImpactKind kind);
+/// Returns the response's snake_case name, e.g. "move_knee_forward".
 const char* ToString(ResponseKind kind);
 
 /// One detected impact with the state the response needs. Positions in the world frame [m].
 struct ImpactEvent {
-  ImpactKind kind = ImpactKind::kTouchdown;
+  ImpactKind kind = ImpactKind::kTouchdown;  ///< what was detected
   std::string leg;                 ///< the swing (or impacted) leg: "LF", "RF", "LH", "RH"
   double swing_phase = 0.0;        ///< 0 at liftoff, 1 at planned touchdown
   double body_yaw = 0.0;           ///< body heading, to know which way is the leg's own side [rad]
   int target_stair = -1;           ///< the stair the swing foot is heading for
-  Eigen::Vector3d swing_foot_W = Eigen::Vector3d::Zero();
-  Eigen::Vector3d target_W = Eigen::Vector3d::Zero();
-  Eigen::Vector3d contralateral_foot_W = Eigen::Vector3d::Zero();
+  Eigen::Vector3d swing_foot_W = Eigen::Vector3d::Zero();  ///< the swing foot now
+  Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< where the swing foot is heading
+  Eigen::Vector3d contralateral_foot_W = Eigen::Vector3d::Zero();  ///< the contralateral leg's foot
 };
 
 /// Tunable parts of the responses, with defaults for a medium quadruped.
@@ -66,7 +69,7 @@ struct ImpactSettings {
 
 /// The reaction to one impact.
 struct ImpactResponse {
-  ResponseKind kind = ResponseKind::kProceed;
+  ResponseKind kind = ResponseKind::kProceed;  ///< the reaction
   Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< the (possibly adjusted) foot target
   std::vector<Eigen::Vector3d> waypoints_W;            ///< intermediate foot positions, in order
   double extra_swing_height = 0.0;                     ///< for kElevateFoot [m]

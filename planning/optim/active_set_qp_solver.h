@@ -68,17 +68,22 @@ struct ActiveSetQpSettings {
   void Validate() const;
 };
 
+/// Our dense dual active-set QP solver (see the file's top comment): the per-cycle solver, warm-started.
 class ActiveSetQpSolver final : public Solver {
  public:
   ActiveSetQpSolver() = default;
+  /// With `settings` (checked: throws std::invalid_argument naming the field).
   explicit ActiveSetQpSolver(const ActiveSetQpSettings& settings) : settings_(settings) { settings_.Validate(); }
 
   std::string_view name() const override { return "active-set"; }
   /// Quadratic programs only (no nonlinear costs or constraints).
   bool Supports(const Program& program) const override { return program.IsQuadratic(); }
 
+  ///@{
+  /// The settings, changeable between solves.
   ActiveSetQpSettings& settings() { return settings_; }
   const ActiveSetQpSettings& settings() const { return settings_; }
+  ///@}
 
   /// The next solve starts from this active set (sizes must match the program then).
   void SetWarmStart(const ActiveSet& active_set);

@@ -9,11 +9,13 @@ namespace stairplan::optim {
 
 /// The program and the handles a cycle update needs.
 struct BodyQpExample {
-  Program program;
+  Program program;  ///< the QP
+  ///@{
   VariableBlock height, pitch, shift;  ///< one value per knot each
+  ///@}
   ConstraintRows hip_heights;          ///< front and rear hip heights within kinematic bands
   ConstraintRows rates;                ///< height and pitch rate limits between knots
-  int knots = 0;
+  int knots = 0;  ///< knots over the horizon
 };
 
 /// 40 knots by default: 3 variables per knot, 4 banded rows per knot.

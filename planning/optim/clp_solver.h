@@ -31,7 +31,7 @@ enum class ClpAlgorithm {
 
 /// Settings of ClpSolver.
 struct ClpSettings {
-  ClpAlgorithm algorithm = ClpAlgorithm::kPrimalSimplex;
+  ClpAlgorithm algorithm = ClpAlgorithm::kPrimalSimplex;  ///< primal simplex or barrier
   /// CLP's primal feasibility tolerance (CLP's default 1e-7; tighter so that solutions meet 1e-9).
   double primal_tolerance = 1e-9;
   /// CLP's dual feasibility tolerance (CLP's default 1e-7).
@@ -46,9 +46,11 @@ struct ClpSettings {
   void Validate() const;
 };
 
+/// COIN-OR CLP as a second QP reference (see the file's top comment); optional in the build.
 class ClpSolver final : public Solver {
  public:
   ClpSolver();
+  /// With `settings` (checked: throws std::invalid_argument naming the field).
   explicit ClpSolver(const ClpSettings& settings);
   ~ClpSolver() override;
   ClpSolver(const ClpSolver&) = delete;
@@ -62,8 +64,11 @@ class ClpSolver final : public Solver {
   /// Quadratic programs only, and only when CLP is available.
   bool Supports(const Program& program) const override { return IsAvailable() && program.IsQuadratic(); }
 
+  ///@{
+  /// The settings, changeable between solves.
   ClpSettings& settings() { return settings_; }
   const ClpSettings& settings() const { return settings_; }
+  ///@}
 
   /// The next solve starts from CLP's crash basis.
   void ResetWarmStart();

@@ -34,10 +34,12 @@ struct IpoptSettings {
   /// Use the exact Hessian of the Lagrangian for nonlinear programs when every nonlinear part has
   /// a Hessian callback (Program::HasHessians()); limited-memory otherwise or when false.
   bool exact_hessian_for_nlp = true;
+  ///@{
   /// Options passed through to Ipopt as they are (set after the ones above, so they win).
   std::map<std::string, std::string> string_options;
   std::map<std::string, double> numeric_options;
   std::map<std::string, int> integer_options;
+  ///@}
   /// Throws std::invalid_argument naming the offending field.
   void Validate() const;
 };
@@ -50,22 +52,29 @@ struct IpoptDualGuess {
   Eigen::VectorXd bound_duals;      ///< one per variable
 };
 
+/// Ipopt (interior point) for QPs and NLPs: the reference solver and the NLP back-end.
 class IpoptSolver final : public Solver {
  public:
   IpoptSolver() = default;
+  /// With `settings` (checked: throws std::invalid_argument naming the field).
   explicit IpoptSolver(const IpoptSettings& settings) : settings_(settings) { settings_.Validate(); }
 
   std::string_view name() const override { return "ipopt"; }
   bool Supports(const Program&) const override { return true; }
 
+  ///@{
+  /// The settings, changeable between solves.
   IpoptSettings& settings() { return settings_; }
   const IpoptSettings& settings() const { return settings_; }
+  ///@}
 
   /// Starts the next solves from these multipliers (and the program's initial guess) until
   /// ClearDualGuess(). Solve() throws std::invalid_argument naming the field whose size does not
   /// match the program's rows or variables.
   void SetDualGuess(IpoptDualGuess guess);
+  /// Solves start from the program's initial guess alone again.
   void ClearDualGuess() { has_dual_guess_ = false; }
+  /// True while a dual guess is set.
   bool has_dual_guess() const { return has_dual_guess_; }
 
  private:

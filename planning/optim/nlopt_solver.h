@@ -11,12 +11,15 @@ namespace stairplan::optim {
 
 /// Settings of NloptSolver.
 struct NloptSettings {
+  /// NLopt's algorithm.
   enum class Algorithm { kSlsqp, kCobyla };
   /// kSlsqp (gradient based, default) or kCobyla (derivative-free).
   Algorithm algorithm = Algorithm::kSlsqp;
+  ///@{
   /// Relative tolerance on x and on f between iterations.
   double xtol_rel = 1e-10;
   double ftol_rel = 1e-14;
+  ///@}
   /// Violation NLopt accepts when it keeps its best point. Tighter values make SLSQP keep an
   /// early feasible iterate instead of its (slightly infeasible) converged one: on HS100, 1e-8
   /// gives 690.6 where 1e-6 gives the optimum 680.6300573 to 1e-10.
@@ -33,16 +36,21 @@ struct NloptSettings {
   void Validate() const;
 };
 
+/// NLopt (SLSQP, or COBYLA on request) for smooth NLPs: an offline and cross-checking solver.
 class NloptSolver final : public Solver {
  public:
   NloptSolver() = default;
+  /// With `settings` (checked: throws std::invalid_argument naming the field).
   explicit NloptSolver(const NloptSettings& settings) : settings_(settings) { settings_.Validate(); }
 
   std::string_view name() const override { return "nlopt"; }
   bool Supports(const Program&) const override { return true; }
 
+  ///@{
+  /// The settings, changeable between solves.
   NloptSettings& settings() { return settings_; }
   const NloptSettings& settings() const { return settings_; }
+  ///@}
 
  private:
   void DoSolve(const Program& program, SolveResult* result) override;

@@ -14,12 +14,18 @@ namespace stairplan::optim {
 
 /// One sequence of QPs sharing H and A. Per-problem data is stored one problem per row.
 struct OqpSequence {
-  std::string name;
-  int num_qps = 0, num_variables = 0, num_constraints = 0;
-  Eigen::MatrixXd H, A;
+  std::string name;  ///< the sequence's folder name
+  ///@{
+  int num_qps = 0, num_variables = 0, num_constraints = 0;  ///< sizes: problems, variables, constraint rows
+  ///@}
+  ///@{
+  Eigen::MatrixXd H, A;  ///< the shared Hessian and constraint matrix
+  ///@}
+  ///@{
   Eigen::MatrixXd g, lb, ub, lbA, ubA;  ///< num_qps rows
+  ///@}
   Eigen::MatrixXd x_opt;                ///< num_qps rows
-  Eigen::VectorXd obj_opt;
+  Eigen::VectorXd obj_opt;  ///< the reference optimal objective per problem
 
   /// A program with H and A and problem 0's vectors.
   Program MakeProgram() const;

@@ -40,26 +40,28 @@
 
 #include <Eigen/Core>
 
+/// The optimisation core: programs, solvers and QP benchmark sets; it includes nothing else of stairplan.
 namespace stairplan::optim {
 
+/// Infinity: a bound that does not bind.
 constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Bounds at or beyond this magnitude mean "no bound" (QPS files use 1e30).
 constexpr double kInfiniteBound = 1e20;
 
 /// A contiguous block of decision variables.
 struct VariableBlock {
-  std::string name;
-  int start = 0;
-  int size = 0;
+  std::string name;  ///< for messages
+  int start = 0;  ///< index of its first variable in x
+  int size = 0;  ///< number of variables
   /// This block's values inside the full vector x.
   Eigen::VectorBlock<const Eigen::VectorXd> Of(const Eigen::VectorXd& x) const { return x.segment(start, size); }
 };
 
 /// A contiguous group of linear constraint rows.
 struct ConstraintRows {
-  std::string name;
-  int start = 0;
-  int size = 0;
+  std::string name;  ///< for messages
+  int start = 0;  ///< index of its first row
+  int size = 0;  ///< number of rows
 };
 
 /// One block's coefficients in a linear constraint: rows x block.size.
@@ -67,9 +69,9 @@ using LinearTerm = std::pair<VariableBlock, Eigen::MatrixXd>;
 
 /// A nonlinear cost f(x) depending on some blocks, with its gradient per block.
 struct NonlinearCost {
-  std::string name;
-  std::vector<VariableBlock> blocks;
-  std::function<double(const Eigen::VectorXd& x)> value;
+  std::string name;  ///< for messages
+  std::vector<VariableBlock> blocks;  ///< the blocks f depends on, in the order `gradient` indexes them
+  std::function<double(const Eigen::VectorXd& x)> value;  ///< f(x) over the full vector x
   /// Writes df/d(blocks[block]) into `out` (size blocks[block].size).
   std::function<void(const Eigen::VectorXd& x, int block, Eigen::Ref<Eigen::VectorXd> out)> gradient;
   /// Optional: writes d2f/(d blocks[a] d blocks[b]) into `out` (blocks[a].size x blocks[b].size)
@@ -83,9 +85,11 @@ struct NonlinearCost {
 
 /// Nonlinear constraints lower <= c(x) <= upper, with Jacobians per block.
 struct NonlinearConstraint {
-  std::string name;
-  std::vector<VariableBlock> blocks;
-  Eigen::VectorXd lower, upper;
+  std::string name;  ///< for messages
+  std::vector<VariableBlock> blocks;  ///< the blocks c depends on, in the order `jacobian` indexes them
+  ///@{
+  Eigen::VectorXd lower, upper;  ///< bounds on c(x), one per row; +-inf: none
+  ///@}
   /// Writes c(x) into `out` (size lower.size()).
   std::function<void(const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> out)> value;
   /// Writes dc/d(blocks[block]) into `out` (rows x blocks[block].size).
@@ -123,49 +127,56 @@ class Program {
   /// Adds rows lower <= sum_k A_k x_{b_k} <= upper; equal bounds make equalities, +-inf one side.
   ConstraintRows AddLinearConstraint(const std::vector<LinearTerm>& terms, const Eigen::VectorXd& lower,
                                      const Eigen::VectorXd& upper, const std::string& name = "");
+  /// Adds a nonlinear cost (the program is then not quadratic).
   void AddNonlinearCost(NonlinearCost cost);
+  /// Adds nonlinear constraint rows (the program is then not quadratic).
   void AddNonlinearConstraint(NonlinearConstraint constraint);
   /// Resizes to n variables in one block "x" and m empty rows (for file readers).
   void ResizeDense(int n, int m);
 
   // ---- updating in place (no allocation) ----
+  /// Replaces the bounds of `block`'s variables (+-inf: none).
   void SetVariableBounds(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& lower,
                          const Eigen::Ref<const Eigen::VectorXd>& upper);
   /// Replaces the linear cost of a block (the part added by AddQuadraticCost/AddLinearCost).
   void SetLinearCost(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& g);
+  /// Replaces the bounds of `rows` (+-inf: none).
   void SetConstraintBounds(const ConstraintRows& rows, const Eigen::Ref<const Eigen::VectorXd>& lower,
                            const Eigen::Ref<const Eigen::VectorXd>& upper);
   /// Replaces the coefficients of `block` in `rows`.
   void SetConstraintCoefficients(const ConstraintRows& rows, const VariableBlock& block,
                                  const Eigen::Ref<const Eigen::MatrixXd>& coefficients);
+  /// Replaces the initial guess of `block`'s variables.
   void SetInitialGuess(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& x0);
 
   // ---- unchecked whole-data access (bumps the revision counters; Solve() validates) ----
-  Eigen::MatrixXd& MutableHessian();
-  Eigen::MatrixXd& MutableConstraintMatrix();
-  Eigen::VectorXd& MutableLinearCost() { return g_; }
-  Eigen::VectorXd& MutableRowLower() { return row_lower_; }
-  Eigen::VectorXd& MutableRowUpper() { return row_upper_; }
-  Eigen::VectorXd& MutableVariableLower() { return var_lower_; }
-  Eigen::VectorXd& MutableVariableUpper() { return var_upper_; }
-  Eigen::VectorXd& MutableInitialGuess() { return x0_; }
-  void SetConstant(double c) { constant_ = c; }
+  Eigen::MatrixXd& MutableHessian();  ///< H, whole
+  Eigen::MatrixXd& MutableConstraintMatrix();  ///< A, whole
+  Eigen::VectorXd& MutableLinearCost() { return g_; }  ///< g, whole
+  Eigen::VectorXd& MutableRowLower() { return row_lower_; }  ///< the row lower bounds, whole
+  Eigen::VectorXd& MutableRowUpper() { return row_upper_; }  ///< the row upper bounds, whole
+  Eigen::VectorXd& MutableVariableLower() { return var_lower_; }  ///< the variable lower bounds, whole
+  Eigen::VectorXd& MutableVariableUpper() { return var_upper_; }  ///< the variable upper bounds, whole
+  Eigen::VectorXd& MutableInitialGuess() { return x0_; }  ///< the initial guess, whole
+  void SetConstant(double c) { constant_ = c; }  ///< replaces the objective's constant
 
   // ---- reading ----
-  int num_variables() const { return static_cast<int>(g_.size()); }
-  int num_rows() const { return static_cast<int>(row_lower_.size()); }
-  int num_nonlinear_rows() const;
-  const std::vector<VariableBlock>& blocks() const { return blocks_; }
-  const Eigen::MatrixXd& hessian() const { return H_; }
-  const Eigen::VectorXd& linear_cost() const { return g_; }
-  double constant() const { return constant_; }
-  const Eigen::MatrixXd& constraint_matrix() const { return A_; }
-  const Eigen::VectorXd& row_lower() const { return row_lower_; }
-  const Eigen::VectorXd& row_upper() const { return row_upper_; }
-  const Eigen::VectorXd& variable_lower() const { return var_lower_; }
-  const Eigen::VectorXd& variable_upper() const { return var_upper_; }
-  const Eigen::VectorXd& initial_guess() const { return x0_; }
+  int num_variables() const { return static_cast<int>(g_.size()); }  ///< n: length of x
+  int num_rows() const { return static_cast<int>(row_lower_.size()); }  ///< linear constraint rows
+  int num_nonlinear_rows() const;  ///< rows of all nonlinear constraints
+  const std::vector<VariableBlock>& blocks() const { return blocks_; }  ///< the variable blocks, in order
+  const Eigen::MatrixXd& hessian() const { return H_; }  ///< H
+  const Eigen::VectorXd& linear_cost() const { return g_; }  ///< g
+  double constant() const { return constant_; }  ///< the objective's constant
+  const Eigen::MatrixXd& constraint_matrix() const { return A_; }  ///< A
+  const Eigen::VectorXd& row_lower() const { return row_lower_; }  ///< lower bounds of A x
+  const Eigen::VectorXd& row_upper() const { return row_upper_; }  ///< upper bounds of A x
+  const Eigen::VectorXd& variable_lower() const { return var_lower_; }  ///< lower bounds of x
+  const Eigen::VectorXd& variable_upper() const { return var_upper_; }  ///< upper bounds of x
+  const Eigen::VectorXd& initial_guess() const { return x0_; }  ///< x0, where solvers start
+  /// The nonlinear costs f_i.
   const std::vector<NonlinearCost>& nonlinear_costs() const { return nonlinear_costs_; }
+  /// The nonlinear constraints c_j.
   const std::vector<NonlinearConstraint>& nonlinear_constraints() const { return nonlinear_constraints_; }
   /// True when there are no nonlinear costs or constraints.
   bool IsQuadratic() const { return nonlinear_costs_.empty() && nonlinear_constraints_.empty(); }

@@ -27,16 +27,18 @@ namespace stairplan::optim {
 /// Makes a fresh solver (a cold start is a new object).
 using SolverFactory = std::function<std::unique_ptr<Solver>()>;
 
+///@{
 /// qpbenchmark's accuracies: mid (1e-6) and high (1e-9).
 constexpr double kMidAccuracy = 1e-6;
 constexpr double kHighAccuracy = 1e-9;
+///@}
 
 /// One measured solve: its outcome, qpbenchmark's residuals and its time.
 struct QpSample {
-  SolveStatus status = SolveStatus::kInvalidInput;
-  double objective = 0.0;
-  int iterations = 0;
-  QpResiduals residuals;
+  SolveStatus status = SolveStatus::kInvalidInput;  ///< how the solve ended
+  double objective = 0.0;  ///< the objective at the solution
+  int iterations = 0;  ///< the solver's iterations
+  QpResiduals residuals;  ///< qpbenchmark's residuals of the solution
   double cpu_us = 0.0;   ///< process CPU time of the solve (median over repeats where repeated)
   double wall_us = 0.0;  ///< wall-clock time of the same solve(s)
   /// qpbenchmark's success at `tolerance`: solved, and all three residuals below it.
@@ -75,7 +77,7 @@ std::vector<QpSample> MeasureSequence(const SolverFactory& make, SolveRegime reg
 
 /// A solver's record over a set in one regime, qpbenchmark style.
 struct QpBenchSummary {
-  int problems = 0;
+  int problems = 0;  ///< problems in the set
   int solved_mid = 0;   ///< solved within kMidAccuracy
   int solved_high = 0;  ///< solved within kHighAccuracy
   /// Shifted geometric mean of the CPU times [us] with shift `shift_us`; a problem not solved

@@ -20,9 +20,9 @@ namespace stairplan::optim {
 
 /// qpbenchmark's three measures of one solution (infinite when the result has no finite x).
 struct QpResiduals {
-  double primal = kInf;
-  double dual = kInf;
-  double gap = kInf;
+  double primal = kInf;  ///< r_p: largest violation of a row or bound
+  double dual = kInf;  ///< r_d: |H x + g + A' y + z|_inf
+  double gap = kInf;  ///< r_g: the duality gap
   /// All three below `tolerance` (with a kSolved status, qpbenchmark's success).
   bool Within(double tolerance) const { return primal < tolerance && dual < tolerance && gap < tolerance; }
 };

@@ -15,10 +15,10 @@ namespace stairplan::optim {
 
 /// A QP read from a QPS file, with the names it uses.
 struct QpsProblem {
-  std::string name;
+  std::string name;  ///< the NAME record
   Program program;  ///< one variable block "x"; rows in file order (the objective row excluded)
-  std::vector<std::string> variable_names;
-  std::vector<std::string> row_names;
+  std::vector<std::string> variable_names;  ///< in column order
+  std::vector<std::string> row_names;  ///< in file order, the objective row excluded
 };
 
 /// Parses QPS text; `file` names the source in errors ("file:line: problem"), which are thrown as

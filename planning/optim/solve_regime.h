@@ -15,6 +15,7 @@
 
 namespace stairplan::optim {
 
+/// How a benchmarked solve starts (see the file's top comment): never mixed in one comparison.
 enum class SolveRegime { kCold, kWarmSequence, kIdenticalResolve };
 
 /// "cold", "warm-sequence", "identical-resolve" (stable names for CSV and the CLI).

@@ -22,6 +22,7 @@
 
 namespace stairplan::optim {
 
+/// The interface every solver back-end implements: a checked public Solve() over a private DoSolve().
 class Solver {
  public:
   virtual ~Solver() = default;

@@ -15,6 +15,7 @@
 
 namespace stairplan::optim {
 
+/// A compressed-row copy of a Program's dense constraint matrix, following its row revisions.
 class SparseRows {
  public:
   /// Reserves storage for an m x n matrix (allocates; once per size).
@@ -24,6 +25,7 @@ class SparseRows {
   /// Takes row k of `a` again; rebuilds from `a` when its nonzeros do not fit the row's slots.
   void UpdateRow(const Eigen::MatrixXd& a, int k);
 
+  /// Number of rows m.
   int rows() const { return m_; }
   /// Row k times x.
   double RowDot(int k, const Eigen::VectorXd& x) const {

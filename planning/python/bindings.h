@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <pybind11/pybind11.h>
 
+/// The Python module's C++ side (planning/python): bindings and conversions.
 namespace stairplan::python {
 
 namespace py = pybind11;
@@ -18,19 +19,24 @@ namespace py = pybind11;
 /// A file named by the caller is missing: Python's FileNotFoundError with `filename` set.
 class FileNotFound : public std::runtime_error {
  public:
+  /// `path`: the missing file.
   explicit FileNotFound(const std::string& path)
       : std::runtime_error("no such file: '" + path + "'"), path_(path) {}
+  /// The missing file.
   const std::string& path() const { return path_; }
 
  private:
   std::string path_;
 };
 
+///@{
+/// Adds one area's classes and functions to the module `m`.
 void BindGeometry(py::module_& m);
 void BindPlan(py::module_& m);
 void BindSweep(py::module_& m);
 void BindOptim(py::module_& m);
 void BindBody(py::module_& m);
+///@}
 
 /// JSON as Python objects (dict, list, str, float, int, bool, None). Non-finite numbers become
 /// None, as nlohmann's dump() writes them, so to_dict() equals the parsed file.
@@ -57,11 +63,11 @@ namespace stairplan::python {
 /// Stairs found in a point cloud: the staircase and the constrained map in its own frame, and the
 /// fit (a dict).
 struct Perceived {
-  bool found = false;
-  std::string reason;
-  std::shared_ptr<Staircase> stairs;
-  std::shared_ptr<ConstrainedMap> map;
-  py::dict fit;
+  bool found = false;  ///< stairs were found
+  std::string reason;  ///< why not, when not found
+  std::shared_ptr<Staircase> stairs;  ///< the fitted staircase, when found
+  std::shared_ptr<ConstrainedMap> map;  ///< its constrained map, when found
+  py::dict fit;  ///< the tracker's fit
 };
 
 /// None (the CLI's default stairs), a Stairs, a dict of stairs YAML keys or a YAML file, with the
@@ -79,10 +85,10 @@ namespace stairplan::python {
 /// A plan with what it was planned for: the robot, the stairs, the map, the validation and the
 /// plan.json object (what `stairplan plan` writes, without its "load" timing).
 struct PlanResult {
-  std::shared_ptr<const RobotModel> robot;
-  std::shared_ptr<const Staircase> stairs;
-  std::shared_ptr<const PipelineResult> result;
-  nlohmann::json json;
+  std::shared_ptr<const RobotModel> robot;  ///< the robot planned for
+  std::shared_ptr<const Staircase> stairs;  ///< the stairs planned on
+  std::shared_ptr<const PipelineResult> result;  ///< the map, plan and validation
+  nlohmann::json json;  ///< the plan.json object
 };
 
 }  // namespace stairplan::python

@@ -15,7 +15,7 @@ namespace stairplan {
 
 /// The body at one instant of plan time, with its time derivatives (per second of plan time).
 struct BodyReferenceState {
-  BodyPose pose;
+  BodyPose pose;  ///< the body's pose
   Eigen::Vector3d velocity_W = Eigen::Vector3d::Zero();      ///< [m/s]
   Eigen::Vector3d acceleration_W = Eigen::Vector3d::Zero();  ///< [m/s^2]
   double pitch_rate = 0.0;                                    ///< [rad/s]

@@ -1,6 +1,7 @@
-// How the executor tells impacts apart (seed 000 [0053]-[0068]): a swing foot's external force
-// (from the torque residual or from MuJoCo's contact forces) classified by its direction against
-// the swing and by the stage of the swing; a leg link other than the foot classified by what it hit.
+// How the executor tells impacts apart (US 2020/0324412 A1 ("Robotically negotiating stairs")
+// [0053]-[0068]): a swing foot's external force (from the torque residual or from MuJoCo's contact
+// forces) classified by its direction against the swing and by the stage of the swing; a leg link
+// other than the foot classified by what it hit.
 #pragma once
 
 #include <optional>
@@ -12,12 +13,14 @@
 
 namespace stairplan {
 
+/// How the executor detects impacts and whether it answers them.
 struct ImpactDetectionSettings {
+  /// How impacts are detected: torque residual, contact list or none.
   ImpactSource source = ImpactSource::kTorqueResidual;
   bool respond = true;             ///< carry the responses out (false: detect and record only)
   /// An external force at a swing foot above this share of the robot's weight is an impact.
   double force_threshold = 0.08;
-  /// Foot contacts before this swing phase are a liftoff scuff ([0067]).
+  /// Foot contacts before this swing phase are a liftoff scuff (US 2020/0324412 [0067]).
   double scuff_phase = 0.12;
   /// A re-lifted swing lasts at least this long [s, plan time].
   double min_reswing_time = 0.3;
@@ -51,8 +54,8 @@ std::optional<ImpactKind> ClassifySwingFootForce(const Eigen::Vector3d& force_W,
                                                  double scuff_phase);
 
 /// The kind of a contact of a leg link other than the foot with the stairs: a knee behind its hip
-/// (along the body's heading) hit something behind the body ([0058]); otherwise it glanced the
-/// terrain ([0068]).
+/// (along the body's heading) hit something behind the body (US 2020/0324412 [0058]); otherwise it
+/// glanced the terrain (US 2020/0324412 [0068]).
 ImpactKind ClassifyLegLinkOnStairs(const Eigen::Vector3d& contact_W, const Eigen::Vector3d& hip_W, double body_yaw);
 
 /// Distance from point `p` to the segment from `a` to `b` [m]: a swing foot against another leg's
@@ -60,7 +63,8 @@ ImpactKind ClassifyLegLinkOnStairs(const Eigen::Vector3d& contact_W, const Eigen
 double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 
 /// The kind of a swing leg's contact with the contralateral leg: crossing when the swing foot is on
-/// the far side of the contralateral foot from its own side of the body ([0062]), a strike otherwise.
+/// the far side of the contralateral foot from its own side of the body (US 2020/0324412 [0062]), a
+/// strike otherwise.
 ImpactKind ClassifyContralateral(const Eigen::Vector3d& swing_foot_W, const Eigen::Vector3d& contralateral_foot_W,
                                  bool swing_leg_left, double body_yaw);
 

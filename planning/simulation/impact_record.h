@@ -1,5 +1,6 @@
-// Impacts as the executor met them (seed 000 [0053]-[0068]): what hit what, when, how it was
-// found (MuJoCo's contact list or the joint-torque residual) and how the robot answered.
+// Impacts as the executor met them (US 2020/0324412 A1 ("Robotically negotiating stairs")
+// [0053]-[0068]): what hit what, when, how it was found (MuJoCo's contact list or the joint-torque
+// residual) and how the robot answered.
 #pragma once
 
 #include <string>
@@ -24,10 +25,10 @@ struct ImpactRecord {
   /// detection latency is measured against; -1 when it showed nothing [s, plan time].
   double t_contact = -1.0;
   double t_planned = -1.0;    ///< touchdowns: the plan's touchdown time (-1 for other kinds) [s, plan time]
-  std::string leg;
-  ImpactKind kind = ImpactKind::kTouchdown;
-  ImpactSource source = ImpactSource::kNone;
-  ResponseKind response = ResponseKind::kProceed;
+  std::string leg;  ///< the leg: "LF", "RF", "LH" or "RH"
+  ImpactKind kind = ImpactKind::kTouchdown;  ///< what was detected
+  ImpactSource source = ImpactSource::kNone;  ///< what detected it
+  ResponseKind response = ResponseKind::kProceed;  ///< the response carried out
   std::string link;           ///< the robot link that was hit (the foot for foot events)
   double swing_phase = 0.0;   ///< 0 at liftoff, 1 at the planned touchdown
   double force_n = 0.0;       ///< the estimated external force at detection [N]

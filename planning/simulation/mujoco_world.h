@@ -22,6 +22,7 @@ struct StairContact {
   double depth = 0.0; ///< penetration depth [m], positive
 };
 
+/// A MuJoCo world holding one robot and one staircase, with name-based access to joints, motors and contacts.
 class MujocoWorld {
  public:
   /// Builds the world; throws std::runtime_error with MuJoCo's message if it rejects the model.
@@ -30,24 +31,32 @@ class MujocoWorld {
   MujocoWorld(const MujocoWorld&) = delete;
   MujocoWorld& operator=(const MujocoWorld&) = delete;
 
+  /// MuJoCo's model.
   const mjModel_* model() const { return model_; }
+  /// MuJoCo's state, advanced by Step().
   mjData_* data() { return data_; }
+  /// The MJCF the world was built from.
   const std::string& mjcf() const { return mjcf_; }
 
+  ///@{
   /// Index of a joint's angle in qpos and of its velocity in qvel; throws when unknown.
   int QposIndex(const std::string& joint) const;
   int QvelIndex(const std::string& joint) const;
+  ///@}
   /// Index of the motor driving `joint` in ctrl; throws when unknown.
   int MotorIndex(const std::string& joint) const;
 
   /// Places the floating base (position, yaw, pitch; pitch nose-up negative) at rest.
   void SetBasePose(const Eigen::Vector3d& position_W, double yaw, double pitch);
+  /// The floating base's position in the world [m].
   Eigen::Vector3d BasePosition() const;
   /// Roll, pitch, yaw of the base [rad].
   Eigen::Vector3d BaseRollPitchYaw() const;
   /// Recomputes positions and contacts without advancing time.
   void Forward();
+  /// Advances the simulation by one time step.
   void Step();
+  /// Simulated time [s].
   double time() const;
   /// Current contacts between robot bodies and stair geoms.
   std::vector<StairContact> StairContacts() const;

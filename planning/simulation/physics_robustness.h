@@ -1,6 +1,6 @@
 // The robustness command's perturbed stairs in MuJoCo: the nominal plan executed open loop on each
 // staircase, once answering impacts and once only recording them, so that what the responses of
-// seed 000 [0053]-[0068] buy is counted on the same stairs.
+// US 2020/0324412 [0053]-[0068] buy is counted on the same stairs.
 #pragma once
 
 #include <vector>
@@ -12,15 +12,18 @@
 
 namespace stairplan {
 
+/// How a plan fared in MuJoCo on perturbed stairs, with and without the impact responses.
 struct PhysicsRobustnessReport {
-  int trials = 0;
+  int trials = 0;  ///< perturbed staircases run
   int nominal_ok = 0;            ///< 1 when the plan passes in MuJoCo on the stairs it was planned for
   int with_responses_ok = 0;     ///< perturbed staircases where the run passed answering impacts
   int without_responses_ok = 0;  ///< ... where it passed with impacts only recorded
+  ///@{
   /// Runs that fell (SimStatus::kFall) with and without responses. A run that stays up can still
   /// fail Passed(): the open-loop plan's own footholds may lie outside the moved treads' regions.
   int with_responses_fell = 0;
   int without_responses_fell = 0;
+  ///@}
   int trips = 0;                 ///< trips detected over the runs with responses
 };
 

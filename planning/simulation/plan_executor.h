@@ -3,11 +3,11 @@
 // targets through our IK; joint PD with gravity compensation tracks them, and stance legs add the
 // torques of their contact forces: the wrench that moves the body as planned (acceleration fed
 // forward, feedback on the base pose) distributed over the stance feet by a small QP. Touchdown
-// is driven by contact (seed 000 [0055]): a swinging foot that touches the stairs in the second
-// half of its swing becomes a stance foot where it touched. Impacts (seed 000 [0053]-[0068]) are
-// detected from the joint-torque residual or from MuJoCo's contact list, classified, answered with
-// RespondToImpact's response (a tripped foot draws back and lifts higher, or goes down at once),
-// and recorded in the outcome.
+// is driven by contact (US 2020/0324412 A1 ("Robotically negotiating stairs") [0055]): a swinging
+// foot that touches the stairs in the second half of its swing becomes a stance foot where it
+// touched. Impacts (US 2020/0324412 [0053]-[0068]) are detected from the joint-torque residual or
+// from MuJoCo's contact list, classified, answered with RespondToImpact's response (a tripped foot
+// draws back and lifts higher, or goes down at once), and recorded in the outcome.
 #pragma once
 
 #include <array>
@@ -33,6 +33,7 @@ namespace stairplan {
 /// the plan time [s]: for drawing it (OffscreenRenderer), not for changing it.
 using FrameCallback = std::function<void(MujocoWorld& world, double t)>;
 
+/// Plays a plan on the simulated robot in MuJoCo and judges the run (see the file's top comment).
 class PlanExecutor {
  public:
   /// Builds the world and places the robot on the plan's initial footholds. Throws
@@ -47,6 +48,7 @@ class PlanExecutor {
   /// Settles, executes the plan, holds, and judges. Call once.
   SimulationOutcome Run(const FrameCallback& on_frame = {});
 
+  /// The simulated world.
   const MujocoWorld& world() const { return *world_; }
 
  private:

@@ -13,6 +13,7 @@
 
 namespace stairplan {
 
+/// The simulated world, the controller, impact detection and judging of a MuJoCo run.
 struct SimSettings {
   /// Contact and integration (friction 0.8, 1 kHz), with links reported within 1 cm of the stairs
   /// so that clearances can be compared with the validator's margin.
@@ -22,7 +23,7 @@ struct SimSettings {
     return w;
   }();
   SwingSettings swing;               ///< for footsteps whose plan gives no swing apex
-  IkSettings ik;
+  IkSettings ik;  ///< IK of the foot targets
 
   // Controller. Gains scale with the robot's mass so that one setting suits a 12 kg Unitree and a
   // 50 kg ANYmal alike.
@@ -60,7 +61,7 @@ struct SimSettings {
   double late_descent_speed = 0.2;   ///< a foot late for touchdown keeps lowering at this speed [m/s]
   double late_descent_max = 0.05;    ///< ... by at most this much [m]
 
-  /// Impact detection and the responses to impacts (seed 000 [0053]-[0068]).
+  /// Impact detection and the responses to impacts (US 2020/0324412 [0053]-[0068]).
   ImpactDetectionSettings impact;
 
   // Judgement.

@@ -16,6 +16,7 @@
 
 namespace stairplan {
 
+/// Friction, torque room and weights of the stance-force QP.
 struct StanceForceSettings {
   double friction = 0.8;        ///< friction coefficient of the ground
   double friction_use = 0.7;    ///< share of the friction pyramid the forces may use
@@ -28,19 +29,24 @@ struct StanceForceSettings {
   void Validate() const;
 };
 
+/// The stance feet's contact forces that best carry the body's planned wrench: a small QP, solved
+/// warm each step.
 class StanceForceQp {
  public:
+  /// Builds the QP once (checks `settings`: throws std::invalid_argument naming the field).
   explicit StanceForceQp(const StanceForceSettings& settings = {});
 
   /// One foot: where it is, how much it may push, and what its force costs its motors.
   struct Foot {
-    Eigen::Vector3d position_W = Eigen::Vector3d::Zero();
+    Eigen::Vector3d position_W = Eigen::Vector3d::Zero();  ///< the foot's contact point [m]
     double max_normal = 0.0;  ///< <= 0: the foot carries nothing (swing)
     /// Joint torques per unit of ground force on the foot (-J^T R^T, world force to joints).
     Eigen::Matrix3d torque_map = Eigen::Matrix3d::Zero();
     /// The motors' room left after the leg's other torques: torque_map f within [lo, hi] [N m]
     /// (the caller gives torque_use of the effort limits minus those torques).
+    ///@{
     Eigen::Vector3d torque_lo = Eigen::Vector3d::Constant(-1e20), torque_hi = Eigen::Vector3d::Constant(1e20);
+    ///@}
   };
 
   /// Forces (world frame) of `feet` that best give `force_W` and `moment_W` (about `com_W`). A

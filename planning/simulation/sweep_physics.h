@@ -17,21 +17,21 @@ namespace stairplan {
 
 /// One sweep point's physics outcome, condensed.
 struct PhysicsRow {
-  int index = 0;
+  int index = 0;  ///< the sweep point's index
   std::string label;             ///< "up rise=0.17 run=0.27"
   std::string validator;         ///< "valid" or "invalid"
-  std::string validator_cause;
+  std::string validator_cause;  ///< the validator's first violation, when invalid
   std::string status;            ///< SimStatus, or "error" when the simulation could not run
-  bool passed = false;
+  bool passed = false;  ///< SimulationOutcome::Passed()
   bool passed_with_clearance = false;  ///< passed, and no leg link came within the validator's margin
-  double min_link_clearance_m = 0.0;
-  std::string closest_link;
+  double min_link_clearance_m = 0.0;  ///< smallest non-foot link distance to the stairs over the run [m]
+  std::string closest_link;  ///< "<link> to <stair geom>" for that distance
   std::string cause;             ///< SimulationOutcome::FirstCause()
-  int landings = 0;
-  double max_landing_error_m = 0.0;
-  int other_contacts = 0;
-  double max_torque_ratio = 0.0;
-  double real_time_factor = 0.0;
+  int landings = 0;  ///< footsteps landed
+  double max_landing_error_m = 0.0;  ///< largest landing error [m]
+  int other_contacts = 0;  ///< non-foot links that touched the stairs
+  double max_torque_ratio = 0.0;  ///< largest peak torque / effort limit
+  double real_time_factor = 0.0;  ///< simulated seconds per wall-clock second
 };
 
 /// Simulates `result`'s plan when it has one (status ok); nothing for points without a plan. Never
@@ -58,9 +58,11 @@ class SweepPhysics {
   void Record(const SweepPoint& point, const RobotModel& robot, const Staircase& stairs, const PipelineResult& result);
   /// Adds a row computed elsewhere (another rank, a resumed run's file). Thread-safe.
   void Add(const PhysicsRow& row);
+  ///@{
   /// The settings Record simulates with, and its clearance margin.
   const SimSettings& settings() const { return settings_; }
   double clearance() const { return clearance_; }
+  ///@}
 
   /// Rows in point order.
   std::vector<PhysicsRow> Rows() const;

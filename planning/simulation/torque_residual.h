@@ -16,6 +16,8 @@ struct mjData_;
 
 namespace stairplan {
 
+/// The external joint torques a robot without contact sensors estimates from its own dynamics (see
+/// the file's top comment).
 class TorqueResidual {
  public:
   /// Sized for `m`; starts from the velocities in `d`.

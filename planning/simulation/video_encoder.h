@@ -10,6 +10,7 @@ namespace stairplan {
 /// What the frames become.
 enum class VideoOutput { kMp4, kPngFrames };
 
+/// Rendered frames into an MP4 or PNG files through ffmpeg.
 class VideoEncoder {
  public:
   /// Starts ffmpeg writing `path` (kPngFrames: a directory, frames frame_00000.png ...) from
@@ -23,6 +24,7 @@ class VideoEncoder {
   void Write(const std::vector<unsigned char>& rgb);
   /// Waits for ffmpeg; throws std::runtime_error naming the output when it failed.
   void Finish();
+  /// Frames written so far.
   int frames() const { return frames_; }
 
  private:

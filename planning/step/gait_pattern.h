@@ -7,8 +7,9 @@
 
 namespace stairplan {
 
-/// The paper's crawl (seed 003): one leg at a time, rear right, rear left, fore right, fore left;
-/// its alternative with the fore pair switched; and a trot-like gait with diagonal pairs.
+/// The crawl of Chen, Ko, Li, Lin 2012, "Stair Climbing in a Quadruped Robot": one leg at a time,
+/// rear right, rear left, fore right, fore left; its alternative with the fore pair switched; and a
+/// trot-like gait with diagonal pairs.
 enum class Gait { kCrawl, kCrawlAlternate, kTrot };
 
 /// "crawl", "crawl_alt" or "trot".
@@ -19,8 +20,9 @@ enum class TravelRole { kRearRight = 0, kRearLeft = 1, kForeRight = 2, kForeLeft
 
 /// The phases of one gait cycle; each phase swings `legs_per_phase` legs (given as roles).
 struct GaitPattern {
-  int phases = 4;
-  int legs_per_phase = 1;
+  int phases = 4;  ///< phases per cycle
+  int legs_per_phase = 1;  ///< legs swinging together in a phase
+  /// The roles swinging in each phase (the first legs_per_phase entries).
   std::array<std::array<TravelRole, 2>, 4> phase_roles{};
 
   /// Swing legs per cycle: phases * legs_per_phase (always 4).

@@ -9,6 +9,8 @@
 
 namespace stairplan {
 
+/// The stairs' smoothed pitch line under the body: piecewise linear through the treads' middles,
+/// flat over the landings.
 class GroundProfile {
  public:
   GroundProfile() = default;
@@ -17,7 +19,9 @@ class GroundProfile {
 
   /// Height of the line at x; flat beyond the ends. Allocation-free.
   double HeightAt(double x) const;
+  /// The line's knots along x [m].
   const std::vector<double>& knots_x() const { return xs_; }
+  /// The line's knot heights [m].
   const std::vector<double>& knots_z() const { return zs_; }
 
  private:

@@ -12,6 +12,7 @@
 
 namespace stairplan {
 
+/// Reach by IK within the joint limits (offline plans; see the file's top comment).
 class IkReachModel final : public ReachModel {
  public:
   /// Builds the robot's kinematics (throws std::invalid_argument as RobotKinematics does).
@@ -24,6 +25,7 @@ class IkReachModel final : public ReachModel {
   /// The geometric effort (0 mid-range, 1 at the ends of the reach band).
   double Effort(const LegModel& leg, const Eigen::Isometry3d& base_W, const Eigen::Vector3d& foot_W) const override;
 
+  /// The robot's kinematics the IK runs on.
   const RobotKinematics& kinematics() const { return kinematics_; }
 
  private:

@@ -1,10 +1,11 @@
-// The 2012 paper's crawl as a footstep source (seed 003, "Trajectory planning procedure"): the
-// gait design of planning/gait/ laid on a real staircase. Right feet land a_min from each nose,
-// left feet a_max (case 1; the front pair switched in case 2); each leg lifts off when its hip,
-// moving at a constant speed along the line d above the stairs' edges, reaches the point where it
-// is equidistant from its two contacts (eq. (3)), and swings for D_i (eqs. (5)-(7)), low under
-// its hip to the riser first, then up and over (Footstep::swing_approach_share), as the paper's leg
-// rotates about its hip. On the landings the same pattern continues with virtual noses one run apart.
+// The 2012 paper's crawl as a footstep source (Chen, Ko, Li, Lin 2012, "Stair Climbing in a
+// Quadruped Robot", "Trajectory planning procedure"): the gait design of planning/gait/ laid on a
+// real staircase. Right feet land a_min from each nose, left feet a_max (case 1; the front pair
+// switched in case 2); each leg lifts off when its hip, moving at a constant speed along the line d
+// above the stairs' edges, reaches the point where it is equidistant from its two contacts (eq.
+// (3)), and swings for D_i (eqs. (5)-(7)), low under its hip to the riser first, then up and over
+// (Footstep::swing_approach_share), as the paper's leg rotates about its hip. On the landings the
+// same pattern continues with virtual noses one run apart.
 //
 // The body is not the paper's rigid constant-velocity line (it would put the hind hips under the
 // bottom landing at the start and has no way off the flight): it is the quasi-static body path
@@ -20,7 +21,9 @@
 
 namespace stairplan {
 
+/// The paper crawl's robot, design choices, timing and body path.
 struct PaperCrawlSettings {
+  /// The body path the paper's crawl is planned with: taller hips and lower swings than the pipeline's.
   static BodyPathSettings PaperBody() {
     BodyPathSettings body;
     body.hip_height_fraction = 0.8;
@@ -36,7 +39,7 @@ struct PaperCrawlSettings {
   /// paper's simulation's d = H / 2 would put the right feet 2.9 cm from the nose, in the band the
   /// map keeps free; its error analysis's 2.8 cm the left feet 20.4 cm back, past the step region.
   double hip_clearance = -1.0;
-  CrawlCase arrangement = CrawlCase::kRightFirst;
+  CrawlCase arrangement = CrawlCase::kRightFirst;  ///< case 1 or case 2 of the contact offsets
   /// How long a swing takes [s]; it sets the hip speed, D_i / swing_duration.
   double swing_duration = 0.5;
   /// Four feet down before the first swing [s].

@@ -35,7 +35,9 @@ class GeometricReachModel final : public ReachModel {
   /// The hip-to-foot distance as a fraction of max_reach.
   static double Extension(const LegModel& leg, const Eigen::Isometry3d& base_W, const Eigen::Vector3d& foot_W);
 
+  /// Lower end of the reach band, as a fraction of max_reach.
   double min_fraction() const { return min_fraction_; }
+  /// Upper end of the reach band, as a fraction of max_reach.
   double max_fraction() const { return max_fraction_; }
 
  private:

@@ -9,8 +9,9 @@
 
 namespace stairplan {
 
+/// The step planner's controllers, rule-outs, targets and cost weights.
 struct StepPlannerSettings {
-  // --- Controllers (seed 000 [0033]): every cadence with every gait.
+  // --- Controllers (US 2020/0324412 [0033]): every cadence with every gait.
   /// Swing durations of the fixed-cadence controllers [s]; 0.25 to 0.45 s in 0.05 s steps.
   std::vector<double> cadences_s = {0.25, 0.30, 0.35, 0.40, 0.45};
   /// Gaits; each is combined with every cadence.
@@ -22,13 +23,15 @@ struct StepPlannerSettings {
   /// Hip height above the stairs' pitch line, as a fraction of the mean leg reach.
   double hip_height_fraction = 0.65;
 
-  // --- Hard rule-outs ([0035]: conditions checked before scoring).
+  // --- Hard rule-outs (US 2020/0324412 [0035]: conditions checked before scoring).
   /// The highest step a leg can clear, as a fraction of its max_reach.
   double max_step_height_fraction = 0.45;
   /// Geometric reach band (hip to foot centre) as fractions of max_reach, used when no other
+  ///@{
   /// ReachModel is given.
   double reach_min_fraction = 0.30;
   double reach_max_fraction = 0.95;
+  ///@}
 
   // --- Targets.
   /// Targets are put at least this far inside their step region (less on very narrow regions) [m].
@@ -36,7 +39,7 @@ struct StepPlannerSettings {
   /// Stairs on either side of the nearest step region that are tried when it breaks a rule.
   int candidate_stairs = 2;
 
-  // --- Cost weights ([0035]: the distance to the step regions dominates).
+  // --- Cost weights (US 2020/0324412 [0035]: the distance to the step regions dominates).
   double region_weight = 1000.0;   ///< per m of distance from the nearest step region
   double snap_weight = 100.0;      ///< per m the chosen target lies beyond that distance (rules)
   double trailing_cost = 20.0;     ///< per footstep that puts a trailing leg ahead of its leading leg

@@ -12,13 +12,13 @@ namespace stairplan {
 
 /// One robot's feasible region in one direction.
 struct AtlasEntry {
-  std::string robot;
-  TravelDirection direction = TravelDirection::kUp;
-  int points = 0;
-  int valid = 0;
+  std::string robot;  ///< the robot's name
+  TravelDirection direction = TravelDirection::kUp;  ///< up or down
+  int points = 0;  ///< grid points in this direction
+  int valid = 0;  ///< of which valid
   bool connected = true;          ///< the valid points form one area in every slice
   double steepest_rise = 0.0;     ///< the valid point of the largest rise/run (0 when none)
-  double steepest_run = 0.0;
+  double steepest_run = 0.0;  ///< the run of that steepest valid point
   double highest_rise = 0.0;      ///< the largest valid rise, at any run
   double shortest_run = 0.0;      ///< the shortest valid run, at any rise
 };

@@ -12,10 +12,11 @@ namespace stairplan {
 
 /// N evenly spaced values from lo to hi inclusive (N = 1: just lo).
 struct SweepAxis {
-  double lo = 0.0;
-  double hi = 0.0;
-  int count = 1;
+  double lo = 0.0;  ///< first value
+  double hi = 0.0;  ///< last value
+  int count = 1;  ///< number of values
 
+  /// The values, lo first.
   std::vector<double> Values() const;
   /// Parses "A:B:N" or a single value "V"; throws FieldError naming `flag`.
   static SweepAxis Parse(const std::string& text, const std::string& flag);
@@ -23,23 +24,24 @@ struct SweepAxis {
 
 /// Everything a sweep varies and holds fixed.
 struct SweepGrid {
-  SweepAxis rise{0.10, 0.25, 20};
-  SweepAxis run{0.20, 0.35, 20};
-  SweepAxis nosing{0.02, 0.02, 1};
+  SweepAxis rise{0.10, 0.25, 20};  ///< riser heights [m]
+  SweepAxis run{0.20, 0.35, 20};  ///< tread runs [m]
+  SweepAxis nosing{0.02, 0.02, 1};  ///< nosings [m]
   SweepAxis steps{7, 7, 1};  ///< whole numbers
-  std::vector<TravelDirection> directions{TravelDirection::kUp};
-  Facing facing = Facing::kForward;
+  std::vector<TravelDirection> directions{TravelDirection::kUp};  ///< directions of travel
+  Facing facing = Facing::kForward;  ///< which way the body faces
 };
 
 /// One grid point: a staircase to plan and validate.
 struct SweepPoint {
-  int index = 0;
-  TravelDirection direction = TravelDirection::kUp;
-  int steps = 7;
-  double nosing = 0.02;
-  double rise = 0.17;
-  double run = 0.27;
+  int index = 0;  ///< position in EnumeratePoints() order
+  TravelDirection direction = TravelDirection::kUp;  ///< up or down
+  int steps = 7;  ///< number of risers
+  double nosing = 0.02;  ///< nosing [m]
+  double rise = 0.17;  ///< riser height [m]
+  double run = 0.27;  ///< tread run [m]
 
+  /// The point's staircase: StairSpec's defaults with this point's steps, rise, run, nosing, direction.
   StairSpec Spec() const;
 };
 
@@ -48,10 +50,11 @@ std::vector<SweepPoint> EnumeratePoints(const SweepGrid& grid);
 
 /// Which part of a sweep this process computes: points with index % count == index.
 struct Shard {
-  int index = 0;
-  int count = 1;
+  int index = 0;  ///< this shard, 0 .. count - 1
+  int count = 1;  ///< number of shards
   /// Parses "i/N"; throws FieldError naming `flag`.
   static Shard Parse(const std::string& text, const std::string& flag);
+  /// True when point `point_index` belongs to this shard.
   bool Holds(int point_index) const { return point_index % count == index; }
 };
 

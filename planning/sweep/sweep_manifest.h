@@ -17,11 +17,11 @@ enum class SweepTable { kPlans, kPhysics };
 
 /// A sweep CSV's manifest.
 struct SweepManifest {
-  SweepTable table = SweepTable::kPlans;
-  SweepGrid grid;
+  SweepTable table = SweepTable::kPlans;  ///< plans or physics
+  SweepGrid grid;  ///< the grid swept
   std::string robot;     ///< names the robot and its file's content (the CLI writes name, file, hash)
   std::string settings;  ///< every other setting the rows depend on, "key=value ..."
-  Shard shard;
+  Shard shard;  ///< which shard of the sweep the file holds
   std::string version;   ///< kVersion of the program that wrote it
   int schema = 0;        ///< kSchemaVersion of the program that wrote it
 

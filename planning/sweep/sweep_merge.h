@@ -14,7 +14,7 @@ namespace stairplan {
 
 /// A sweep CSV taken apart.
 struct SweepTableText {
-  SweepManifest manifest;
+  SweepManifest manifest;  ///< the '#' lines
   std::string header;                ///< the column header line
   std::map<int, std::string> lines;  ///< data lines (no newline) by point index
 

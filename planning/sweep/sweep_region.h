@@ -13,7 +13,7 @@ namespace stairplan {
 
 /// A point that is not valid although a steeper one is.
 struct SteepnessBreak {
-  SweepRow failed;
+  SweepRow failed;  ///< the invalid point's row
   /// The nearest valid point (fewest grid steps) with a higher-or-equal rise and a
   /// shorter-or-equal run than `failed`.
   SweepPoint steeper_valid;
@@ -21,17 +21,19 @@ struct SteepnessBreak {
 
 /// The success region of one rise x run slice of a sweep (one direction, step count and nosing).
 struct SweepRegion {
-  TravelDirection direction = TravelDirection::kUp;
-  int steps = 0;
-  double nosing = 0.0;
-  int points = 0;
-  int valid = 0;
+  TravelDirection direction = TravelDirection::kUp;  ///< the slice's direction
+  int steps = 0;  ///< the slice's number of risers
+  double nosing = 0.0;  ///< the slice's nosing [m]
+  int points = 0;  ///< grid points in the slice
+  int valid = 0;  ///< of which valid
   /// Connected areas of valid points, neighbours being adjacent rise or run values of the slice
   /// (not diagonals).
   int areas = 0;
   std::vector<SteepnessBreak> breaks;  ///< in point order
 
+  /// True when the valid points form at most one area.
   bool Connected() const { return areas <= 1; }
+  /// True when no invalid point has a valid steeper one (failures start where the stairs get steeper).
   bool SteeperFailFirst() const { return breaks.empty(); }
 };
 

@@ -13,17 +13,18 @@ namespace stairplan {
 
 /// The outcome at one grid point.
 struct SweepRow {
-  SweepPoint point;
+  SweepPoint point;  ///< the grid point
   /// "valid", "invalid" (plan found, validation failed), "infeasible", "bad_stairs", or "failed"
   /// (the evaluator threw; `reason` holds its message)
   std::string status;
   std::string reason;       ///< the first violation or why there is no plan; empty when valid
-  double cadence_s = 0.0;
-  int footsteps = 0;
+  double cadence_s = 0.0;  ///< the chosen controller's swing duration [s]
+  int footsteps = 0;  ///< footsteps in the plan
   double min_clearance_m = std::numeric_limits<double>::quiet_NaN();         ///< blank in CSV when unknown
+  /// Smallest COM margin of the validation; blank in CSV when unknown [m].
   double min_stability_margin_m = std::numeric_limits<double>::quiet_NaN();
   double plan_us = 0.0;     ///< not deterministic: only written with times
-  double validate_us = 0.0;
+  double validate_us = 0.0;  ///< not deterministic: only written with times
 };
 
 /// Plans and validates one point. Must be thread-safe; what it throws becomes a "failed" row.

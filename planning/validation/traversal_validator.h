@@ -37,16 +37,19 @@ enum class ViolationKind {
   /// (value: the residual in N; leg: the foot of the limiting constraint, "body" when geometric)
   kDynamics,
 };
+/// Returns the kind as plan.json writes it, e.g. "stair_collision".
 const char* ToString(ViolationKind kind);
 
+/// One violation found by the validator: when, which leg, what and by how much.
 struct Violation {
-  double t = 0.0;
+  double t = 0.0;  ///< when [s]
   std::string leg;     ///< "LF".."RH", or "body"
-  ViolationKind kind = ViolationKind::kStairCollision;
+  ViolationKind kind = ViolationKind::kStairCollision;  ///< what went wrong
   double value = 0.0;  ///< clearance, margin or distance that failed [m]; an acceleration [m/s^2]; a residual [N]
   std::string detail;  ///< e.g. the link and stair part involved
 };
 
+/// What the validator checks and with what margins.
 struct ValidationSettings {
   double time_step = 0.02;             ///< replay step [s]
   double min_clearance = 0.005;        ///< leg, leg-leg and body clearance needed [m]
@@ -73,29 +76,35 @@ struct ValidationSettings {
   ContactWrenchSettings contacts;      ///< friction and the residual's moment scale
   int max_violations = 64;             ///< violations listed at most (the first ones in time)
   SwingSettings swing;                 ///< for footsteps whose plan gives no swing apex
-  IkSettings ik;
+  IkSettings ik;  ///< IK of the feet, as the planners solve it
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
 };
 
+/// The validator's verdict on a plan.
 struct ValidationReport {
-  bool ok = true;
+  bool ok = true;  ///< no violation found
   double min_clearance_m = 0.0;         ///< smallest leg/body-to-stairs or leg-to-leg clearance
   double min_stability_margin_m = 0.0;  ///< smallest COM margin over quasi-static phases
   double max_contact_residual_n = 0.0;  ///< largest residual of the dynamic check [N]
   double max_contact_drift_m = 0.0;     ///< largest drift those residuals add up to [m]
   std::vector<Violation> violations;    ///< in time order; the first is the first violation
-  int samples = 0;
+  int samples = 0;  ///< instants replayed
 };
 
 /// Built once per robot and staircase; Validate() may be called for many plans. Not thread-safe.
+/// Replays a plan and judges it: IK, joint limits, clearances, stability, step regions, body
+/// acceleration, dynamic feasibility.
 class TraversalValidator {
  public:
+  /// Builds the robot's kinematics and collision model and the stairs' solids. Throws
+  /// std::invalid_argument naming the field for bad settings.
   TraversalValidator(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                      const ValidationSettings& settings = {});
-  ~TraversalValidator();
+  ~TraversalValidator();  ///< out of line: DynamicCheck is only declared here
 
+  /// Replays `plan` every time_step, checks each touchdown, and reports what it breaks.
   ValidationReport Validate(const Plan& plan);
 
  private:

@@ -23,9 +23,9 @@ const char* ToString(ViewerShapeType type);
 
 /// One drawable shape fixed to a link.
 struct ViewerShape {
-  ViewerShapeType type = ViewerShapeType::kBox;
+  ViewerShapeType type = ViewerShapeType::kBox;  ///< box, cylinder or sphere
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box sides; cylinder (r, r, length); sphere (r, r, r) [m]
-  std::string link;
+  std::string link;  ///< the URDF link it belongs to
   std::string group;   ///< the leg ("LF".."RH") or "body"
   int leg = -1;        ///< RobotKinematics leg index, -1 for the body
   int segment = -1;    ///< that leg's link frame carrying it, -1: the base frame
@@ -41,7 +41,9 @@ class ViewerRobot {
   /// Throws std::invalid_argument naming the link for geometry it cannot draw (meshes, for now).
   ViewerRobot(const RobotModel& robot, const Staircase& stairs);
 
+  /// Every drawable shape of the robot.
   const std::vector<ViewerShape>& shapes() const { return shapes_; }
+  /// The robot's kinematics.
   const RobotKinematics& kinematics() const { return checker_.kinematics(); }
 
   /// The joint angles of a plan instant, found as the validator finds them: each foot's sphere on

@@ -13,6 +13,7 @@
 
 namespace stairplan {
 
+/// How the viewer's scene is sampled.
 struct ViewerSceneSettings {
   double frame_period = 0.04;  ///< the plan's robot is posed this often [s]
 
@@ -22,8 +23,8 @@ struct ViewerSceneSettings {
 
 /// A parsed JSON document and the file it came from (named in errors); json null: none.
 struct JsonSource {
-  const nlohmann::json* json = nullptr;
-  std::string name;
+  const nlohmann::json* json = nullptr;  ///< the document, or null
+  std::string name;  ///< the file it came from
 };
 
 /// The scene of `plan_file`, parsed from `plan` (whose map it draws). The violations drawn are those

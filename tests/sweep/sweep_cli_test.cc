@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sanitized.h"
+#include "stairplan/version.h"
 #include "test_paths.h"
 
 using namespace stairplan::testing;
@@ -52,6 +53,9 @@ TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-vali
   REQUIRE(Run(grid + " --threads 2 --csv " + dir + "/two.csv", dir) == 0);
   const std::string one = ReadFile(dir + "/one.csv");
   CHECK(one == ReadFile(dir + "/two.csv"));
+  // Its manifest names the version and file schema of the program that wrote it.
+  CHECK_THAT(one, Catch::Contains("\n# version: " + std::string(stairplan::kVersion) + "\n# schema: " +
+                                  std::to_string(stairplan::kSchemaVersion) + "\n"));
   CHECK_THAT(ReadFile(dir + "/map.svg"), Catch::Contains("US residential"));
   const auto rows = Rows(one);
   REQUIRE(rows.size() == n * n);
