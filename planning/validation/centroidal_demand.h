@@ -23,6 +23,7 @@ struct CentroidalDemand {
   Eigen::Vector3d acceleration_W = Eigen::Vector3d::Zero();  ///< of the COM [m/s^2]
 };
 
+/// The robot as one rigid body: its mass and rotational inertia, and the demand of a plan's motion.
 class CentroidalModel {
  public:
   /// Mass and the rotational inertia about the COM at the zero pose, from the URDF: the base link's
@@ -32,8 +33,8 @@ class CentroidalModel {
   /// The demand of `body` (a plan's samples, sorted by time) at time t.
   CentroidalDemand DemandAt(const std::vector<BodyState>& body, double t) const;
 
-  double mass() const { return mass_; }
-  const Eigen::Matrix3d& inertia_B() const { return inertia_B_; }
+  double mass() const { return mass_; }  ///< [kg]
+  const Eigen::Matrix3d& inertia_B() const { return inertia_B_; }  ///< about the COM, base frame [kg m^2]
 
  private:
   double mass_ = 0.0;

@@ -63,13 +63,15 @@ struct ContactWrenchResult {
   Eigen::Vector3d force_error_W = Eigen::Vector3d::Zero();   ///< given minus wanted [N]
   Eigen::Vector3d moment_error_W = Eigen::Vector3d::Zero();  ///< given minus wanted [N m]
   std::array<Eigen::Vector3d, 4> forces_W{};                 ///< per foot [N]
-  ContactLimit limit = ContactLimit::kNone;
+  ContactLimit limit = ContactLimit::kNone;  ///< what keeps the feet from the wrench
   int foot = -1;   ///< the foot of `limit` (index into the feet), -1 for kNone/kGeometry
   int joint = -1;  ///< the joint of a kTorque limit (0 hip ab/adduction .. 2 knee), else -1
 };
 
+/// The per-instant QP: the four feet's forces closest to a wanted wrench, and what limits them.
 class ContactWrenchQp {
  public:
+  /// Builds the program once (18 variables, 34 rows). Throws std::invalid_argument naming a bad setting.
   explicit ContactWrenchQp(const ContactWrenchSettings& settings = {});
 
   /// The forces of `feet` closest to the net force `force_W` and moment `moment_W` (about
@@ -80,7 +82,7 @@ class ContactWrenchQp {
   /// The next solve starts cold (no active set, H refactorised): for benchmarks' cold regime.
   void ResetWarmStart() { solver_.ResetWarmStart(); }
 
-  const ContactWrenchSettings& settings() const { return settings_; }
+  const ContactWrenchSettings& settings() const { return settings_; }  ///< as validated
 
  private:
   void Update(const std::array<ContactFoot, 4>& feet, const Eigen::Vector3d& com_W);

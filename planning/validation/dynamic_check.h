@@ -16,6 +16,7 @@
 
 namespace stairplan {
 
+/// The dynamic check of one instant: the demand of the plan's motion against the stance feet.
 class DynamicCheck {
  public:
   /// `acceleration_window`: the h of CentroidalModel [s].

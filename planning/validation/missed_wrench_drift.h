@@ -8,6 +8,7 @@
 
 namespace stairplan {
 
+/// The drift of the current stretch of missed instants, updated instant by instant.
 class MissedWrenchDrift {
  public:
   /// `mass` [kg]; a residual at or below `floor` [N] ends a stretch.
