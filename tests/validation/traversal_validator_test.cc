@@ -162,9 +162,12 @@ TEST_CASE("the validator passes the default plan and catches planted faults in i
     }
   }
 
-  SECTION("a friction coefficient of 0.2 fails the dynamic check, naming a slipping foot") {
+  SECTION("on ice the dynamic check fails the plan, naming a slipping foot") {
+    // The crawl's shifts need about 0.2 (0.15 drifts 25 mm); MuJoCo's soft contacts and the
+    // executor's tracking still carry it at 0.1, so this is the check's friction limit at work,
+    // not a verdict MuJoCo shares (the doubled pace above is).
     ValidationSettings slippery;
-    slippery.contacts.friction = 0.2;
+    slippery.contacts.friction = 0.1;
     const ValidationReport r = s.Validate(s.result.plan, slippery);
     INFO(Describe(r));
     CHECK_FALSE(r.ok);
