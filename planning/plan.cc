@@ -2,6 +2,10 @@
 
 namespace stairplan {
 
+const char* ToString(GaitBalance balance) {
+  return balance == GaitBalance::kQuasiStatic ? "quasi_static" : "dynamic";
+}
+
 const char* ToString(PlanStatus status) { return status == PlanStatus::kOk ? "ok" : "infeasible"; }
 
 const char* ToString(BodyPlannerKind kind) {
