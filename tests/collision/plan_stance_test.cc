@@ -103,7 +103,7 @@ TEST_CASE("CLI plan stances are reachable and clear: shared robots", "[plan_stan
 
 // The crawl's foothold search (CrawlSettings::fit_footholds) is what gives the small robots
 // standable touchdowns: without it, A1's front legs end beyond their knee limits.
-TEST_CASE("without the crawl's foothold search A1's touchdowns fail; with it they pass", "[plan_stance]") {
+TEST_CASE("without the crawl's foothold search A1's touchdowns fail, with it they pass", "[plan_stance]") {
   const auto robots = testing::TestRobots(false);
   const auto a1 = std::find_if(robots.begin(), robots.end(), [](const testing::RobotFile& f) { return f.label == "unitree_a1"; });
   if (a1 == robots.end() || testing::kSanitized) return;

@@ -75,7 +75,7 @@ TEST_CASE("real robots: fixed sub-links ride with their leg, sensors with the bo
   }
 }
 
-TEST_CASE("shapes fixed below the knee's link are the foot's parts; the foot sphere is named", "[robot_collision_model]") {
+TEST_CASE("shapes fixed below the knee's link are the foot's parts, the foot sphere is named", "[robot_collision_model]") {
   const RobotKinematics stairbot(stairplan::BuiltinRobot());
   const RobotCollisionModel model(stairbot);
   for (int l = 0; l < 4; ++l) {

@@ -38,7 +38,7 @@ TEST_CASE("standing on the landing in the nominal pose is ok", "[stance_check]")
   CHECK(r.front_pair.distance > 0.1);
 }
 
-TEST_CASE("a body too high is out of reach; a foot against the riser collides", "[stance_check]") {
+TEST_CASE("a body too high is out of reach, a foot against the riser collides", "[stance_check]") {
   StanceChecker checker(BuiltinRobot(), Staircase(StairSpec{}));
   BodyPose body;
   body.position_W = {-0.8, 0.0, 0.7};

@@ -92,7 +92,7 @@ TEST_CASE("ROS_PACKAGE_PATH is split like a PATH", "[mesh_loader]") {
   CHECK(PackagePath::FromString("/y/two:/z").Then(env).folders == std::vector<std::string>{"/y/two", "/z", "/x/one"});
 }
 
-TEST_CASE("COLLADA units and up axis are honoured; STL and OBJ are metres as written", "[mesh_loader]") {
+TEST_CASE("COLLADA units and up axis are honoured, STL and OBJ are metres as written", "[mesh_loader]") {
   const std::string dir = MakeTempDir("mesh-units");
   const auto tetra = TetraTriangles();
   WriteBytes(dir + "/z_mm.dae", Dae(tetra, "Z_UP", 0.001));

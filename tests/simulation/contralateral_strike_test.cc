@@ -66,7 +66,7 @@ std::string StrikeLog(const SimulationOutcome& o) {
 }  // namespace
 
 TEST_CASE("a swing foot planted onto the contralateral stance foot strikes that leg: detected from the torque residual "
-          "and from contacts, answered by a step away from it; unanswered, the foot ends beside the other foot and the "
+          "and from contacts, answered by a step away from it, unanswered, the foot ends beside the other foot and the "
           "robot falls",
           "[simulation][impact]") {
   const PlantedStrike& scene = StrikeScene();

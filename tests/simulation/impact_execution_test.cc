@@ -68,7 +68,7 @@ std::vector<std::pair<std::string, double>> Trips(const SimulationOutcome& o) {
 }  // namespace
 
 TEST_CASE("a toe stubbed on a riser 2 cm higher than the model: the torque residual finds the trip, the foot re-lifts, "
-          "the flight completes; without responses the robot falls",
+          "the flight completes, without responses the robot falls",
           "[simulation][impact]") {
   const StubbedToeScene& scene = StubbedToe();
   const RobotModel& robot = BuiltinRobot();
@@ -137,7 +137,7 @@ TEST_CASE("MuJoCo's contact list finds the same trips as the torque residual", "
 // front shank glances a nosing as it swings up the flight: no reaction. 14 cm low, the first hind
 // swing's knee, behind its hip, meets the riser: the knee moves forward (the body still ends on the
 // stairs: no response saves a plan that puts the body there).
-TEST_CASE("knees driven into the stairs are detected, classified and answered; the log names time, leg, kind and response",
+TEST_CASE("knees driven into the stairs are detected, classified and answered, the log names time, leg, kind and response",
           "[simulation][impact]") {
   const RobotModel& robot = BuiltinRobot();
   StairSpec spec;

@@ -15,7 +15,7 @@
 
 using namespace stairplan;
 
-TEST_CASE("feet that come down outside the step region of stairs that moved are moved into it; unanswered they stay "
+TEST_CASE("feet that come down outside the step region of stairs that moved are moved into it, unanswered they stay "
           "outside",
           "[simulation][impact]") {
   const RobotModel& robot = BuiltinRobot();
