@@ -226,6 +226,11 @@ Eigen::Vector3d TriangleMesh::Max() const {
   return hi;
 }
 
+TriangleMesh ReadMeshFile(const std::string& path, const Eigen::Vector3d& scale) {
+  CheckScale(path, scale);
+  return ReadMesh(path, scale);
+}
+
 std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const Eigen::Vector3d& scale) {
   CheckScale(path, scale);
   std::error_code ec;
