@@ -119,3 +119,26 @@ TEST_CASE("mesh: an ASCII STL whose vertices do not make whole triangles is refu
   CHECK_THAT(cached, Catch::StartsWith(path + ": not a readable mesh") && Catch::Contains("vertices"));
   CHECK(uncached == cached);
 }
+
+TEST_CASE("mesh: a COLLADA index list with a stray character, or a count beyond the file, is refused before assimp reads it", "[hardening][fuzz][mesh]") {
+  // fuzz_mesh, two minutes in (issue #28): one quote in a <p> list ("1'3") made assimp 5.2.5's
+  // COLLADA importer append zeros until it had asked for 3 GB; a count="4000000000" makes it
+  // reserve gigabytes before reading a value. Both are refused naming the file and the line.
+  const std::string dir = stairplan::testing::MakeTempDir("dae-guard");
+  const std::string head =
+      "<?xml version=\"1.0\"?>\n<COLLADA version=\"1.4.1\"><library_geometries><geometry id=\"g\"><mesh>\n"
+      "<source id=\"p\"><float_array id=\"pa\" count=\"";
+  const auto error_of = [&](const std::string& count, const std::string& indices) {
+    const std::string path = dir + "/m.dae";
+    std::ofstream(path) << head << count << "\">0 0 0 1 0 0 0 1 0</float_array></source>\n"
+                        << "<triangles count=\"1\"><p>" << indices << "</p></triangles>\n"
+                        << "</mesh></geometry></library_geometries></COLLADA>\n";
+    return ParseErrorOf([&] { ReadMeshFile(path, Eigen::Vector3d::Ones()); });
+  };
+  const std::string path = dir + "/m.dae";
+  CHECK_THAT(error_of("9", "0 1'2"), Catch::StartsWith(path + ": line 4: <p> holds something other than integer indices"));
+  CHECK_THAT(error_of("4000000000", "0 1 2"), Catch::StartsWith(path + ": line 3: <float_array count=\"4000000000\">"));
+  // Well-formed lists and counts pass the check (this file then has no scene for assimp to place).
+  CHECK_THAT(error_of("9", "0 1 2"), !Catch::Contains("integer indices") && !Catch::Contains("could hold"));
+  std::filesystem::remove_all(dir);
+}
