@@ -37,6 +37,13 @@ bool IsIntegerList(std::string_view text) {
 
 bool IsIndexList(std::string_view name) { return name == "p" || name == "vcount" || name == "v" || name == "h"; }
 
+// Up to 24 bytes of `value`, anything but printable ASCII as '?': safe to print in a message.
+std::string Shown(std::string_view value) {
+  std::string out(value.substr(0, 24));
+  for (char& ch : out) ch = (ch >= 0x20 && ch < 0x7F) ? ch : '?';
+  return out;
+}
+
 // A whole number no larger than `limit`.
 bool IsBoundedCount(std::string_view value, std::uintmax_t limit) {
   if (value.empty() || value.size() > 20) return false;
@@ -54,7 +61,7 @@ void CheckElement(const tinyxml2::XMLElement& element, const std::string& path, 
     const char* value = element.Attribute(attribute);
     if (value != nullptr && !IsBoundedCount(value, file_size)) {
       Refuse(path, element.GetLineNum(),
-             "<" + std::string(name) + " " + attribute + "=\"" + std::string(value).substr(0, 24) +
+             "<" + std::string(name) + " " + attribute + "=\"" + Shown(value) +
                  "\"> is not a whole number the file's " + std::to_string(file_size) + " bytes could hold");
     }
   }
