@@ -65,6 +65,10 @@ void CheckElement(const tinyxml2::XMLElement& element, const std::string& path, 
                  "\"> is not a whole number the file's " + std::to_string(file_size) + " bytes could hold");
     }
   }
+  // Without a count assimp reads an array as empty and then dereferences its missing values.
+  if (name.size() > 6 && name.substr(name.size() - 6) == "_array" && element.Attribute("count") == nullptr) {
+    Refuse(path, element.GetLineNum(), "<" + std::string(name) + "> has no count");
+  }
   if (IsIndexList(name)) {
     for (const tinyxml2::XMLNode* child = element.FirstChild(); child; child = child->NextSibling()) {
       const tinyxml2::XMLText* text = child->ToText();

@@ -138,6 +138,11 @@ TEST_CASE("mesh: a COLLADA index list with a stray character, or a count beyond 
   const std::string path = dir + "/m.dae";
   CHECK_THAT(error_of("9", "0 1'2"), Catch::StartsWith(path + ": line 4: <p> holds something other than integer indices"));
   CHECK_THAT(error_of("4000000000", "0 1 2"), Catch::StartsWith(path + ": line 3: <float_array count=\"4000000000\">"));
+  // fuzz_mesh after that fix: a <float_array> without its count made assimp dereference null.
+  std::ofstream(path) << "<COLLADA><library_geometries><geometry><mesh><source id=\"p\">\n<float_array id=\"pa\">0 0 0"
+                      << "</float_array></source></mesh></geometry></library_geometries></COLLADA>\n";
+  CHECK_THAT(ParseErrorOf([&] { ReadMeshFile(path, Eigen::Vector3d::Ones()); }),
+             Catch::StartsWith(path + ": line 2: <float_array> has no count"));
   // Well-formed lists and counts pass the check (this file then has no scene for assimp to place).
   CHECK_THAT(error_of("9", "0 1 2"), !Catch::Contains("integer indices") && !Catch::Contains("could hold"));
   std::filesystem::remove_all(dir);
