@@ -12,8 +12,9 @@ namespace stairplan {
 
 /// Throws std::invalid_argument "<path>: line N: <reason>" when the COLLADA file at `path` is not
 /// well-formed XML, when an index list holds anything but whitespace and (optionally negative)
-/// integers, or when a `count`, `stride` or `offset` attribute is not a whole number or exceeds the
-/// file's size in bytes (no array in the file can hold more values than it has bytes).
+/// integers, when an array (`<float_array>`, `<Name_array>`, ...) has no `count`, or when a
+/// `count`, `stride` or `offset` attribute is not a whole number or exceeds the file's size in
+/// bytes (no array in the file can hold more values than it has bytes).
 void CheckColladaFile(const std::string& path);
 
 }  // namespace stairplan
