@@ -19,6 +19,8 @@
 #include <assimp/scene.h>
 #include <Eigen/Geometry>
 
+#include "kinematics/collada_check.h"
+
 namespace stairplan {
 namespace {
 
@@ -164,6 +166,7 @@ TriangleMesh ReadMesh(const std::string& path, const Eigen::Vector3d& scale) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw std::invalid_argument(path + ": no such mesh file");
   if (format == MeshFormat::kStl) CheckStlSize(path);
+  if (format == MeshFormat::kCollada) CheckColladaFile(path);
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(
@@ -224,6 +227,11 @@ Eigen::Vector3d TriangleMesh::Max() const {
   Eigen::Vector3d hi = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
   for (const Eigen::Vector3d& v : vertices) hi = hi.cwiseMax(v);
   return hi;
+}
+
+TriangleMesh ReadMeshFile(const std::string& path, const Eigen::Vector3d& scale) {
+  CheckScale(path, scale);
+  return ReadMesh(path, scale);
 }
 
 std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const Eigen::Vector3d& scale) {

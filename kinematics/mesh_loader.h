@@ -42,6 +42,11 @@ constexpr double kMinMeshExtent = 1e-4;  // [m]
 /// larger than kMaxMeshExtent or smaller than kMinMeshExtent.
 std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, const Eigen::Vector3d& scale);
 
+/// Reads `path` as LoadMesh does (same checks, same errors) but from disk on every call, leaving
+/// the cache alone: for a caller that reads many different files, each once (the mesh fuzzer,
+/// whose cache would otherwise keep every input it accepted).
+TriangleMesh ReadMeshFile(const std::string& path, const Eigen::Vector3d& scale);
+
 /// How many mesh files this process has read from disk (cache hits do not count).
 std::size_t MeshFilesRead();
 

@@ -142,6 +142,13 @@ TEST_CASE("a mesh file is read once per process", "[mesh_loader]") {
   // Another scale is another mesh.
   CHECK(LoadMesh(dir + "/t.stl", Eigen::Vector3d::Constant(0.5)) != first);
   CHECK(stairplan::MeshFilesRead() == before + 2);
+  // ReadMeshFile reads the file every time, leaving the cache alone, and gives the same mesh.
+  const TriangleMesh uncached = stairplan::ReadMeshFile(dir + "/t.stl", Eigen::Vector3d::Ones());
+  CHECK(stairplan::MeshFilesRead() == before + 3);
+  CHECK(uncached.vertices == first->vertices);
+  CHECK(uncached.triangles == first->triangles);
+  CHECK(LoadMesh(dir + "/t.stl", Eigen::Vector3d::Ones()) == first);
+  CHECK(stairplan::MeshFilesRead() == before + 3);
 }
 
 TEST_CASE("bad mesh files are refused naming the file", "[mesh_loader]") {
