@@ -69,7 +69,7 @@ Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const C
 bool IsNearMiss(const ValidationReport& report) {
   return std::all_of(report.violations.begin(), report.violations.end(), [](const Violation& v) {
     return v.kind == ViolationKind::kBodyAcceleration || v.kind == ViolationKind::kJointLimits ||
-           v.kind == ViolationKind::kOutOfReach || v.kind == ViolationKind::kStairCollision || v.kind == ViolationKind::kDynamics;
+           v.kind == ViolationKind::kOutOfReach || v.kind == ViolationKind::kStairCollision;
   });
 }
 
