@@ -2,10 +2,6 @@
 
 namespace stairplan {
 
-const char* ToString(GaitBalance balance) {
-  return balance == GaitBalance::kQuasiStatic ? "quasi_static" : "dynamic";
-}
-
 const char* ToString(PlanStatus status) { return status == PlanStatus::kOk ? "ok" : "infeasible"; }
 
 const char* ToString(BodyPlannerKind kind) {

@@ -47,14 +47,6 @@ struct BodyState {
   double com_shift_y = 0.0;  ///< leftward shift of the centre of mass [m]
 };
 
-/// How a gait keeps its balance; it decides what the validator asks of a plan's motion.
-enum class GaitBalance {
-  kQuasiStatic,  ///< the centre of mass stays over the support polygon of three or four feet (crawls)
-  kDynamic,      ///< balance comes from the motion itself, two feet down at times (trot)
-};
-/// "quasi_static", "dynamic".
-const char* ToString(GaitBalance balance);
-
 /// Whether a plan was found.
 enum class PlanStatus { kOk, kInfeasible };
 /// Returns "ok" or "infeasible".
@@ -106,7 +98,6 @@ struct Plan {
   Facing facing = Facing::kForward;  ///< which way the body faces relative to the travel
   double cadence_s = 0.0;                     ///< swing duration of the chosen controller [s]
   std::string gait;                           ///< e.g. "crawl"
-  GaitBalance balance = GaitBalance::kQuasiStatic;  ///< of `gait`
   /// The hip height (share of the leg's reach) the pipeline's robot-aware map and body path were
   /// built for; validate and simulate rebuild that map from it. NaN: the pipeline's default.
   double hip_height_fraction = std::numeric_limits<double>::quiet_NaN();

@@ -51,9 +51,7 @@ nlohmann::json ValidationToJson(const ValidationReport& report) {
   }
   const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return {{"ok", report.ok}, {"min_clearance_m", finite(report.min_clearance_m)},
-          {"min_stability_margin_m", finite(report.min_stability_margin_m)},
-          {"max_contact_residual_n", finite(report.max_contact_residual_n)},
-          {"max_contact_drift_m", finite(report.max_contact_drift_m)}, {"samples", report.samples},
+          {"min_stability_margin_m", finite(report.min_stability_margin_m)}, {"samples", report.samples},
           {"violations", violations}};
 }
 
@@ -133,7 +131,6 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
                          {"facing", ToString(plan.facing)},
                          {"map", MapToJson(map)},
                          {"gait", plan.gait},
-                         {"balance", ToString(plan.balance)},
                          {"cadence_s", plan.cadence_s},
                          {"hip_height_fraction", std::isfinite(plan.hip_height_fraction) ? nlohmann::json(plan.hip_height_fraction)
                                                                                          : nlohmann::json(nullptr)},

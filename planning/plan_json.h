@@ -14,7 +14,7 @@ namespace stairplan {
 
 /// The resolved staircase as JSON (spec fields plus per-surface geometry).
 nlohmann::json StairsToJson(const Staircase& stairs);
-/// The validator's report: ok, min_clearance_m, min_stability_margin_m, max_contact_residual_n, max_contact_drift_m, violations [{t, leg, kind, value, detail}].
+/// The validator's report: ok, min_clearance_m, min_stability_margin_m, violations [{t, leg, kind, value, detail}].
 nlohmann::json ValidationToJson(const ValidationReport& report);
 /// The whole plan: robot, stairs, map regions, footsteps, body, cadence, status, timings, and the
 /// version and schema_version of the writer.

@@ -139,13 +139,6 @@ PlanFile ReadPlanJson(const std::string& text, const std::string& source) {
   file.facing = facing == "forward" ? Facing::kForward : Facing::kBackward;
   plan.facing = file.facing;
   plan.gait = root.contains("gait") ? r.Text(root, "gait", "") : "crawl";
-  // Files written before "balance" existed: their only dynamic gait was the trot.
-  const std::string balance = root.contains("balance") ? r.Text(root, "balance", "")
-                              : ToString(plan.gait == "trot" ? GaitBalance::kDynamic : GaitBalance::kQuasiStatic);
-  if (balance != ToString(GaitBalance::kQuasiStatic) && balance != ToString(GaitBalance::kDynamic)) {
-    r.Fail("balance", "must be quasi_static or dynamic");
-  }
-  plan.balance = balance == ToString(GaitBalance::kDynamic) ? GaitBalance::kDynamic : GaitBalance::kQuasiStatic;
   plan.cadence_s = r.Number(root, "cadence_s", "");
   if (root.contains("hip_height_fraction") && !root["hip_height_fraction"].is_null()) {
     plan.hip_height_fraction = r.Number(root, "hip_height_fraction", "");

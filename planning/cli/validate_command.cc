@@ -19,21 +19,18 @@ int RunValidate(const std::vector<std::string>& args) {
   std::string path, robot_path;
   StairFlags true_stairs;
   bool json = false;
-  double friction = ValidationSettings{}.contacts.friction;
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
   app.add_option("--stairs", true_stairs.file, "Stairs YAML to validate on instead of the plan's own (e.g. the true stairs)");
   RobotFlags robot_flags;
   AddRobotFlags(app, robot_flags);
   app.add_flag("--json", json, "Print the validation report as JSON");
-  app.add_option("--friction", friction, "Friction coefficient the dynamic check allows at the feet (default 0.6)");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("validate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
     const RobotModel robot = LoadPlanRobot(file, robot_path, robot_flags);
     const Staircase stairs = true_stairs.file.empty() ? Staircase(file.stairs) : ResolveStairs(true_stairs);
-    PipelineOptions options = OptionsForPlan(file.plan);
-    options.validation.contacts.friction = friction;
+    const PipelineOptions options = OptionsForPlan(file.plan);
     const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
     TraversalValidator validator(robot, stairs, map, options.validation);
     const ValidationReport report =

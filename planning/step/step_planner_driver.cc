@@ -55,11 +55,6 @@ Plan PlanWithStepPlanner(const RobotModel& robot, const Staircase& stairs, const
     const FixedCadenceController& shown = controllers[static_cast<std::size_t>(std::max(0, best))];
     p.cadence_s = best >= 0 ? shown.cadence_s : 0.0;
     p.gait = best >= 0 ? ToString(shown.gait) : "";
-    // One trotting cycle makes the whole plan dynamic: two feet down there.
-    p.balance = GaitBalance::kQuasiStatic;
-    for (std::size_t i = 0; i < controllers.size(); ++i) {
-      if (controllers[i].gait == Gait::kTrot && p.controllers[i].cycles_selected > 0) p.balance = GaitBalance::kDynamic;
-    }
   };
 
   const int last = map.size() - 1;

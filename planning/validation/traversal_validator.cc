@@ -2,19 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <set>
 
 #include "geometry/field_error.h"
-#include "planning/validation/dynamic_check.h"
 
 namespace stairplan {
 namespace {
 
 constexpr double kTouchTolerance = 1e-4;  // a foot sphere this deep in its tread still only touches [m]
 
-bool QuasiStatic(const Plan& plan) { return plan.balance == GaitBalance::kQuasiStatic; }
+bool QuasiStatic(const std::string& gait) { return gait.rfind("crawl", 0) == 0; }
 
 }  // namespace
 
@@ -28,7 +26,6 @@ const char* ToString(ViolationKind kind) {
     case ViolationKind::kBodyCollision: return "body_collision";
     case ViolationKind::kStability: return "stability";
     case ViolationKind::kBodyAcceleration: return "body_acceleration";
-    case ViolationKind::kDynamics: return "dynamics";
   }
   return "unknown";
 }
@@ -38,10 +35,6 @@ void ValidationSettings::Validate() const {
   RequireInRange("min_clearance", min_clearance, -1.0, 1.0);
   RequireInRange("min_stability_margin", min_stability_margin, -1.0, 1.0);
   RequireInRange("max_body_acceleration", max_body_acceleration, 0.0, 1e4);
-  RequireInRange("max_contact_residual", max_contact_residual, 0.0, 10.0);
-  RequireInRange("max_contact_drift", max_contact_drift, 0.0, 10.0);
-  RequireInRange("acceleration_window", acceleration_window, 1e-3, 1.0);
-  contacts.Validate();
   if (max_violations < 1) throw FieldError("max_violations", "must be at least 1");
   swing.Validate();
   ik.Validate();
@@ -49,27 +42,21 @@ void ValidationSettings::Validate() const {
 
 TraversalValidator::TraversalValidator(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                        const ValidationSettings& settings)
-    : stairs_(stairs), map_(map), settings_(settings),
-      drift_(robot.total_mass(), settings.max_contact_residual * robot.total_mass() * 9.81) {
+    : stairs_(stairs), map_(map), settings_(settings) {
   settings_.Validate();
   StanceSettings stance;
   stance.ik = settings_.ik;
   stance.min_clearance = settings_.min_clearance;
   checker_ = std::make_unique<StanceChecker>(robot, stairs, stance);
   com_ = std::make_unique<ComModel>(checker_->kinematics());
-  dynamics_ = std::make_unique<DynamicCheck>(checker_->kinematics(), settings_.contacts,
-                                             settings_.acceleration_window);
 }
-
-TraversalValidator::~TraversalValidator() = default;
 
 ValidationReport TraversalValidator::Validate(const Plan& plan) {
   ValidationReport report;
   report.min_clearance_m = std::numeric_limits<double>::infinity();
   report.min_stability_margin_m = std::numeric_limits<double>::infinity();
   CheckTouchdowns(plan, report);
-  drift_.Reset();
-  if (QuasiStatic(plan)) CheckBodyAcceleration(plan, report);
+  if (QuasiStatic(plan.gait)) CheckBodyAcceleration(plan, report);
   std::set<double> times;
   for (double t = 0.0; t < plan.duration(); t += settings_.time_step) times.insert(t);
   times.insert(plan.duration());
@@ -164,12 +151,10 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
     add("body", ViolationKind::kBodyCollision, body_clearance.distance, ToString(body_clearance.part));
   }
   const int stance_count = static_cast<int>(std::count(stance.begin(), stance.end(), true));
-  const bool check_support = stance_count >= 3 && (QuasiStatic(plan) || settings_.stability_for_dynamic_gaits);
-  if (!check_support && !settings_.check_dynamics) return;
-  std::array<Eigen::Vector3d, 4> q;
-  for (int l = 0; l < 4; ++l) q[static_cast<std::size_t>(l)] = r.legs[static_cast<std::size_t>(l)].ik.q;
-  const Eigen::Vector3d com = com_->Com(body, q, checker_->workspace());
-  if (check_support) {
+  if (stance_count >= 3 && (QuasiStatic(plan.gait) || settings_.stability_for_dynamic_gaits)) {
+    std::array<Eigen::Vector3d, 4> q;
+    for (int l = 0; l < 4; ++l) q[static_cast<std::size_t>(l)] = r.legs[static_cast<std::size_t>(l)].ik.q;
+    const Eigen::Vector3d com = com_->Com(body, q, checker_->workspace());
     std::vector<Eigen::Vector2d> support;
     for (int l = 0; l < 4; ++l) {
       if (stance[static_cast<std::size_t>(l)]) support.push_back(contacts[static_cast<std::size_t>(l)].head<2>());
@@ -178,35 +163,6 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
     report.min_stability_margin_m = std::min(report.min_stability_margin_m, margin);
     if (margin < settings_.min_stability_margin) add("body", ViolationKind::kStability, margin, "");
   }
-  Violation missed;
-  if (settings_.check_dynamics && CheckDynamics(plan, t, body, q, contacts, stance, com, report, &missed)) {
-    add(missed.leg, missed.kind, missed.value, missed.detail);
-  }
-}
-
-bool TraversalValidator::CheckDynamics(const Plan& plan, double t, const BodyPose& body,
-                                       const std::array<Eigen::Vector3d, 4>& q, const std::array<Eigen::Vector3d, 4>& contacts,
-                                       const std::array<bool, 4>& stance, const Eigen::Vector3d& com,
-                                       ValidationReport& report, Violation* found) {
-  const ContactWrenchResult& c = dynamics_->Check(plan.body, t, body, q, contacts, stance, com, checker_->workspace());
-  report.max_contact_residual_n = std::max(report.max_contact_residual_n, c.residual);
-  const double drift = drift_.Update(t, c.residual);
-  report.max_contact_drift_m = std::max(report.max_contact_drift_m, drift);
-  if (!(drift > settings_.max_contact_drift)) return false;
-  const RobotKinematics& kinematics = checker_->kinematics();
-  found->kind = ViolationKind::kDynamics;
-  found->value = c.residual;
-  found->leg = c.foot >= 0 ? kinematics.leg(c.foot).name() : "body";
-  char numbers[128];
-  std::snprintf(numbers, sizeof numbers, ": misses %.0f N and %.1f N m, drifting %.0f mm in %.2f s", c.force_error_W.norm(),
-                c.moment_error_W.norm(), 1000.0 * drift, drift_.duration());
-  found->detail = std::string(ToString(c.limit)) + numbers;
-  if (c.limit == ContactLimit::kTorque) {
-    const std::vector<std::string>& joints = kinematics.leg(c.foot).model().joint_names;
-    const std::string joint = c.joint < static_cast<int>(joints.size()) ? joints[static_cast<std::size_t>(c.joint)] : "";
-    found->detail += ", joint " + joint;
-  }
-  return true;
 }
 
 }  // namespace stairplan

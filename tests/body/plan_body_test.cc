@@ -137,11 +137,7 @@ TEST_CASE("the QP body keeps the centre of mass over the crawl's support polygon
     REQUIRE(footsteps.status == PlanStatus::kOk);
     const Plan plan = PlanBody(robot, stairs, map, footsteps, settings);
     REQUIRE(plan.status == PlanStatus::kOk);
-    // The quasi-static checks: the QP body has no dynamics yet, and its sideways reversals within
-    // a knot or two fail the dynamic check (as they fall in MuJoCo) until it does (issue 19).
-    ValidationSettings quasi_static;
-    quasi_static.check_dynamics = false;
-    TraversalValidator validator(robot, stairs, map, quasi_static);
+    TraversalValidator validator(robot, stairs, map);
     const ValidationReport report = validator.Validate(plan);
     INFO(ToString(direction) << ": stability margin " << report.min_stability_margin_m << " m");
     CHECK(report.min_stability_margin_m >= ValidationSettings{}.min_stability_margin);
