@@ -2,6 +2,8 @@
 // run the same thing: constrained map -> footsteps -> body -> (validation), with stage timings.
 #pragma once
 
+#include <optional>
+
 #include "collision/robot_collision_regions.h"
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
@@ -10,6 +12,7 @@
 #include "planning/body/body_nlp.h"
 #include "planning/body/body_planner_settings.h"
 #include "planning/plan.h"
+#include "planning/stair_approach.h"
 #include "planning/step/step_planner_settings.h"
 #include "planning/validation/traversal_validator.h"
 
@@ -109,6 +112,10 @@ struct PipelineOptions {
                                               {0.6, 0.75, false, 0.05, true},
                                               {0.6, 0.75, false, 0.0, true, 0.6, true, true}};
   ValidationSettings validation;  ///< what the validator checks and with what margins
+  /// The robot's tracked pose in the plan's frame: stair mode is judged there (planning/stair_approach.h).
+  /// None: the robot is taken to be at the alignment pose, where the plan starts either way.
+  std::optional<GroundPose> robot_pose;
+  StairModeSettings stair_mode;  ///< when stair mode engages
 };
 
 /// What RunPipeline() produced: the map planned on, the plan and its validation.
@@ -117,6 +124,7 @@ struct PipelineResult {
   Plan plan;  ///< the plan
   bool validated = false;  ///< the validator ran
   ValidationReport validation;  ///< meaningful when validated
+  StairApproach approach;  ///< the alignment pose the plan starts from, and stair mode at the robot's pose
 };
 
 /// The constrained map the pipeline plans on: analytic margins plus, when asked, the robot's own
