@@ -23,7 +23,7 @@ struct StairModeEngagement {
 };
 
 /// Stair mode for `stairs` with the robot at `pose`: on within settings.engage_distance of the
-/// flight's footprint (seed 001 [0043]). Throws FieldError for bad settings.
+/// flight's footprint (PCT/US2021/022953 [0043]). Throws FieldError for bad settings.
 StairModeEngagement StairModeAtPose(const StairModel& stairs, const GroundPose& pose, const StairModeSettings& settings = {});
 
 /// StairMode over the known `stairs`, fed `track` in order: the first pose at which the mode

@@ -1,7 +1,8 @@
-// plan.json's "stair_mode" and "alignment" objects (seed 001 [0042]-[0043]): whether stair mode is
-// engaged at the robot's pose and where that pose came from; the alignment pose the plan starts
-// from, its stance, the robot's move to it and how far the plan's first body state is from it. In
-// the plan's frame, and in the world when the stairs were found there (a cloud, footfalls).
+// plan.json's "stair_mode" and "alignment" objects (PCT/US2021/022953 ("Identifying stairs from
+// footfalls") [0042]-[0043]): whether stair mode is engaged at the robot's pose and where that pose
+// came from; the alignment pose the plan starts from, its stance, the robot's move to it and how
+// far the plan's first body state is from it. In the plan's frame, and in the world when the
+// stairs were found there (a cloud, footfalls).
 #pragma once
 
 #include <nlohmann/json.hpp>
