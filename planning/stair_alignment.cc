@@ -45,7 +45,7 @@ Eigen::Vector2d StandingShift(const RobotModel& robot, const std::vector<Eigen::
 }  // namespace
 
 AlignmentStance ComputeAlignmentStance(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Facing facing,
-                                       double hip_height_fraction) {
+                                       double hip_height_fraction, double lead_gap) {
   AlignmentStance a;
   if (map.size() < 1 || map.stair(0).step_region.empty()) {
     a.reason = "the first surface has no step region to stand on";
@@ -68,7 +68,7 @@ AlignmentStance ComputeAlignmentStance(const RobotModel& robot, const Staircase&
     lead = std::max(lead, o.x());
   }
   const Extent region = map.stair(0).step_region.XExtent();
-  const double x = region.hi - lead;
+  const double x = region.hi - lead_gap - lead;
   a.position = Eigen::Vector3d(x, 0.0, stairs.surfaces().front().z);
   for (const Eigen::Vector2d& o : offsets) {
     const Eigen::Vector2d foot(x + o.x(), o.y());

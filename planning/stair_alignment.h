@@ -2,8 +2,9 @@
 // [0042], claim 7), for a robot and a flight, in the plan's frame (the Staircase's: x along the
 // travel, y to the left with the stairs' centre line at 0, the first riser at x = 0): the body
 // centred across the stairs, heading along the travel (turned round when it faces backward), and
-// standing where its leading feet, in its standing stance, reach the end of the first surface's
-// step region, the last place the map lets a foot stand before the flight. The standing stance
+// standing where its leading feet, in its standing stance, stand a gap before the end of the first
+// surface's step region, the last place the map lets a foot stand before the flight (the gap the
+// crawl's start has always left, so that its footholds stay where they were). The standing stance
 // has each foot under its hip (the hip's x, the zero pose's foot y: the stance every planner calls
 // neutral), the whole stance shifted so that the centre of mass is over the centre of the feet, as
 // the quasi-static body path holds it with four feet down. The pipeline starts its crawl here.
@@ -35,9 +36,10 @@ struct AlignmentStance {
 
 /// The alignment stance for `robot` traversing `stairs` facing `facing` on `map` (the map the
 /// plan is made on: its first surface's step region bounds where the feet stand), the hips at
-/// `hip_height_fraction` of the legs' reach (BodyPathSettings'). Not found when that region is
-/// empty or too short for the stance.
+/// `hip_height_fraction` of the legs' reach (BodyPathSettings'), the leading feet `lead_gap`
+/// before the step region's end (CrawlSettings::start_gap). Not found when that region is empty
+/// or too short for the stance.
 AlignmentStance ComputeAlignmentStance(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Facing facing,
-                                       double hip_height_fraction);
+                                       double hip_height_fraction, double lead_gap);
 
 }  // namespace stairplan

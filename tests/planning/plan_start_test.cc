@@ -82,8 +82,8 @@ TEST_CASE("the plan starts at the alignment pose for a yawed, offset robot, up a
     CHECK((first_W.xy - patent.position.head<2>()).norm() < 0.002);
     CHECK(AngleBetween(first_W.yaw, patent.yaw) < 1e-9);
     CHECK(AngleBetween(first_W.yaw, frame.model.TravelYaw(travel)) < 1e-9);
-    // The feet start in the stance: spaced as the hips are, the leading ones at the end of the
-    // landing's step region, every one on the landing.
+    // The feet start in the stance: spaced as the hips are, the leading ones the crawl's start
+    // gap before the end of the landing's step region, every one on the landing.
     REQUIRE(r.plan.initial_feet_W.size() == robot.legs().size());
     const Extent landing = r.map.stair(0).step_region.XExtent();
     double lead = -1e9;
@@ -95,7 +95,7 @@ TEST_CASE("the plan starts at the alignment pose for a yawed, offset robot, up a
       CHECK(r.map.StairAt(a.feet[i].head<2>()) == 0);
       lead = std::max(lead, a.feet[i].x());
     }
-    CHECK(lead == Approx(landing.hi));
+    CHECK(lead == Approx(landing.hi - options.crawl.start_gap));
   }
 }
 
@@ -136,7 +136,8 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   PipelineOptions options;
   options.facing = Facing::kBackward;
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
-  const AlignmentStance back = ComputeAlignmentStance(robot, stairs, map, Facing::kBackward, options.crawl.body.hip_height_fraction);
+  const AlignmentStance back = ComputeAlignmentStance(robot, stairs, map, Facing::kBackward, options.crawl.body.hip_height_fraction,
+                                                         options.crawl.start_gap);
   REQUIRE(back.found);
   CHECK(back.yaw == Approx(M_PI));
   // Descending backwards (seed 001 [0042]) the body heads up the stairs in the world.
@@ -148,7 +149,8 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   CHECK(AngleBetween(frame.ToWorld(pose).yaw, ComputeAlignmentPose(frame.model, TravelDirection::kDown, Facing::kBackward, back.standoff).yaw) < 1e-9);
   // The hind hips lead: the feet under them are the leading ones, and the stance is the forward
   // one turned round (its centre shifted by the same COM offset, mirrored).
-  const AlignmentStance fwd = ComputeAlignmentStance(robot, stairs, map, Facing::kForward, options.crawl.body.hip_height_fraction);
+  const AlignmentStance fwd = ComputeAlignmentStance(robot, stairs, map, Facing::kForward, options.crawl.body.hip_height_fraction,
+                                                         options.crawl.start_gap);
   REQUIRE(fwd.found);
   for (std::size_t i = 0; i < robot.legs().size(); ++i) {
     const Eigen::Vector3d b = back.feet[i] - back.position, f = fwd.feet[i] - fwd.position;
@@ -159,7 +161,8 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   spec.landing_before = 0.3;
   const Staircase short_landing(spec);
   const AlignmentStance none = ComputeAlignmentStance(robot, short_landing, BuildPipelineMap(robot, short_landing, options),
-                                                      Facing::kBackward, options.crawl.body.hip_height_fraction);
+                                                      Facing::kBackward, options.crawl.body.hip_height_fraction,
+                                                         options.crawl.start_gap);
   CHECK_FALSE(none.found);
   CHECK_THAT(none.reason, Catch::Contains("landing_before"));
 }
