@@ -264,9 +264,9 @@ PipelineResult PaperCrawlResult(const RobotModel& robot, const Staircase& stairs
   result.map = BuildPipelineMap(robot, stairs, options);
   result.plan = PlanPaperCrawl(robot, stairs, result.map, settings);
   // The paper's crawl keeps its own start; plan.json says how far it is from the alignment pose.
-  result.approach = ApproachStairs(stairs, ComputeAlignmentStance(robot, stairs, result.map, options.facing,
-                                                          options.crawl.body.hip_height_fraction, options.crawl.start_gap),
-                                   options.robot_pose, options.stair_mode);
+  const AlignmentStance aligned = ComputeAlignmentStance(robot, stairs, result.map, options.facing,
+                                                         options.crawl.body.hip_height_fraction, options.crawl.start_gap);
+  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode);
   if (result.plan.status == PlanStatus::kOk && options.validate) {
     TraversalValidator validator(robot, stairs, result.map, options.validation);
     result.validation = validator.Validate(result.plan);
