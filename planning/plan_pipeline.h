@@ -116,6 +116,13 @@ struct PipelineOptions {
   /// None: the robot is taken to be at the alignment pose, where the plan starts either way.
   std::optional<GroundPose> robot_pose;
   StairModeSettings stair_mode;  ///< when stair mode engages
+  /// Start the crawl's feet in the alignment stance, so that the plan's first state is the
+  /// alignment pose (planning/stair_alignment.h). Off by default: from the standing stance the
+  /// crawl's first strides reach up to one and a half runs, and some flights' plans no longer
+  /// validate (stairbot climbing rise 0.22-0.25 m on runs of 0.20 and 0.35 m, the Unitree A1 on
+  /// rise 0.10 m, run 0.28 m). Off, the feet start on the footholds nearest under the hips and
+  /// PlanStartOffset() says how far the plan's first state is from the alignment pose.
+  bool start_at_alignment = false;
 };
 
 /// What RunPipeline() produced: the map planned on, the plan and its validation.

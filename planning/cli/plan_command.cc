@@ -40,6 +40,7 @@ struct PlanOptions {
   std::vector<std::string> set;
   std::vector<double> start;
   std::optional<double> engage_distance;
+  bool align_start = false;
   bool json = false;
 };
 
@@ -73,6 +74,9 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
       ->expected(3)
       ->delimiter(',');
   app.add_option("--engage-distance", o.engage_distance, "Stair mode engages this close to the flight [m] (default 1.0)");
+  app.add_flag("--align-start", o.align_start,
+               "Start at the alignment pose, the feet in the robot's standing stance there (default: on the crawl's "
+               "footholds nearest under the hips; plan.json's alignment.plan_start_offset_m says how far that is)");
   app.add_flag("--json", o.json, "Print the plan JSON on stdout instead of the summary");
   app.add_option("--set", o.set, "Override a body planner setting, body.NAME=VALUE (e.g. body.stability_margin=0.03)");
 }
@@ -295,6 +299,7 @@ int RunPlan(const std::vector<std::string>& args) {
     SetBodyOptions(o, options);
     ApplySettings(o.set, options);
     SetStairMode(o, options.stair_mode);
+    options.start_at_alignment = o.align_start;
     const RobotModel robot = LoadRobot(o.robot, o.robot_flags);
     std::optional<CloudStairs> perceived;
     if (!o.cloud.empty()) perceived = PerceiveCloud(o.cloud, o.stairs, options.facing);

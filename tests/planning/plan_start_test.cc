@@ -56,6 +56,7 @@ TEST_CASE("the plan starts at the alignment pose for a yawed, offset robot, up a
     const StairFrame frame = PlacedDefaultFlight(travel);
     const Staircase stairs = frame.model.ToStaircase(travel, frame.nosing);
     PipelineOptions options;
+    options.start_at_alignment = true;
     options.robot_pose = RobotBefore(frame, stairs, 0.8, 0.3, 0.9);
     const PipelineResult r = RunPipeline(robot, stairs, options);
     REQUIRE(r.plan.status == PlanStatus::kOk);
@@ -104,6 +105,7 @@ TEST_CASE("stair mode is off beyond the engage distance and on within it; the pl
   const Staircase stairs{StairSpec{}};
   const StairFrame frame{ModelOfStaircase(stairs, Eigen::Vector3d::Zero(), 0.0), TravelDirection::kUp, stairs.spec().nosing};
   PipelineOptions options;
+  options.start_at_alignment = true;
   options.robot_pose = RobotBefore(frame, stairs, 3.0, -0.2, 2.0);
   const PipelineResult far = RunPipeline(robot, stairs, options);
   REQUIRE(far.plan.status == PlanStatus::kOk);
