@@ -113,7 +113,7 @@ struct PipelineOptions {
                                               {0.6, 0.75, false, 0.0, true, 0.6, true, true}};
   ValidationSettings validation;  ///< what the validator checks and with what margins
   /// The robot's tracked pose in the plan's frame: stair mode is judged there (planning/stair_approach.h).
-  /// None: the robot is taken to be at the alignment pose, where the plan starts either way.
+  /// None: the robot is taken to be at the alignment pose.
   std::optional<GroundPose> robot_pose;
   StairModeSettings stair_mode;  ///< when stair mode engages
   /// Start the crawl's feet in the alignment stance, so that the plan's first state is the
@@ -131,7 +131,7 @@ struct PipelineResult {
   Plan plan;  ///< the plan
   bool validated = false;  ///< the validator ran
   ValidationReport validation;  ///< meaningful when validated
-  StairApproach approach;  ///< the alignment pose the plan starts from, and stair mode at the robot's pose
+  StairApproach approach;  ///< the alignment pose (the start with start_at_alignment), and stair mode at the robot's pose
 };
 
 /// The constrained map the pipeline plans on: analytic margins plus, when asked, the robot's own

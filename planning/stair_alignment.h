@@ -7,7 +7,8 @@
 // crawl's start has always left, so that its footholds stay where they were). The standing stance
 // has each foot under its hip (the hip's x, the zero pose's foot y: the stance every planner calls
 // neutral), the whole stance shifted so that the centre of mass is over the centre of the feet, as
-// the quasi-static body path holds it with four feet down. The pipeline starts its crawl here.
+// the quasi-static body path holds it with four feet down. The pipeline starts its crawl here when
+// asked (PipelineOptions::start_at_alignment).
 #pragma once
 
 #include <string>

@@ -1,9 +1,9 @@
 // The robot before the flight it plans (PCT/US2021/022953 ("Identifying stairs from footfalls")
 // [0042]-[0043], claim 7): stair mode is judged at the robot's tracked pose (on within the engage
 // distance of the flight); the robot then orients itself to the alignment pose, where the plan
-// starts. A robot farther away is not in stair mode yet: the plan, planned in advance from the
-// alignment pose as [0042] allows, says so, and the robot must first come to that pose. All in the
-// plan's frame (planning/stair_alignment.h).
+// starts (PipelineOptions::start_at_alignment). A robot farther away is not in stair mode yet: the
+// plan, planned in advance as [0042] allows, says so, and the robot must first come to that pose.
+// All in the plan's frame (planning/stair_alignment.h).
 #pragma once
 
 #include <optional>
@@ -21,7 +21,7 @@ namespace stairplan {
 
 /// The plan's start against the robot: stair mode at its pose and its move to the alignment pose.
 struct StairApproach {
-  AlignmentStance alignment;  ///< where the plan starts
+  AlignmentStance alignment;  ///< the alignment pose and its stance
   bool robot_known = false;  ///< a tracked pose was given; otherwise the robot is taken to be at the alignment pose
   /// Stair mode at the robot's pose (plan frame); with no pose, at the alignment pose.
   StairModeEngagement stair_mode;

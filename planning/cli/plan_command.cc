@@ -256,7 +256,7 @@ void WarnStairModeOff(const StairApproach& a) {
   if (a.stair_mode.engaged) return;
   std::cerr << "stairplan plan: warning: stair mode is not engaged: the robot is " << a.stair_mode.distance
             << " m from the flight and it engages within " << a.stair_mode.engage_distance
-            << " m; the plan starts at the alignment pose, which the robot must reach first\n";
+            << " m; the robot must first come to the alignment pose (plan.json's alignment)\n";
 }
 
 // The paper's crawl on the pipeline's map, validated as the pipeline validates.
