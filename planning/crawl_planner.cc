@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <stdexcept>
+#include <string>
 
 #include "collision/stance_check.h"
 #include "geometry/field_error.h"
@@ -67,6 +69,7 @@ struct LegTrack {
   std::string name;
   Eigen::Vector2d foot_offset_W;  // foot relative to the body origin in the world, horizontal
   int start_index = 0;
+  const Eigen::Vector3d* given_start = nullptr;  // CrawlSettings::start_feet's, when given
 };
 
 Plan Infeasible(Plan plan, const std::string& reason) {
@@ -112,11 +115,16 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
   const double yaw = map.facing() == Facing::kForward ? 0.0 : M_PI;
   const Eigen::Rotation2Dd rotation(yaw);
 
+  const std::vector<Eigen::Vector3d>& given = settings.start_feet;
+  if (!given.empty() && given.size() != robot.legs().size()) {
+    throw std::invalid_argument("CrawlSettings::start_feet: one per leg of the robot (" + std::to_string(robot.legs().size()) + ")");
+  }
   std::vector<LegTrack> tracks;
   double front_x = -1e9;
   for (const LegModel& leg : robot.legs()) {
     LegTrack track;
     track.name = leg.name;
+    if (!given.empty()) track.given_start = &given[tracks.size()];
     track.foot_offset_W = rotation * Eigen::Vector2d(leg.hip_B.x(), leg.foot_zero_B.y());
     front_x = std::max(front_x, track.foot_offset_W.x());
     tracks.push_back(track);
@@ -134,7 +142,7 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
   }
   int cycles = 0;
   for (LegTrack& track : tracks) {
-    const double want = body_x0 + track.foot_offset_W.x();
+    const double want = track.given_start ? track.given_start->x() : body_x0 + track.foot_offset_W.x();
     // The nearest foothold, so feet start as close under their hips as the lattice allows.
     const auto it = std::upper_bound(lattice.begin(), lattice.end(), want);
     if (it == lattice.begin()) return Infeasible(plan, "landing_before is too short for the robot's " + track.name + " foot");
@@ -184,6 +192,7 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
   };
   // Where a leg starts: its first foothold, or that far toward its second (a shorter first stride).
   const auto start = [&](const LegTrack& l) {
+    if (l.given_start) return *l.given_start;
     const Eigen::Vector3d a = foothold(l, l.start_index);
     const bool leading = l.foot_offset_W.x() >= lead_x - 1e-9;
     const double f = leading ? settings.lead_first_stride : settings.trail_first_stride;
@@ -193,6 +202,15 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
     return Eigen::Vector3d(x, a.y(), stairs.HeightAt(x, a.y()));
   };
   for (const LegTrack& l : tracks) plan.initial_feet_W.push_back(start(l));
+  // A given start must leave each foot a stride forward, not back or beyond its reach (a layout
+  // with more or fewer treads between the feet than the start has).
+  for (const LegTrack& l : tracks) {
+    if (!l.given_start || l.start_index + 1 >= static_cast<int>(lattice.size())) continue;
+    const double stride = foothold(l, l.start_index + 1).x() - start(l).x();
+    if (!(stride > 0.0 && stride < 2.0 * MeanRun(stairs.spec()))) {
+      return Infeasible(plan, "the " + l.name + " foot's first stride from its start (" + std::to_string(stride) + " m) is not forward within two runs");
+    }
+  }
 
   // Each swing is preceded by a four-feet phase in which the COM moves over the next triangle.
   const double slot_duration = settings.shift_duration + settings.swing_duration;

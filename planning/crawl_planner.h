@@ -4,6 +4,10 @@
 // (step planner, body planner) replace its parts; it stays as a simple, predictable baseline.
 #pragma once
 
+#include <vector>
+
+#include <Eigen/Core>
+
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
 #include "kinematics/robot_model.h"
@@ -45,6 +49,11 @@ struct CrawlSettings {
   /// also fails (the posture fit found no smooth correction for some swing: it jumps there), so
   /// the layout search runs for it and a layout replacing it must not jump either. 0: off.
   double refit_body_acceleration = 0.0;
+  /// Where the feet start, one contact point per leg in the robot's order (the alignment pose's
+  /// stance, planning/stair_alignment.h): each leg's footholds are laid from the one nearest its
+  /// start as usual, and its first swing leaves from the start. Empty: each foot starts on the
+  /// foothold nearest under its hip with the body start_gap before the flight.
+  std::vector<Eigen::Vector3d> start_feet;
   BodyPathSettings body;              ///< how the body follows the feet
   SwingSettings swing;                ///< how high the feet swing over the stairs
 

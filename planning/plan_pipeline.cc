@@ -127,6 +127,11 @@ PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs
   }
   PipelineResult result;
   result.map = std::move(map);
+  // The alignment pose (seed 001 [0042]) and, when asked, the crawl's feet starting in its stance.
+  const AlignmentStance aligned = ComputeAlignmentStance(robot, stairs, result.map, options.facing,
+                                                         options.crawl.body.hip_height_fraction, options.crawl.start_gap);
+  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode);
+  if (options.start_at_alignment && aligned.found) options.crawl.start_feet = aligned.feet;
   const auto t_plan = std::chrono::steady_clock::now();
   result.plan = options.footsteps == FootstepSource::kStepPlanner ? StepPlannerPlan(robot, stairs, result.map, options)
                                                                    : SelectedCrawlPlan(robot, stairs, result.map, options);

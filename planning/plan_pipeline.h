@@ -2,6 +2,8 @@
 // run the same thing: constrained map -> footsteps -> body -> (validation), with stage timings.
 #pragma once
 
+#include <optional>
+
 #include "collision/robot_collision_regions.h"
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
@@ -10,6 +12,7 @@
 #include "planning/body/body_nlp.h"
 #include "planning/body/body_planner_settings.h"
 #include "planning/plan.h"
+#include "planning/stair_approach.h"
 #include "planning/step/step_planner_settings.h"
 #include "planning/validation/traversal_validator.h"
 
@@ -109,6 +112,17 @@ struct PipelineOptions {
                                               {0.6, 0.75, false, 0.05, true},
                                               {0.6, 0.75, false, 0.0, true, 0.6, true, true}};
   ValidationSettings validation;  ///< what the validator checks and with what margins
+  /// The robot's tracked pose in the plan's frame: stair mode is judged there (planning/stair_approach.h).
+  /// None: the robot is taken to be at the alignment pose.
+  std::optional<GroundPose> robot_pose;
+  StairModeSettings stair_mode;  ///< when stair mode engages
+  /// Start the crawl's feet in the alignment stance, so that the plan's first state is the
+  /// alignment pose (planning/stair_alignment.h). Off by default: from the standing stance the
+  /// crawl's first strides reach up to one and a half runs, and some flights' plans no longer
+  /// validate (stairbot climbing rise 0.22-0.25 m on runs of 0.20 and 0.35 m, the Unitree A1 on
+  /// rise 0.10 m, run 0.28 m). Off, the feet start on the footholds nearest under the hips and
+  /// PlanStartOffset() says how far the plan's first state is from the alignment pose.
+  bool start_at_alignment = false;
 };
 
 /// What RunPipeline() produced: the map planned on, the plan and its validation.
@@ -117,6 +131,7 @@ struct PipelineResult {
   Plan plan;  ///< the plan
   bool validated = false;  ///< the validator ran
   ValidationReport validation;  ///< meaningful when validated
+  StairApproach approach;  ///< the alignment pose (the start with start_at_alignment), and stair mode at the robot's pose
 };
 
 /// The constrained map the pipeline plans on: analytic margins plus, when asked, the robot's own

@@ -1,10 +1,15 @@
 // `stairplan plan`: plan a traversal of a staircase and write plan.json and plan.svg.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <optional>
 
 #include "geometry/footfall.h"
 #include "geometry/footfall_stairs.h"
+#include "geometry/footfall_track.h"
+#include "geometry/stair_frame.h"
+#include "geometry/stair_mode_engagement.h"
 #include "geometry/point_cloud.h"
 #include "geometry/stair_perception.h"
 #include "geometry/stair_spec_yaml.h"
@@ -13,6 +18,7 @@
 #include "planning/plan_pipeline.h"
 #include "planning/plan_json.h"
 #include "planning/plan_svg.h"
+#include "planning/stair_approach_json.h"
 #include "planning/step/paper_crawl.h"
 
 namespace stairplan::cli {
@@ -32,6 +38,9 @@ struct PlanOptions {
   int staircase = 1;
   std::string out = "stairplan-out";
   std::vector<std::string> set;
+  std::vector<double> start;
+  std::optional<double> engage_distance;
+  bool align_start = false;
   bool json = false;
 };
 
@@ -56,6 +65,18 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
                  "step: the step planner's own footsteps; "
                  "paper, paper-alt: the 2012 paper's crawl, cases 1 and 2 (seed 003; climbing only)");
   app.add_option("--out", o.out, "Output directory for plan.json and plan.svg (default ./stairplan-out)");
+  app.add_option("--start", o.start,
+                 "X,Y,YAW: the robot's tracked pose; stair mode is judged there and the robot turns and moves to the "
+                 "alignment pose the plan starts from. In the cloud's or the footfall log's world with --cloud or "
+                 "--footfalls, else in the stairs' own frame (x along the travel from the first riser, y left) "
+                 "[m, m, rad]. Default: with --footfalls where stair mode engaged along the log's track, else at the "
+                 "alignment pose")
+      ->expected(3)
+      ->delimiter(',');
+  app.add_option("--engage-distance", o.engage_distance, "Stair mode engages this close to the flight [m] (default 1.0)");
+  app.add_flag("--align-start", o.align_start,
+               "Start at the alignment pose, the feet in the robot's standing stance there (default: on the crawl's "
+               "footholds nearest under the hips; plan.json's alignment.plan_start_offset_m says how far that is)");
   app.add_flag("--json", o.json, "Print the plan JSON on stdout instead of the summary");
   app.add_option("--set", o.set, "Override a body planner setting, body.NAME=VALUE (e.g. body.stability_margin=0.03)");
 }
@@ -114,17 +135,31 @@ void SetBodyOptions(const PlanOptions& o, PipelineOptions& options) {
   options.body_nlp = o.nlp;
 }
 
+// Stairs found in the world (a cloud, footfalls): the Staircase planned on, its frame in the world
+// and, from footfalls, the robot's pose where stair mode engaged for it along the log's track.
+struct WorldStairs {
+  Staircase stairs;
+  StairFrame frame;
+  std::optional<GroundPose> tracked_W;
+};
+
 // Staircase `index` (1-based) of those a footfall log walked, as the YAML `footfalls --stairs-out`
 // writes it.
-Staircase FootfallStaircaseAt(const std::string& path, int index, double nosing) {
-  const std::vector<FootfallStaircase> found = StairsFromFootfalls(ReadFootfallCsv(path));
+WorldStairs FootfallStaircaseAt(const std::string& path, int index, double nosing, const StairModeSettings& mode) {
+  const std::vector<Footfall> footfalls = ReadFootfallCsv(path);
+  const std::vector<FootfallStaircase> found = StairsFromFootfalls(footfalls);
   if (index > static_cast<int>(found.size())) {
     throw NoSolution(path + ": --staircase " + std::to_string(index) + ": the footfalls walked " +
                      std::to_string(found.size()) + " staircases");
   }
   const FootfallStaircase& s = found[static_cast<std::size_t>(index - 1)];
   try {
-    return s.model.ToStaircase(s.traversal, nosing);
+    WorldStairs w{s.model.ToStaircase(s.traversal, nosing), {s.model, s.traversal, nosing}, std::nullopt};
+    std::vector<StairModel> known;
+    for (const FootfallStaircase& f : found) known.push_back(f.model);
+    const std::vector<GroundPose> track = TrackFromFootfalls(footfalls);
+    if (!track.empty()) w.tracked_W = EngagementAlongTrack(track, known, index - 1, mode).pose;
+    return w;
   } catch (const std::invalid_argument& e) {
     throw NoSolution(path + ": staircase " + std::to_string(index) + " cannot be planned on: " + e.what());
   }
@@ -134,6 +169,7 @@ Staircase FootfallStaircaseAt(const std::string& path, int index, double nosing)
 struct CloudStairs {
   Staircase stairs;
   ConstrainedMap map;
+  StairFrame frame;  // the stairs' frame in the cloud's world
   nlohmann::json fitted;  // the tracker's model, its residuals, and how to place the plan in the world
 };
 
@@ -155,7 +191,7 @@ CloudStairs PerceiveCloud(const std::string& path, const StairFlags& flags, Faci
                            {"point_rms_m", seen.fit.point_rms},
                            {"plan_frame_origin_W", {origin.x(), origin.y(), origin.z()}},
                            {"plan_frame_yaw_rad", m.TravelYaw(settings.regions.travel)}};
-  return {seen.stairs->stairs, seen.stairs->map, fitted};
+  return {seen.stairs->stairs, seen.stairs->map, {m, settings.regions.travel, settings.regions.nosing}, fitted};
 }
 
 void PrintValidation(const PipelineResult& result) {
@@ -170,6 +206,59 @@ void PrintValidation(const PipelineResult& result) {
   }
 }
 
+// --engage-distance: stair mode's threshold (the release distance kept at least as far).
+void SetStairMode(const PlanOptions& o, StairModeSettings& mode) {
+  if (!o.engage_distance) return;
+  mode.engage_distance = *o.engage_distance;
+  mode.release_distance = std::max(mode.release_distance, mode.engage_distance);
+  try {
+    mode.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(std::string("--engage-distance: ") + e.what());
+  }
+}
+
+// The robot's pose in the plan's frame: --start (in `world` when the stairs were found there), else
+// where stair mode engaged along the footfall track, else none (at the alignment pose).
+RobotPoseSource SetRobotPose(const std::vector<double>& start, const StairFrame* world, const std::optional<GroundPose>& tracked_W,
+                             PipelineOptions& options) {
+  if (!start.empty()) {
+    if (start.size() != 3 || !std::isfinite(start[0]) || !std::isfinite(start[1]) || !std::isfinite(start[2])) {
+      throw BadInput("--start: expected three finite numbers X,Y,YAW");
+    }
+    GroundPose pose;
+    pose.xy << start[0], start[1];
+    pose.yaw = start[2];
+    options.robot_pose = world ? world->ToStair(pose) : pose;
+    return RobotPoseSource::kGiven;
+  }
+  if (!tracked_W || !world) return RobotPoseSource::kAlignment;
+  options.robot_pose = world->ToStair(*tracked_W);
+  return RobotPoseSource::kFootfallTrack;
+}
+
+void PrintApproach(const StairApproach& a, const Plan& plan) {
+  if (!a.alignment.found) {
+    std::cout << "  alignment: none (" << a.alignment.reason << ")\n";
+    return;
+  }
+  const StartOffset offset = PlanStartOffset(plan, a.alignment);
+  std::cout << "  alignment: x " << a.alignment.position.x() << " m (" << a.alignment.standoff
+            << " m before the first edge), yaw " << a.alignment.yaw << " rad; the plan starts " << offset.distance * 1000
+            << " mm from it\n"
+            << "  stair mode: " << (a.stair_mode.engaged ? "engaged" : "NOT engaged") << ", robot " << a.stair_mode.distance
+            << " m from the flight (engages within " << a.stair_mode.engage_distance << " m)"
+            << (a.robot_known ? "" : ", taken to be at the alignment pose") << "\n";
+}
+
+// Seed 001 [0043]: the operator is warned when stair mode is asked for out of the stairs' range.
+void WarnStairModeOff(const StairApproach& a) {
+  if (a.stair_mode.engaged) return;
+  std::cerr << "stairplan plan: warning: stair mode is not engaged: the robot is " << a.stair_mode.distance
+            << " m from the flight and it engages within " << a.stair_mode.engage_distance
+            << " m; the robot must first come to the alignment pose (plan.json's alignment)\n";
+}
+
 // The paper's crawl on the pipeline's map, validated as the pipeline validates.
 PipelineResult PaperCrawlResult(const RobotModel& robot, const Staircase& stairs, PipelineOptions options, bool alternate) {
   PaperCrawlSettings settings;
@@ -178,6 +267,10 @@ PipelineResult PaperCrawlResult(const RobotModel& robot, const Staircase& stairs
   PipelineResult result;
   result.map = BuildPipelineMap(robot, stairs, options);
   result.plan = PlanPaperCrawl(robot, stairs, result.map, settings);
+  // The paper's crawl keeps its own start; plan.json says how far it is from the alignment pose.
+  const AlignmentStance aligned = ComputeAlignmentStance(robot, stairs, result.map, options.facing,
+                                                         options.crawl.body.hip_height_fraction, options.crawl.start_gap);
+  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode);
   if (result.plan.status == PlanStatus::kOk && options.validate) {
     TraversalValidator validator(robot, stairs, result.map, options.validation);
     result.validation = validator.Validate(result.plan);
@@ -205,12 +298,16 @@ int RunPlan(const std::vector<std::string>& args) {
     }
     SetBodyOptions(o, options);
     ApplySettings(o.set, options);
+    SetStairMode(o, options.stair_mode);
+    options.start_at_alignment = o.align_start;
     const RobotModel robot = LoadRobot(o.robot, o.robot_flags);
     std::optional<CloudStairs> perceived;
     if (!o.cloud.empty()) perceived = PerceiveCloud(o.cloud, o.stairs, options.facing);
-    const Staircase stairs = perceived              ? perceived->stairs
-                             : !o.footfalls.empty() ? FootfallStaircaseAt(o.footfalls, o.staircase, o.stairs.nosing.value_or(0.0))
-                                                    : ResolveStairs(o.stairs);
+    std::optional<WorldStairs> walked;
+    if (!o.footfalls.empty()) walked = FootfallStaircaseAt(o.footfalls, o.staircase, o.stairs.nosing.value_or(0.0), options.stair_mode);
+    const Staircase stairs = perceived ? perceived->stairs : walked ? walked->stairs : ResolveStairs(o.stairs);
+    const StairFrame* world = perceived ? &perceived->frame : walked ? &walked->frame : nullptr;
+    const RobotPoseSource pose_source = SetRobotPose(o.start, world, walked ? walked->tracked_W : std::nullopt, options);
     const double load_us = MicrosSince(t0);
     if (perceived) AddPipelineRobotRegions(robot, stairs, options, perceived->map);
     PipelineResult result = paper ? PaperCrawlResult(robot, stairs, options, o.planner == "paper-alt")
@@ -221,6 +318,7 @@ int RunPlan(const std::vector<std::string>& args) {
     nlohmann::json json = PlanToJson(plan, stairs, result.map);
     if (result.validated) json["validation"] = ValidationToJson(result.validation);
     if (perceived) json["fitted"] = perceived->fitted;
+    json.update(StairApproachToJson(result.approach, plan, pose_source, world));
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");
     WriteFileAtomically(o.out + "/plan.svg",
@@ -230,7 +328,9 @@ int RunPlan(const std::vector<std::string>& args) {
     } else {
       PrintSummary(plan, stairs, o.out);
       PrintValidation(result);
+      PrintApproach(result.approach, plan);
     }
+    WarnStairModeOff(result.approach);
     const bool valid = !result.validated || result.validation.ok;
     return plan.status == PlanStatus::kOk && valid ? kExitOk : kExitInfeasible;
   });

@@ -126,6 +126,39 @@ TEST_CASE("plan --json prints the same plan on stdout", "[cli][plan]") {
   const json written = json::parse(ReadFile(dir + "/out/plan.json"));
   CHECK(printed["footsteps"] == written["footsteps"]);
   CHECK(printed["stairs"]["steps"] == 3);
+  // No robot pose given: it is taken to stand at the alignment pose, in stair mode.
+  CHECK(written["stair_mode"]["engaged"] == true);
+  CHECK(written["stair_mode"]["robot"]["source"] == "alignment");
+  // Without --align-start the feet start on the crawl's footholds: a few centimetres off the pose.
+  CHECK(written["alignment"]["plan_start_offset_m"].get<double>() > 0.0);
+}
+
+TEST_CASE("plan --start: out of stair mode's range it warns, and the plan still starts at the alignment pose", "[cli][plan]") {
+  const std::string dir = MakeTempDir("plan-start");
+  const Run r = Plan("--steps 3 --align-start --start=-2.5,0.4,1.5 --out " + dir + "/out", dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("stair mode is not engaged"));
+  const json plan = json::parse(ReadFile(dir + "/out/plan.json"));
+  const json& mode = plan["stair_mode"];
+  CHECK(mode["engaged"] == false);
+  CHECK(mode["robot"]["source"] == "given");
+  CHECK(mode["robot"]["x"] == -2.5);
+  CHECK(mode["distance_m"].get<double>() == Approx(2.5 - plan["stairs"]["nosing"].get<double>()));
+  CHECK(mode["engage_distance_m"] == 1.0);
+  const json& a = plan["alignment"];
+  CHECK(a["found"] == true);
+  CHECK(a["y"] == 0.0);
+  CHECK(a["yaw_rad"] == 0.0);
+  CHECK(a["turn_rad"].get<double>() == Approx(-1.5));
+  CHECK(a["plan_start_offset_m"].get<double>() < 0.002);
+  CHECK(plan["body"][0]["x"].get<double>() == Approx(a["x"].get<double>()).margin(0.002));
+  CHECK(a["feet"].size() == 4);
+  // Closer than --engage-distance: in stair mode, no warning.
+  const Run near = Plan("--steps 3 --start=-2.5,0.4,1.5 --engage-distance 3 --out " + dir + "/near", dir);
+  REQUIRE(near.code == 0);
+  CHECK(near.err.empty());
+  CHECK(json::parse(ReadFile(dir + "/near/plan.json"))["stair_mode"]["engaged"] == true);
 }
 
 TEST_CASE("plan.json names the body planner and, for the receding horizon, carries every cycle's solve", "[cli][plan]") {
@@ -188,6 +221,9 @@ TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[
   expect_bad("--set body.knots=2", "knots");
   expect_bad("--set stability_margin=0.03", "body.NAME=VALUE");
   expect_bad("--planner paper --cloud " + dir + "/any.ply", "--cloud");  // the paper's crawl needs known stairs
+  expect_bad("--start 1,2", "--start");
+  expect_bad("--start 1,nan,0", "--start");
+  expect_bad("--engage-distance -1", "--engage-distance");
   {
     std::ofstream(dir + "/negative.yaml") << "steps: 5\nrun: -0.27\n";
     expect_bad("--stairs " + dir + "/negative.yaml", "'run'");

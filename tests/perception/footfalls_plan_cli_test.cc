@@ -5,10 +5,14 @@
 // user gives it (--nosing, the loop's 2 cm); without it a plan's shank meets a nosing going down.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "geometry/footfall.h"
+#include "geometry/stair_mode.h"
 #include "geometry/stair_spec_yaml.h"
 #include "perception/footfall_scenes.h"
 #include "sanitized.h"
@@ -50,6 +54,24 @@ TEST_CASE("footfalls --stairs-out, plan --stairs: plans that validate on the tru
   INFO(direct.out << direct.err);
   REQUIRE(direct.code == 0);
   CHECK(RunStairplan(dir, "validate " + dir + "/direct/plan.json --stairs " + dir + "/true_2.yaml").code == 0);
+  {
+    // Stair mode engaged where the log's track first came within range of that flight, and the
+    // alignment pose is, in the world, the patent's pose for the true flight (seed 001
+    // [0042]-[0043]) to within what the footfalls find of it.
+    const nlohmann::json plan = nlohmann::json::parse(ReadFile(dir + "/direct/plan.json"));
+    const nlohmann::json& mode = plan.at("stair_mode");
+    CHECK(mode.at("engaged") == true);
+    CHECK(mode.at("robot").at("source") == "footfall_track");
+    CHECK(mode.at("distance_m").get<double>() <= 1.0);
+    const StairModel truth = loop[2].Model();
+    const nlohmann::json& robot_W = mode.at("robot").at("world");
+    CHECK(DistanceToFlight(truth, {robot_W.at("x").get<double>(), robot_W.at("y").get<double>()}) < 1.05);
+    const nlohmann::json& a = plan.at("alignment");
+    const AlignmentPose exact = ComputeAlignmentPose(truth, TravelDirection::kDown, Facing::kForward, a.at("standoff_m").get<double>());
+    const nlohmann::json& w = a.at("world");
+    CHECK(std::hypot(w.at("x").get<double>() - exact.position.x(), w.at("y").get<double>() - exact.position.y()) < 0.05);
+    CHECK(std::abs(std::remainder(w.at("yaw_rad").get<double>() - exact.yaw, 2.0 * M_PI)) < 2.0 * M_PI / 180.0);
+  }
   CHECK(RunStairplan(dir, "plan --footfalls " + dir + "/walk.csv --staircase 5 --out " + dir + "/none").code == 3);
   // The check has teeth: the first flight's plan (rise 0.17) on the second flight's stairs (0.15) is invalid.
   const StairplanRun wrong = RunStairplan(dir, "validate " + dir + "/plan_0/plan.json --stairs " + dir + "/true_1.yaml");

@@ -1,0 +1,30 @@
+// plan.json's "stair_mode" and "alignment" objects (PCT/US2021/022953 ("Identifying stairs from
+// footfalls") [0042]-[0043]): whether stair mode is engaged at the robot's pose and where that pose
+// came from; the alignment pose the plan starts from, its stance, the robot's move to it and how
+// far the plan's first body state is from it. In the plan's frame, and in the world when the
+// stairs were found there (a cloud, footfalls).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/stair_frame.h"
+#include "planning/plan.h"
+#include "planning/stair_approach.h"
+
+namespace stairplan {
+
+/// Where the robot's pose the stair mode was judged at came from.
+enum class RobotPoseSource {
+  kAlignment,     ///< none was known: the robot is taken to be at the alignment pose
+  kGiven,         ///< given by the caller (`plan --start`)
+  kFootfallTrack, ///< where stair mode engaged along the footfall log's track
+};
+/// "alignment", "given", "footfall_track".
+const char* ToString(RobotPoseSource source);
+
+/// {"stair_mode": {...}, "alignment": {...}} for `approach` and the plan made from it; `world`
+/// (may be null: the plan's frame is the world) adds each pose in the world.
+nlohmann::json StairApproachToJson(const StairApproach& approach, const Plan& plan, RobotPoseSource source,
+                                   const StairFrame* world);
+
+}  // namespace stairplan
