@@ -106,10 +106,10 @@ TEST_CASE("on the flight the body pitches with the stairs and shifts its weight 
   const RobotModel& robot = BuiltinRobot();
   for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
     for (const Facing facing : {Facing::kForward, Facing::kBackward}) {
-      // Under the sanitizers two of the four plans: up facing forward, down facing backward, on
-      // 4 steps (the fewest on which the crawl has all four feet on the flight at once; the 7-step
-      // pair took 49 s there).
-      if (testing::kSanitized && (direction == TravelDirection::kUp) != (facing == Facing::kForward)) continue;
+      // Under the sanitizers one of the four plans, down facing backward, on 4 steps (the fewest
+      // on which the crawl has all four feet on the flight at once); the climb facing forward runs
+      // there in plan_body_test.cc's two tests. Two plans took 45 CPU seconds there.
+      if (testing::kSanitized && (direction == TravelDirection::kUp || facing == Facing::kForward)) continue;
       const Scenario s = Crawl(direction, facing, testing::FullOrSanitized(0, 4));
       const Plan plan = PlanBody(robot, s.stairs, s.map, s.footsteps);
       INFO(ToString(direction) << " " << ToString(facing) << ": " << plan.status_reason);
