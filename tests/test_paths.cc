@@ -31,8 +31,9 @@ std::string MakeTempDir(const std::string& tag) {
 namespace {
 
 // Under the sanitizers the programs a test starts (the CLI, end to end) run without ASan's fake
-// stacks, as the end-to-end test programs do (cmake/Sanitizers.cmake): they cost the CLI a third
-// of its time, and the unit programs, running the same functions in process, keep the check.
+// stacks, as the end-to-end test programs do (cmake/Sanitizers.cmake): they cost the CLI a tenth
+// of its CPU time on a QP plan, and the unit programs, running the same functions in process, keep
+// the check.
 // ASan reads ASAN_OPTIONS when a process starts, so this reaches the children only.
 void ChildrenWithoutFakeStacks() {
 #ifdef STAIRPLAN_SANITIZED

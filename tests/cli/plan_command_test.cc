@@ -136,8 +136,8 @@ TEST_CASE("plan.json names the body planner and, for the receding horizon, carri
   CHECK(by_path["body_planner"] == "quasi_static_path");
   CHECK(by_path["body_cycles"]["count"] == 0);
 
-  // Under the sanitizers (where this plan took most of 168 s) a 30-knot horizon, a smaller QP each
-  // cycle on the same code; its plan validates too.
+  // Under the sanitizers (where this plan is most of the test's time) a 30-knot horizon, a
+  // smaller QP each cycle on the same code; its plan validates too.
   const std::string knots = stairplan::testing::FullOrSanitized<std::string>("", " --set body.knots=30");
   const Run qp = Plan("--steps 2 --body qp --set body.stability_margin=0.03" + knots + " --out " + dir + "/qp", dir);
   INFO(qp.out << qp.err);

@@ -97,7 +97,8 @@ TEST_CASE("CLI plan stances are reachable and clear: shared robots", "[plan_stan
   // Under the sanitizers, where each robot's plan and check take minutes, the first robot only
   // (A1: its crawl needs the foothold search, the path worth running there), and its first
   // posture only: the validator rejects A1's plan in every posture, so the pipeline's answer is
-  // that first plan anyway, and the seven retries took 111 s there (the descent tests run them).
+  // that first plan anyway, and the seven retries were three quarters of the time (the descent
+  // tests run them there).
   std::size_t checked = 0;
   for (const testing::RobotFile& file : robots) {
     if (checked == testing::FullOrSanitized<std::size_t>(robots.size(), 1)) break;
