@@ -28,7 +28,8 @@ endif()
 # Called by stairplan_add_test: the test properties that set the sanitizers' run-time options.
 # ASan's fake stacks (detect_stack_use_after_return, on in scripts/sanitize.sh) make the
 # end-to-end programs a third slower (the validator's default-plan test 14.1 s instead of 10.4),
-# minutes of CI; the functions they run are the unit programs' too, which keep the check.
+# minutes of CI; the functions they run are the unit programs' too, which keep the check. The
+# programs a test starts (the CLI) run without them too (RunCommand, tests/test_paths.cc).
 # Appended to ASAN_OPTIONS: of an option given twice ASan takes the last.
 function(stairplan_sanitized_test_env out end_to_end)
   set(${out} "" PARENT_SCOPE)

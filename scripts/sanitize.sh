@@ -16,10 +16,11 @@ cmake --build "$build" -j "$jobs"
 echo "sanitize: build took $(( $(date +%s) - start )) s"
 
 source scripts/sanitizer_env.sh
-# Every test runs (those that take minutes under the sanitizers on fewer samples, tests/sanitized.h)
-# but one: install.find_package_example installs the instrumented libraries and builds an
-# uninstrumented example against them with the default compiler; a packaging test, not a runtime
-# one, and the normal build runs it.
+# Every test runs (those that take minutes under the sanitizers on fewer samples or shorter
+# flights, tests/sanitized.h; a few whole runs whose code a smaller sanitized case runs return early
+# there, each naming that case: grep kSanitized tests) but one: install.find_package_example
+# installs the instrumented libraries and builds an uninstrumented example against them with the
+# default compiler; a packaging test, not a runtime one, and the normal build runs it.
 exclude='^install\.find_package_example$'
 t0=$(date +%s)
 ctest --test-dir "$build" --output-on-failure -j "$jobs" -E "$exclude"

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sanitized.h"
 #include "test_paths.h"
 
 using nlohmann::json;
@@ -20,8 +21,9 @@ int Validate(const std::string& args, const std::string& dir, std::string* out, 
   return code;
 }
 
-std::string WritePlan(const std::string& dir) {
-  REQUIRE(RunCommand(BinDir() + "/stairplan plan --out " + dir, dir + "/p.out", dir + "/p.err") == 0);
+// `flags`: more `plan` flags (a shorter flight).
+std::string WritePlan(const std::string& dir, const std::string& flags = "") {
+  REQUIRE(RunCommand(BinDir() + "/stairplan plan --out " + dir + flags, dir + "/p.out", dir + "/p.err") == 0);
   return dir + "/plan.json";
 }
 
@@ -30,7 +32,8 @@ std::string WritePlan(const std::string& dir) {
 TEST_CASE("validate accepts the plan that plan wrote", "[cli][validate]") {
   const std::string dir = MakeTempDir("validate-ok");
   std::string out, err;
-  CHECK(Validate(WritePlan(dir) + " --json", dir, &out, &err) == 0);
+  // Under the sanitizers (a default plan and its validation took 18 s) a 3-step flight.
+  CHECK(Validate(WritePlan(dir, FullOrSanitized<std::string>("", " --steps 3")) + " --json", dir, &out, &err) == 0);
   const json report = json::parse(out);
   CHECK(report["ok"] == true);
   CHECK(report["min_clearance_m"].get<double>() > 0.005);
@@ -51,7 +54,7 @@ TEST_CASE("validate catches a foot moved off its tread", "[cli][validate]") {
 
 TEST_CASE("validate rejects broken plan files naming the field", "[cli][validate]") {
   const std::string dir = MakeTempDir("validate-bad");
-  json plan = json::parse(ReadFile(WritePlan(dir)));
+  json plan = json::parse(ReadFile(WritePlan(dir, FullOrSanitized<std::string>("", " --steps 3"))));
   std::string out, err;
   const auto expect = [&](const json& doc, const std::string& named) {
     std::ofstream(dir + "/broken.json") << doc.dump();

@@ -64,9 +64,12 @@ Failure CheckTouchdowns(const RobotModel& robot, const Staircase& stairs, const 
 }
 
 // Plans the default stairs as the CLI does and checks its touchdowns; prints how far it got.
-void CheckCliPlan(const std::string& label, const RobotModel& robot) {
+// Without `posture_retries` the first posture's plan: the pipeline's answer whenever no retry
+// validates (RunPipeline keeps the first attempt's then).
+void CheckCliPlan(const std::string& label, const RobotModel& robot, bool posture_retries = true) {
   const Staircase stairs{StairSpec{}};
-  const PipelineOptions cli;  // what `stairplan plan` passes without flags
+  PipelineOptions cli;  // what `stairplan plan` passes without flags
+  if (!posture_retries) cli.posture_retries.clear();
   const PipelineResult result = RunPipeline(robot, stairs, cli);
   REQUIRE(result.plan.status == PlanStatus::kOk);
   const Failure f = CheckTouchdowns(robot, stairs, result.plan);
@@ -92,11 +95,14 @@ TEST_CASE("CLI plan stances are reachable and clear: shared robots", "[plan_stan
     return;
   }
   // Under the sanitizers, where each robot's plan and check take minutes, the first robot only
-  // (A1: its crawl needs the foothold search, the path worth running there).
+  // (A1: its crawl needs the foothold search, the path worth running there), and its first
+  // posture only: the validator rejects A1's plan in every posture, so the pipeline's answer is
+  // that first plan anyway, and the seven retries were three quarters of the time (the descent
+  // tests run them there).
   std::size_t checked = 0;
   for (const testing::RobotFile& file : robots) {
     if (checked == testing::FullOrSanitized<std::size_t>(robots.size(), 1)) break;
-    CheckCliPlan(file.label, RobotModel::FromUrdfFile(file.path));
+    CheckCliPlan(file.label, RobotModel::FromUrdfFile(file.path), !testing::kSanitized);
     ++checked;
   }
 }

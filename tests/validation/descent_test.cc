@@ -18,6 +18,7 @@ namespace {
 PipelineResult PlanDescent(Facing facing, bool posture_retries) {
   StairSpec spec;
   spec.direction = TravelDirection::kDown;
+  spec.steps = testing::FullOrSanitized(spec.steps, 3);  // a shorter flight under the sanitizers
   const Staircase stairs(spec);
   PipelineOptions options;
   options.facing = facing;
@@ -35,7 +36,8 @@ std::string FirstViolation(const ValidationReport& r) {
 
 TEST_CASE("the built-in robot's default descents validate, facing forward and backward", "[validator][descent]") {
   for (const Facing facing : {Facing::kForward, Facing::kBackward}) {
-    // Under the sanitizers (a minute a plan) the backward descent alone, the harder of the two.
+    // Under the sanitizers (a minute a 7-step plan) the backward descent alone, the harder of the
+    // two, on 3 steps.
     if (testing::kSanitized && facing == Facing::kForward) continue;
     const PipelineResult r = PlanDescent(facing, true);
     INFO((facing == Facing::kForward ? "forward" : "backward") << ": first violation " << FirstViolation(r.validation));
@@ -44,9 +46,10 @@ TEST_CASE("the built-in robot's default descents validate, facing forward and ba
     CHECK(r.validation.ok);
     CHECK(r.validation.min_clearance_m > 0.005);
     CHECK(r.validation.min_stability_margin_m > 0.01);
-    // It really goes down the flight (1.19 m): the body ends more than a metre lower.
+    // It really goes down the flight (1.19 m; 0.51 m under the sanitizers): the body ends more
+    // than 85 % of it lower.
     REQUIRE(r.plan.body.size() > 2);
-    CHECK(r.plan.body.front().z - r.plan.body.back().z > 1.0);
+    CHECK(r.plan.body.front().z - r.plan.body.back().z > testing::FullOrSanitized(1.0, 0.43));
     for (const Footstep& f : r.plan.footsteps) CHECK(f.in_step_region);
     // The posture fit's corrections are eased, not jumps between nearby instants, and a repair
     // between two swings does not halt the shift along the flight (backward: 8.4 m/s^2 between
