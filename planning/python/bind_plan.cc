@@ -14,6 +14,7 @@
 #include "planning/plan_svg.h"
 #include "planning/simulation/plan_executor.h"
 #include "planning/simulation/sim_outcome_json.h"
+#include "planning/stair_approach_json.h"
 
 namespace stairplan::python {
 namespace {
@@ -81,6 +82,9 @@ PlanResult RunPlan(const py::object& robot_arg, const py::object& stairs_arg, co
     *result = RunPlanPipeline(*out.robot, *out.stairs, perceived ? perceived->map.get() : nullptr, pipeline);
     out.json = PlanToJson(result->plan, *out.stairs, result->map);
     if (result->validated) out.json["validation"] = ValidationToJson(result->validation);
+    // As `stairplan plan` writes them; the robot's pose is not given here, so stair mode is judged
+    // at the alignment pose.
+    out.json.update(StairApproachToJson(result->approach, result->plan, RobotPoseSource::kAlignment, nullptr));
   }
   if (perceived != nullptr) out.json["fitted"] = FromPython(perceived->fit, "fit");
   out.result = std::move(result);

@@ -100,7 +100,7 @@ TEST_CASE("the plan starts at the alignment pose for a yawed, offset robot, up a
   }
 }
 
-TEST_CASE("stair mode is off beyond the engage distance and on within it; the plan starts at the alignment pose either way", "[plan][alignment]") {
+TEST_CASE("stair mode is off beyond the engage distance and on within it, and the plan starts at the alignment pose either way", "[plan][alignment]") {
   const RobotModel& robot = BuiltinRobot();
   const Staircase stairs{StairSpec{}};
   const StairFrame frame{ModelOfStaircase(stairs, Eigen::Vector3d::Zero(), 0.0), TravelDirection::kUp, stairs.spec().nosing};
