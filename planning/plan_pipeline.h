@@ -26,6 +26,13 @@ enum class FootstepSource {
   /// The step planner's own footsteps, retimed with four-feet phases, under the quasi-static body
   /// path. Its plans do not all validate yet (shank clearances at nosings).
   kStepPlanner,
+  /// The 2012 paper's crawl, case 1 (planning/step/paper_crawl.h): its own footholds, timing,
+  /// posture (PaperCrawlSettings::body, which the map and the alignment stance are made for) and
+  /// quasi-static body path; climbing facing forward only. Its posture is the paper's, so no
+  /// posture is retried, and it has no receding-horizon body.
+  kPaperCrawl,
+  /// The paper's crawl, case 2: the front feet's contact offsets switched.
+  kPaperCrawlAlternate,
 };
 /// Where the body trajectory comes from.
 enum class BodySource {
@@ -36,7 +43,7 @@ enum class BodySource {
   kRecedingHorizonQp,
 };
 
-/// "crawl" or "step"; throws std::invalid_argument otherwise.
+/// "crawl", "step", "paper" or "paper-alt"; throws std::invalid_argument otherwise.
 FootstepSource ParseFootstepSource(const std::string& text);
 
 /// Step planner settings with the crawl gaits only.
@@ -121,7 +128,8 @@ struct PipelineOptions {
   /// crawl's first strides reach up to one and a half runs, and some flights' plans no longer
   /// validate (stairbot climbing rise 0.22-0.25 m on runs of 0.20 and 0.35 m, the Unitree A1 on
   /// rise 0.10 m, run 0.28 m). Off, the feet start on the footholds nearest under the hips and
-  /// PlanStartOffset() says how far the plan's first state is from the alignment pose.
+  /// PlanStartOffset() says how far the plan's first state is from the alignment pose. The
+  /// paper's crawl keeps its own start either way.
   bool start_at_alignment = false;
 };
 

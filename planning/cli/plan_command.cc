@@ -19,7 +19,6 @@
 #include "planning/plan_json.h"
 #include "planning/plan_svg.h"
 #include "planning/stair_approach_json.h"
-#include "planning/step/paper_crawl.h"
 
 namespace stairplan::cli {
 namespace {
@@ -259,26 +258,6 @@ void WarnStairModeOff(const StairApproach& a) {
             << " m; the robot must first come to the alignment pose (plan.json's alignment)\n";
 }
 
-// The paper's crawl on the pipeline's map, validated as the pipeline validates.
-PipelineResult PaperCrawlResult(const RobotModel& robot, const Staircase& stairs, PipelineOptions options, bool alternate) {
-  PaperCrawlSettings settings;
-  settings.arrangement = alternate ? CrawlCase::kFrontSwitched : CrawlCase::kRightFirst;
-  options.crawl.body.hip_height_fraction = settings.body.hip_height_fraction;
-  PipelineResult result;
-  result.map = BuildPipelineMap(robot, stairs, options);
-  result.plan = PlanPaperCrawl(robot, stairs, result.map, settings);
-  // The paper's crawl keeps its own start; plan.json says how far it is from the alignment pose.
-  const AlignmentStance aligned = ComputeAlignmentStance(robot, stairs, result.map, options.facing,
-                                                         options.crawl.body.hip_height_fraction, options.crawl.start_gap);
-  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode);
-  if (result.plan.status == PlanStatus::kOk && options.validate) {
-    TraversalValidator validator(robot, stairs, result.map, options.validation);
-    result.validation = validator.Validate(result.plan);
-    result.validated = true;
-  }
-  return result;
-}
-
 int RunPlan(const std::vector<std::string>& args) {
   CLI::App app("Plan a traversal of a staircase; writes plan.json and plan.svg", "plan");
   PlanOptions o;
@@ -288,14 +267,14 @@ int RunPlan(const std::vector<std::string>& args) {
     const auto t0 = std::chrono::steady_clock::now();
     PipelineOptions options;
     options.facing = ParseFacing(o.facing);
-    const bool paper = o.planner == "paper" || o.planner == "paper-alt";
     if (!o.cloud.empty() && !o.footfalls.empty()) throw BadInput("--footfalls: plans on footfalls or on --cloud, not both");
-    if (paper && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     try {
-      if (!paper) options.footsteps = ParseFootstepSource(o.planner);
+      options.footsteps = ParseFootstepSource(o.planner);
     } catch (const std::invalid_argument& e) {
       throw BadInput(std::string("--") + e.what());
     }
+    const bool paper = options.footsteps == FootstepSource::kPaperCrawl || options.footsteps == FootstepSource::kPaperCrawlAlternate;
+    if (paper && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     SetBodyOptions(o, options);
     ApplySettings(o.set, options);
     SetStairMode(o, options.stair_mode);
@@ -310,9 +289,7 @@ int RunPlan(const std::vector<std::string>& args) {
     const RobotPoseSource pose_source = SetRobotPose(o.start, world, walked ? walked->tracked_W : std::nullopt, options);
     const double load_us = MicrosSince(t0);
     if (perceived) AddPipelineRobotRegions(robot, stairs, options, perceived->map);
-    PipelineResult result = paper ? PaperCrawlResult(robot, stairs, options, o.planner == "paper-alt")
-                            : perceived ? RunPipelineOnMap(robot, stairs, perceived->map, options)
-                                        : RunPipeline(robot, stairs, options);
+    PipelineResult result = perceived ? RunPipelineOnMap(robot, stairs, perceived->map, options) : RunPipeline(robot, stairs, options);
     Plan& plan = result.plan;
     plan.timing_us.insert(plan.timing_us.begin(), {perceived ? "perceive" : "load", load_us});
     nlohmann::json json = PlanToJson(plan, stairs, result.map);
