@@ -117,47 +117,26 @@ bool IsJumpingNearMiss(const ValidationReport& report) {
   return IsNearMiss(report) && has(ViolationKind::kBodyAcceleration) && !has(ViolationKind::kOutOfReach);
 }
 
-}  // namespace
-
-FootstepSource ParseFootstepSource(const std::string& text) {
-  if (text == "crawl") return FootstepSource::kSelectedCrawl;
-  if (text == "step") return FootstepSource::kStepPlanner;
-  if (text == "paper") return FootstepSource::kPaperCrawl;
-  if (text == "paper-alt") return FootstepSource::kPaperCrawlAlternate;
-  throw std::invalid_argument("planner: must be 'crawl', 'step', 'paper' or 'paper-alt' (got '" + text + "')");
-}
-
-StepPlannerSettings CrawlControllers() {
-  StepPlannerSettings settings;
-  settings.gaits = {Gait::kCrawl, Gait::kCrawlAlternate};
-  return settings;
-}
-
-void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
-                             ConstrainedMap& map) {
+void AddRobotRegions(const RobotKinematics& kinematics, const Staircase& stairs, const PipelineOptions& options,
+                     ConstrainedMap& map) {
   if (!options.robot_regions) return;
-  const RobotKinematics kinematics(robot);
   const RobotCollisionModel collision(kinematics);
   RobotRegionSettings regions = options.regions;
   regions.hip_height_fraction = options.crawl.body.hip_height_fraction;  // the posture the plan will use
   AddRobotCollisionRegions(kinematics, collision, stairs, map, regions);
 }
 
-ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
+ConstrainedMap BuildMap(const RobotKinematics& kinematics, const Staircase& stairs, const PipelineOptions& options) {
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
-  AddPipelineRobotRegions(robot, stairs, options, map);
+  AddRobotRegions(kinematics, stairs, options, map);
   return map;
 }
 
-PipelineOptions OptionsForPlan(const Plan& plan) {
-  PipelineOptions options;
-  options.facing = plan.facing;
-  if (std::isfinite(plan.hip_height_fraction)) options.crawl.body.hip_height_fraction = plan.hip_height_fraction;
-  return options;
-}
-
-PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
-                                const PipelineOptions& given) {
+// RunPipelineOnMap with the kinematics built once for the whole run: the map's robot regions and
+// the alignment stance use the same ones.
+PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
+                        const PipelineOptions& given) {
+  const RobotModel& robot = kinematics.robot();
   PipelineOptions options = ForFootstepSource(given);
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
   if (stairs.direction() == TravelDirection::kDown) {
@@ -167,7 +146,7 @@ PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs
   result.map = std::move(map);
   // The alignment pose (seed 001 [0042]) and, when asked, the crawl's feet starting in its stance;
   // computed here only, for every footstep source.
-  const AlignmentStance aligned = ComputeAlignmentStance(robot, stairs, result.map, options.facing,
+  const AlignmentStance aligned = ComputeAlignmentStance(kinematics, stairs, result.map, options.facing,
                                                          options.crawl.body.hip_height_fraction, options.crawl.start_gap);
   result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode);
   if (options.start_at_alignment && aligned.found) options.crawl.start_feet = aligned.feet;
@@ -194,10 +173,51 @@ PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs
   return result;
 }
 
+}  // namespace
+
+FootstepSource ParseFootstepSource(const std::string& text) {
+  if (text == "crawl") return FootstepSource::kSelectedCrawl;
+  if (text == "step") return FootstepSource::kStepPlanner;
+  if (text == "paper") return FootstepSource::kPaperCrawl;
+  if (text == "paper-alt") return FootstepSource::kPaperCrawlAlternate;
+  throw std::invalid_argument("planner: must be 'crawl', 'step', 'paper' or 'paper-alt' (got '" + text + "')");
+}
+
+StepPlannerSettings CrawlControllers() {
+  StepPlannerSettings settings;
+  settings.gaits = {Gait::kCrawl, Gait::kCrawlAlternate};
+  return settings;
+}
+
+void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
+                             ConstrainedMap& map) {
+  if (!options.robot_regions) return;
+  AddRobotRegions(RobotKinematics(robot), stairs, options, map);
+}
+
+ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
+  ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
+  AddPipelineRobotRegions(robot, stairs, options, map);
+  return map;
+}
+
+PipelineOptions OptionsForPlan(const Plan& plan) {
+  PipelineOptions options;
+  options.facing = plan.facing;
+  if (std::isfinite(plan.hip_height_fraction)) options.crawl.body.hip_height_fraction = plan.hip_height_fraction;
+  return options;
+}
+
+PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
+                                const PipelineOptions& given) {
+  return RunOnMap(RobotKinematics(robot), stairs, std::move(map), given);
+}
+
 PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& given) {
   const PipelineOptions options = ForFootstepSource(given);
   // The paper's crawl plans at the paper's posture whatever crawl.body says: nothing to retry.
   const std::size_t retries = IsPaperCrawl(options.footsteps) ? 0 : options.posture_retries.size();
+  const RobotKinematics kinematics(robot);
   PipelineResult first;
   bool near_miss = false;
   for (std::size_t attempt = 0; attempt <= retries; ++attempt) {
@@ -216,9 +236,9 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
       if (posture.refit_body_jumps) tried.crawl.refit_body_acceleration = options.validation.max_body_acceleration;
     }
     const auto t_map = std::chrono::steady_clock::now();
-    ConstrainedMap map = BuildPipelineMap(robot, stairs, tried);
+    ConstrainedMap map = BuildMap(kinematics, stairs, tried);
     const double map_us = MicrosSince(t_map);
-    PipelineResult result = RunPipelineOnMap(robot, stairs, std::move(map), tried);
+    PipelineResult result = RunOnMap(kinematics, stairs, std::move(map), tried);
     result.plan.hip_height_fraction = tried.crawl.body.hip_height_fraction;
     result.plan.timing_us.insert(result.plan.timing_us.begin(), {"map", map_us});
     // Only a plan the validator rejected is worth another posture; the first attempt's answer

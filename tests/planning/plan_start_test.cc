@@ -139,7 +139,8 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   options.facing = Facing::kBackward;
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
   const double hip = options.crawl.body.hip_height_fraction, gap = options.crawl.start_gap;
-  const AlignmentStance back = ComputeAlignmentStance(robot, stairs, map, Facing::kBackward, hip, gap);
+  const RobotKinematics kinematics(robot);
+  const AlignmentStance back = ComputeAlignmentStance(kinematics, stairs, map, Facing::kBackward, hip, gap);
   REQUIRE(back.found);
   CHECK(back.yaw == Approx(M_PI));
   // Descending backwards (seed 001 [0042]) the body heads up the stairs in the world.
@@ -151,7 +152,7 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   CHECK(AngleBetween(frame.ToWorld(pose).yaw, ComputeAlignmentPose(frame.model, TravelDirection::kDown, Facing::kBackward, back.standoff).yaw) < 1e-9);
   // The hind hips lead: the feet under them are the leading ones, and the stance is the forward
   // one turned round (its centre shifted by the same COM offset, mirrored).
-  const AlignmentStance fwd = ComputeAlignmentStance(robot, stairs, map, Facing::kForward, hip, gap);
+  const AlignmentStance fwd = ComputeAlignmentStance(kinematics, stairs, map, Facing::kForward, hip, gap);
   REQUIRE(fwd.found);
   for (std::size_t i = 0; i < robot.legs().size(); ++i) {
     const Eigen::Vector3d b = back.feet[i] - back.position, f = fwd.feet[i] - fwd.position;
@@ -162,7 +163,7 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   spec.landing_before = 0.3;
   const Staircase short_landing(spec);
   const AlignmentStance none =
-      ComputeAlignmentStance(robot, short_landing, BuildPipelineMap(robot, short_landing, options), Facing::kBackward, hip, gap);
+      ComputeAlignmentStance(kinematics, short_landing, BuildPipelineMap(robot, short_landing, options), Facing::kBackward, hip, gap);
   CHECK_FALSE(none.found);
   CHECK_THAT(none.reason, Catch::Contains("landing_before"));
 }

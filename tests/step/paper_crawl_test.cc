@@ -229,7 +229,8 @@ TEST_CASE("the pipeline runs the paper crawl at the paper's posture, validated, 
   // One attempt: the posture retries do not apply to the paper's posture.
   CHECK(std::count_if(r.plan.timing_us.begin(), r.plan.timing_us.end(), [](const auto& t) { return t.first == "plan"; }) == 1);
   // The alignment stance at the paper's posture: standing taller, it differs from the default one.
-  const AlignmentStance expected = ComputeAlignmentStance(robot, stairs, map, Facing::kForward, paper.body.hip_height_fraction,
+  const RobotKinematics kinematics(robot);
+  const AlignmentStance expected = ComputeAlignmentStance(kinematics, stairs, map, Facing::kForward, paper.body.hip_height_fraction,
                                                           options.crawl.start_gap);
   const AlignmentStance& a = r.approach.alignment;
   REQUIRE(a.found);
@@ -238,7 +239,7 @@ TEST_CASE("the pipeline runs the paper crawl at the paper's posture, validated, 
   for (std::size_t i = 0; i < a.feet.size(); ++i) CHECK((a.feet[i] - expected.feet[i]).norm() == 0.0);
   const PipelineOptions defaults;
   const AlignmentStance at_default =
-      ComputeAlignmentStance(robot, stairs, BuildPipelineMap(robot, stairs, defaults), Facing::kForward,
+      ComputeAlignmentStance(kinematics, stairs, BuildPipelineMap(robot, stairs, defaults), Facing::kForward,
                              defaults.crawl.body.hip_height_fraction, defaults.crawl.start_gap);
   CHECK((a.position - at_default.position).norm() > 1e-4);
   CHECK(r.approach.stair_mode.engaged);
