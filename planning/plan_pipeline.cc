@@ -148,7 +148,7 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
   // computed here only, for every footstep source.
   const AlignmentStance aligned = ComputeAlignmentStance(kinematics, stairs, result.map, options.facing,
                                                          options.crawl.body.hip_height_fraction, options.crawl.start_gap);
-  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode);
+  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode, options.robot_pose_source);
   if (options.start_at_alignment && aligned.found) options.crawl.start_feet = aligned.feet;
   const auto t_plan = std::chrono::steady_clock::now();
   result.plan = FootstepPlan(robot, stairs, result.map, options);

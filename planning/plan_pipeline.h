@@ -122,6 +122,8 @@ struct PipelineOptions {
   /// The robot's tracked pose in the plan's frame: stair mode is judged there (planning/stair_approach.h).
   /// None: the robot is taken to be at the alignment pose.
   std::optional<GroundPose> robot_pose;
+  /// Where robot_pose came from, as the result's approach (and plan.json) reports it.
+  RobotPoseSource robot_pose_source = RobotPoseSource::kGiven;
   StairModeSettings stair_mode;  ///< when stair mode engages
   /// Start the crawl's feet in the alignment stance, so that the plan's first state is the
   /// alignment pose (planning/stair_alignment.h). Off by default: from the standing stance the

@@ -1,7 +1,6 @@
 // `stairplan plan`: plan a traversal of a staircase and write plan.json and plan.svg.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <iostream>
 #include <optional>
 
@@ -219,21 +218,20 @@ void SetStairMode(const PlanOptions& o, StairModeSettings& mode) {
 
 // The robot's pose in the plan's frame: --start (in `world` when the stairs were found there), else
 // where stair mode engaged along the footfall track, else none (at the alignment pose).
-RobotPoseSource SetRobotPose(const std::vector<double>& start, const StairFrame* world, const std::optional<GroundPose>& tracked_W,
-                             PipelineOptions& options) {
+void SetRobotPose(const std::vector<double>& start, const StairFrame* world, const std::optional<GroundPose>& tracked_W,
+                  PipelineOptions& options) {
   if (!start.empty()) {
-    if (start.size() != 3 || !std::isfinite(start[0]) || !std::isfinite(start[1]) || !std::isfinite(start[2])) {
-      throw BadInput("--start: expected three finite numbers X,Y,YAW");
+    try {
+      options.robot_pose = RobotPoseInPlanFrame(start, world);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(std::string("--start: ") + e.what());
     }
-    GroundPose pose;
-    pose.xy << start[0], start[1];
-    pose.yaw = start[2];
-    options.robot_pose = world ? world->ToStair(pose) : pose;
-    return RobotPoseSource::kGiven;
+    options.robot_pose_source = RobotPoseSource::kGiven;
+    return;
   }
-  if (!tracked_W || !world) return RobotPoseSource::kAlignment;
+  if (!tracked_W || !world) return;
   options.robot_pose = world->ToStair(*tracked_W);
-  return RobotPoseSource::kFootfallTrack;
+  options.robot_pose_source = RobotPoseSource::kFootfallTrack;
 }
 
 void PrintApproach(const StairApproach& a, const Plan& plan) {
@@ -247,7 +245,7 @@ void PrintApproach(const StairApproach& a, const Plan& plan) {
             << " mm from it\n"
             << "  stair mode: " << (a.stair_mode.engaged ? "engaged" : "NOT engaged") << ", robot " << a.stair_mode.distance
             << " m from the flight (engages within " << a.stair_mode.engage_distance << " m)"
-            << (a.robot_known ? "" : ", taken to be at the alignment pose") << "\n";
+            << (a.robot_known() ? "" : ", taken to be at the alignment pose") << "\n";
 }
 
 // Seed 001 [0043]: the operator is warned when stair mode is asked for out of the stairs' range.
@@ -286,7 +284,7 @@ int RunPlan(const std::vector<std::string>& args) {
     if (!o.footfalls.empty()) walked = FootfallStaircaseAt(o.footfalls, o.staircase, o.stairs.nosing.value_or(0.0), options.stair_mode);
     const Staircase stairs = perceived ? perceived->stairs : walked ? walked->stairs : ResolveStairs(o.stairs);
     const StairFrame* world = perceived ? &perceived->frame : walked ? &walked->frame : nullptr;
-    const RobotPoseSource pose_source = SetRobotPose(o.start, world, walked ? walked->tracked_W : std::nullopt, options);
+    SetRobotPose(o.start, world, walked ? walked->tracked_W : std::nullopt, options);
     const double load_us = MicrosSince(t0);
     if (perceived) AddPipelineRobotRegions(robot, stairs, options, perceived->map);
     PipelineResult result = perceived ? RunPipelineOnMap(robot, stairs, perceived->map, options) : RunPipeline(robot, stairs, options);
@@ -295,7 +293,7 @@ int RunPlan(const std::vector<std::string>& args) {
     nlohmann::json json = PlanToJson(plan, stairs, result.map);
     if (result.validated) json["validation"] = ValidationToJson(result.validation);
     if (perceived) json["fitted"] = perceived->fitted;
-    json.update(StairApproachToJson(result.approach, plan, pose_source, world));
+    json.update(StairApproachToJson(result.approach, plan, world));
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");
     WriteFileAtomically(o.out + "/plan.svg",

@@ -65,7 +65,8 @@ TEST_CASE("the plan starts at the alignment pose for a yawed, offset robot, up a
     const AlignmentStance& a = r.approach.alignment;
     REQUIRE(a.found);
     // Stair mode: on, 0.8 m from the flight; the robot turns 0.9 rad back and moves to the pose.
-    CHECK(r.approach.robot_known);
+    CHECK(r.approach.robot_known());
+    CHECK(r.approach.robot_source == RobotPoseSource::kGiven);
     CHECK(r.approach.stair_mode.engaged);
     CHECK(r.approach.stair_mode.distance == Approx(0.8));
     CHECK(r.approach.turn == Approx(-0.9));
@@ -125,7 +126,8 @@ TEST_CASE("stair mode is off beyond the engage distance and on within it, and th
   CHECK_FALSE(ApproachStairs(stairs, a, std::nullopt, near).stair_mode.engaged);
   const StairApproach none = ApproachStairs(stairs, a, std::nullopt, options.stair_mode);
   CHECK(none.stair_mode.engaged);
-  CHECK_FALSE(none.robot_known);
+  CHECK_FALSE(none.robot_known());
+  CHECK(none.robot_source == RobotPoseSource::kAlignment);
   CHECK(none.stair_mode.distance == Approx(a.standoff));
   CHECK(none.move.norm() == 0.0);
 }
