@@ -10,6 +10,7 @@
 #include "planning/body/plan_body.h"
 #include "planning/body_path.h"
 #include "planning/step/ik_reach_model.h"
+#include "planning/step/paper_crawl.h"
 #include "planning/step/step_planner_driver.h"
 #include "planning/swing_trajectory.h"
 
@@ -65,6 +66,41 @@ Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const C
   return plan;
 }
 
+bool IsPaperCrawl(FootstepSource source) {
+  return source == FootstepSource::kPaperCrawl || source == FootstepSource::kPaperCrawlAlternate;
+}
+
+PaperCrawlSettings PaperSettings(FootstepSource source) {
+  PaperCrawlSettings settings;
+  settings.arrangement = source == FootstepSource::kPaperCrawlAlternate ? CrawlCase::kFrontSwitched : CrawlCase::kRightFirst;
+  return settings;
+}
+
+// The options as the footstep source plans with them: the paper's crawl stands at its own
+// posture, so the map's robot regions and the alignment stance are made for that one.
+PipelineOptions ForFootstepSource(const PipelineOptions& given) {
+  PipelineOptions options = given;
+  if (!IsPaperCrawl(options.footsteps)) return options;
+  if (options.body != BodySource::kQuasiStaticPath) {
+    throw std::invalid_argument("body: the paper's crawl plans its own quasi-static body path, not the body QP");
+  }
+  options.crawl.body.hip_height_fraction = PaperSettings(options.footsteps).body.hip_height_fraction;
+  return options;
+}
+
+Plan FootstepPlan(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const PipelineOptions& options) {
+  switch (options.footsteps) {
+    case FootstepSource::kStepPlanner:
+      return StepPlannerPlan(robot, stairs, map, options);
+    case FootstepSource::kPaperCrawl:
+    case FootstepSource::kPaperCrawlAlternate:
+      return PlanPaperCrawl(robot, stairs, map, PaperSettings(options.footsteps));
+    case FootstepSource::kSelectedCrawl:
+      break;
+  }
+  return SelectedCrawlPlan(robot, stairs, map, options);
+}
+
 // Rejected for body jumps, legs at their reach or limits or on the stairs alone (BodyPosture).
 bool IsNearMiss(const ValidationReport& report) {
   return std::all_of(report.violations.begin(), report.violations.end(), [](const Violation& v) {
@@ -81,60 +117,41 @@ bool IsJumpingNearMiss(const ValidationReport& report) {
   return IsNearMiss(report) && has(ViolationKind::kBodyAcceleration) && !has(ViolationKind::kOutOfReach);
 }
 
-}  // namespace
-
-FootstepSource ParseFootstepSource(const std::string& text) {
-  if (text == "crawl") return FootstepSource::kSelectedCrawl;
-  if (text == "step") return FootstepSource::kStepPlanner;
-  throw std::invalid_argument("planner: must be 'crawl' or 'step' (got '" + text + "')");
-}
-
-StepPlannerSettings CrawlControllers() {
-  StepPlannerSettings settings;
-  settings.gaits = {Gait::kCrawl, Gait::kCrawlAlternate};
-  return settings;
-}
-
-void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
-                             ConstrainedMap& map) {
+void AddRobotRegions(const RobotKinematics& kinematics, const Staircase& stairs, const PipelineOptions& options,
+                     ConstrainedMap& map) {
   if (!options.robot_regions) return;
-  const RobotKinematics kinematics(robot);
   const RobotCollisionModel collision(kinematics);
   RobotRegionSettings regions = options.regions;
   regions.hip_height_fraction = options.crawl.body.hip_height_fraction;  // the posture the plan will use
   AddRobotCollisionRegions(kinematics, collision, stairs, map, regions);
 }
 
-ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
+ConstrainedMap BuildMap(const RobotKinematics& kinematics, const Staircase& stairs, const PipelineOptions& options) {
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
-  AddPipelineRobotRegions(robot, stairs, options, map);
+  AddRobotRegions(kinematics, stairs, options, map);
   return map;
 }
 
-PipelineOptions OptionsForPlan(const Plan& plan) {
-  PipelineOptions options;
-  options.facing = plan.facing;
-  if (std::isfinite(plan.hip_height_fraction)) options.crawl.body.hip_height_fraction = plan.hip_height_fraction;
-  return options;
-}
-
-PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
-                                const PipelineOptions& given) {
-  PipelineOptions options = given;
+// RunPipelineOnMap with the kinematics built once for the whole run: the map's robot regions and
+// the alignment stance use the same ones.
+PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
+                        const PipelineOptions& given) {
+  const RobotModel& robot = kinematics.robot();
+  PipelineOptions options = ForFootstepSource(given);
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
   if (stairs.direction() == TravelDirection::kDown) {
     options.crawl.shift_duration = std::max(options.crawl.shift_duration, options.descent_shift_duration);
   }
   PipelineResult result;
   result.map = std::move(map);
-  // The alignment pose (seed 001 [0042]) and, when asked, the crawl's feet starting in its stance.
-  const AlignmentStance aligned = ComputeAlignmentStance(robot, stairs, result.map, options.facing,
+  // The alignment pose (seed 001 [0042]) and, when asked, the crawl's feet starting in its stance;
+  // computed here only, for every footstep source.
+  const AlignmentStance aligned = ComputeAlignmentStance(kinematics, stairs, result.map, options.facing,
                                                          options.crawl.body.hip_height_fraction, options.crawl.start_gap);
-  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode);
+  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode, options.robot_pose_source);
   if (options.start_at_alignment && aligned.found) options.crawl.start_feet = aligned.feet;
   const auto t_plan = std::chrono::steady_clock::now();
-  result.plan = options.footsteps == FootstepSource::kStepPlanner ? StepPlannerPlan(robot, stairs, result.map, options)
-                                                                   : SelectedCrawlPlan(robot, stairs, result.map, options);
+  result.plan = FootstepPlan(robot, stairs, result.map, options);
   result.plan.timing_us = {{"plan", MicrosSince(t_plan)}};
   if (options.body == BodySource::kRecedingHorizonQp && result.plan.status == PlanStatus::kOk) {
     const std::vector<std::pair<std::string, double>> timing = result.plan.timing_us;
@@ -156,10 +173,54 @@ PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs
   return result;
 }
 
-PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
+}  // namespace
+
+FootstepSource ParseFootstepSource(const std::string& text) {
+  if (text == "crawl") return FootstepSource::kSelectedCrawl;
+  if (text == "step") return FootstepSource::kStepPlanner;
+  if (text == "paper") return FootstepSource::kPaperCrawl;
+  if (text == "paper-alt") return FootstepSource::kPaperCrawlAlternate;
+  throw std::invalid_argument("planner: must be 'crawl', 'step', 'paper' or 'paper-alt' (got '" + text + "')");
+}
+
+StepPlannerSettings CrawlControllers() {
+  StepPlannerSettings settings;
+  settings.gaits = {Gait::kCrawl, Gait::kCrawlAlternate};
+  return settings;
+}
+
+void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
+                             ConstrainedMap& map) {
+  if (!options.robot_regions) return;
+  AddRobotRegions(RobotKinematics(robot), stairs, options, map);
+}
+
+ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
+  ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
+  AddPipelineRobotRegions(robot, stairs, options, map);
+  return map;
+}
+
+PipelineOptions OptionsForPlan(const Plan& plan) {
+  PipelineOptions options;
+  options.facing = plan.facing;
+  if (std::isfinite(plan.hip_height_fraction)) options.crawl.body.hip_height_fraction = plan.hip_height_fraction;
+  return options;
+}
+
+PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
+                                const PipelineOptions& given) {
+  return RunOnMap(RobotKinematics(robot), stairs, std::move(map), given);
+}
+
+PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& given) {
+  const PipelineOptions options = ForFootstepSource(given);
+  // The paper's crawl plans at the paper's posture whatever crawl.body says: nothing to retry.
+  const std::size_t retries = IsPaperCrawl(options.footsteps) ? 0 : options.posture_retries.size();
+  const RobotKinematics kinematics(robot);
   PipelineResult first;
   bool near_miss = false;
-  for (std::size_t attempt = 0; attempt <= options.posture_retries.size(); ++attempt) {
+  for (std::size_t attempt = 0; attempt <= retries; ++attempt) {
     PipelineOptions tried = options;
     if (attempt > 0) {
       const BodyPosture& posture = options.posture_retries[attempt - 1];
@@ -175,9 +236,9 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
       if (posture.refit_body_jumps) tried.crawl.refit_body_acceleration = options.validation.max_body_acceleration;
     }
     const auto t_map = std::chrono::steady_clock::now();
-    ConstrainedMap map = BuildPipelineMap(robot, stairs, tried);
+    ConstrainedMap map = BuildMap(kinematics, stairs, tried);
     const double map_us = MicrosSince(t_map);
-    PipelineResult result = RunPipelineOnMap(robot, stairs, std::move(map), tried);
+    PipelineResult result = RunOnMap(kinematics, stairs, std::move(map), tried);
     result.plan.hip_height_fraction = tried.crawl.body.hip_height_fraction;
     result.plan.timing_us.insert(result.plan.timing_us.begin(), {"map", map_us});
     // Only a plan the validator rejected is worth another posture; the first attempt's answer

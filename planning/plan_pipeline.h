@@ -26,6 +26,13 @@ enum class FootstepSource {
   /// The step planner's own footsteps, retimed with four-feet phases, under the quasi-static body
   /// path. Its plans do not all validate yet (shank clearances at nosings).
   kStepPlanner,
+  /// The 2012 paper's crawl, case 1 (planning/step/paper_crawl.h): its own footholds, timing,
+  /// posture (PaperCrawlSettings::body, which the map and the alignment stance are made for) and
+  /// quasi-static body path; climbing facing forward only. Its posture is the paper's, so no
+  /// posture is retried, and it has no receding-horizon body.
+  kPaperCrawl,
+  /// The paper's crawl, case 2: the front feet's contact offsets switched.
+  kPaperCrawlAlternate,
 };
 /// Where the body trajectory comes from.
 enum class BodySource {
@@ -36,7 +43,7 @@ enum class BodySource {
   kRecedingHorizonQp,
 };
 
-/// "crawl" or "step"; throws std::invalid_argument otherwise.
+/// "crawl", "step", "paper" or "paper-alt"; throws std::invalid_argument otherwise.
 FootstepSource ParseFootstepSource(const std::string& text);
 
 /// Step planner settings with the crawl gaits only.
@@ -115,13 +122,16 @@ struct PipelineOptions {
   /// The robot's tracked pose in the plan's frame: stair mode is judged there (planning/stair_approach.h).
   /// None: the robot is taken to be at the alignment pose.
   std::optional<GroundPose> robot_pose;
+  /// Where robot_pose came from, as the result's approach (and plan.json) reports it.
+  RobotPoseSource robot_pose_source = RobotPoseSource::kGiven;
   StairModeSettings stair_mode;  ///< when stair mode engages
   /// Start the crawl's feet in the alignment stance, so that the plan's first state is the
   /// alignment pose (planning/stair_alignment.h). Off by default: from the standing stance the
   /// crawl's first strides reach up to one and a half runs, and some flights' plans no longer
   /// validate (stairbot climbing rise 0.22-0.25 m on runs of 0.20 and 0.35 m, the Unitree A1 on
   /// rise 0.10 m, run 0.28 m). Off, the feet start on the footholds nearest under the hips and
-  /// PlanStartOffset() says how far the plan's first state is from the alignment pose.
+  /// PlanStartOffset() says how far the plan's first state is from the alignment pose. The
+  /// paper's crawl keeps its own start either way.
   bool start_at_alignment = false;
 };
 

@@ -7,7 +7,6 @@
 
 #include <Eigen/Geometry>
 
-#include "kinematics/robot_kinematics.h"
 #include "planning/com_model.h"
 
 namespace stairplan {
@@ -16,9 +15,9 @@ namespace {
 // How far the feet, under the hips in the body frame (`under_hips`, their centre `centre`), shift
 // so that their centre is under the centre of mass of the robot standing on them on flat ground,
 // the legs through IK, the hips at `hip_height_fraction` of the reach (as the body path stands it).
-Eigen::Vector2d StandingShift(const RobotModel& robot, const std::vector<Eigen::Vector2d>& under_hips, const Eigen::Vector2d& centre,
-                              double hip_height_fraction) {
-  const RobotKinematics kinematics(robot);
+Eigen::Vector2d StandingShift(const RobotKinematics& kinematics, const std::vector<Eigen::Vector2d>& under_hips,
+                              const Eigen::Vector2d& centre, double hip_height_fraction) {
+  const RobotModel& robot = kinematics.robot();
   const ComModel com_model(kinematics);
   RobotWorkspace ws(kinematics);
   double reach = 0.0, hip_z = 0.0;
@@ -44,8 +43,9 @@ Eigen::Vector2d StandingShift(const RobotModel& robot, const std::vector<Eigen::
 
 }  // namespace
 
-AlignmentStance ComputeAlignmentStance(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Facing facing,
-                                       double hip_height_fraction, double lead_gap) {
+AlignmentStance ComputeAlignmentStance(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
+                                       Facing facing, double hip_height_fraction, double lead_gap) {
+  const RobotModel& robot = kinematics.robot();
   AlignmentStance a;
   if (map.size() < 1 || map.stair(0).step_region.empty()) {
     a.reason = "the first surface has no step region to stand on";
@@ -61,7 +61,7 @@ AlignmentStance ComputeAlignmentStance(const RobotModel& robot, const Staircase&
     offsets.emplace_back(leg.hip_B.x(), leg.foot_zero_B.y());
     centre += offsets.back() / static_cast<double>(robot.legs().size());
   }
-  const Eigen::Vector2d shift = StandingShift(robot, offsets, centre, hip_height_fraction);
+  const Eigen::Vector2d shift = StandingShift(kinematics, offsets, centre, hip_height_fraction);
   double lead = -std::numeric_limits<double>::infinity();
   for (Eigen::Vector2d& o : offsets) {
     o = turn * (o + shift);

@@ -18,7 +18,7 @@
 
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
-#include "kinematics/robot_model.h"
+#include "kinematics/robot_kinematics.h"
 
 namespace stairplan {
 
@@ -35,12 +35,12 @@ struct AlignmentStance {
   std::vector<Eigen::Vector3d> feet;  ///< the standing stance's contact points, in the robot's leg order [m]
 };
 
-/// The alignment stance for `robot` traversing `stairs` facing `facing` on `map` (the map the
-/// plan is made on: its first surface's step region bounds where the feet stand), the hips at
-/// `hip_height_fraction` of the legs' reach (BodyPathSettings'), the leading feet `lead_gap`
-/// before the step region's end (CrawlSettings::start_gap). Not found when that region is empty
-/// or too short for the stance.
-AlignmentStance ComputeAlignmentStance(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Facing facing,
-                                       double hip_height_fraction, double lead_gap);
+/// The alignment stance for the robot of `kinematics` (the planner's own, not rebuilt here)
+/// traversing `stairs` facing `facing` on `map` (the map the plan is made on: its first surface's
+/// step region bounds where the feet stand), the hips at `hip_height_fraction` of the legs' reach
+/// (BodyPathSettings'), the leading feet `lead_gap` before the step region's end
+/// (CrawlSettings::start_gap). Not found when that region is empty or too short for the stance.
+AlignmentStance ComputeAlignmentStance(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
+                                       Facing facing, double hip_height_fraction, double lead_gap);
 
 }  // namespace stairplan

@@ -7,10 +7,12 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "geometry/ground_pose.h"
+#include "geometry/stair_frame.h"
 #include "geometry/stair_mode.h"
 #include "geometry/stair_mode_engagement.h"
 #include "geometry/staircase.h"
@@ -19,10 +21,22 @@
 
 namespace stairplan {
 
+/// Where the robot's pose the stair mode was judged at came from.
+enum class RobotPoseSource {
+  kAlignment,     ///< none was known: the robot is taken to be at the alignment pose
+  kGiven,         ///< given by the caller (`plan --start`, plan()'s start)
+  kFootfallTrack, ///< where stair mode engaged along the footfall log's track
+};
+/// "alignment", "given", "footfall_track".
+const char* ToString(RobotPoseSource source);
+
 /// The plan's start against the robot: stair mode at its pose and its move to the alignment pose.
 struct StairApproach {
   AlignmentStance alignment;  ///< the alignment pose and its stance
-  bool robot_known = false;  ///< a tracked pose was given; otherwise the robot is taken to be at the alignment pose
+  /// Where the robot's pose came from; kAlignment when none was given (the robot is taken to be
+  /// at the alignment pose).
+  RobotPoseSource robot_source = RobotPoseSource::kAlignment;
+  bool robot_known() const { return robot_source != RobotPoseSource::kAlignment; }  ///< a pose was given
   /// Stair mode at the robot's pose (plan frame); with no pose, at the alignment pose.
   StairModeEngagement stair_mode;
   Eigen::Vector2d move = Eigen::Vector2d::Zero();  ///< from the robot's position to the alignment pose's [m]
@@ -30,9 +44,14 @@ struct StairApproach {
 };
 
 /// Stair mode and the move to `alignment` for a robot at `robot` (plan frame; none: at the
-/// alignment pose). Throws FieldError for bad settings.
+/// alignment pose), which came from `source`. Throws FieldError for bad settings.
 StairApproach ApproachStairs(const Staircase& stairs, const AlignmentStance& alignment, const std::optional<GroundPose>& robot,
-                             const StairModeSettings& settings = {});
+                             const StairModeSettings& settings = {}, RobotPoseSource source = RobotPoseSource::kGiven);
+
+/// The robot's pose given as {x, y, yaw} [m, m, rad] (`plan --start`), in the plan's frame: given
+/// in `world` when the stairs were found there (a cloud, footfalls), else (null) in the plan's
+/// frame. Throws std::invalid_argument unless three finite numbers.
+GroundPose RobotPoseInPlanFrame(const std::vector<double>& xy_yaw, const StairFrame* world);
 
 /// How far a plan's first body state is from the alignment pose.
 struct StartOffset {

@@ -12,21 +12,11 @@ nlohmann::json PoseJson(const GroundPose& pose) { return {{"x", pose.xy.x()}, {"
 
 }  // namespace
 
-const char* ToString(RobotPoseSource source) {
-  switch (source) {
-    case RobotPoseSource::kAlignment: return "alignment";
-    case RobotPoseSource::kGiven: return "given";
-    case RobotPoseSource::kFootfallTrack: return "footfall_track";
-  }
-  return "?";
-}
-
-nlohmann::json StairApproachToJson(const StairApproach& approach, const Plan& plan, RobotPoseSource source,
-                                   const StairFrame* world) {
+nlohmann::json StairApproachToJson(const StairApproach& approach, const Plan& plan, const StairFrame* world) {
   const StairModeEngagement& mode = approach.stair_mode;
   nlohmann::json robot = PoseJson(mode.pose);
-  robot["source"] = ToString(approach.robot_known ? source : RobotPoseSource::kAlignment);
-  if (source == RobotPoseSource::kFootfallTrack) robot["t_s"] = mode.pose.t;
+  robot["source"] = ToString(approach.robot_source);
+  if (approach.robot_source == RobotPoseSource::kFootfallTrack) robot["t_s"] = mode.pose.t;
   if (world) robot["world"] = PoseJson(world->ToWorld(mode.pose));
   nlohmann::json stair_mode = {{"engaged", mode.engaged},
                                {"distance_m", mode.distance},

@@ -13,18 +13,8 @@
 
 namespace stairplan {
 
-/// Where the robot's pose the stair mode was judged at came from.
-enum class RobotPoseSource {
-  kAlignment,     ///< none was known: the robot is taken to be at the alignment pose
-  kGiven,         ///< given by the caller (`plan --start`)
-  kFootfallTrack, ///< where stair mode engaged along the footfall log's track
-};
-/// "alignment", "given", "footfall_track".
-const char* ToString(RobotPoseSource source);
-
 /// {"stair_mode": {...}, "alignment": {...}} for `approach` and the plan made from it; `world`
 /// (may be null: the plan's frame is the world) adds each pose in the world.
-nlohmann::json StairApproachToJson(const StairApproach& approach, const Plan& plan, RobotPoseSource source,
-                                   const StairFrame* world);
+nlohmann::json StairApproachToJson(const StairApproach& approach, const Plan& plan, const StairFrame* world);
 
 }  // namespace stairplan

@@ -1,7 +1,6 @@
 // `stairplan plan`: plan a traversal of a staircase and write plan.json and plan.svg.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <iostream>
 #include <optional>
 
@@ -19,7 +18,6 @@
 #include "planning/plan_json.h"
 #include "planning/plan_svg.h"
 #include "planning/stair_approach_json.h"
-#include "planning/step/paper_crawl.h"
 
 namespace stairplan::cli {
 namespace {
@@ -220,21 +218,20 @@ void SetStairMode(const PlanOptions& o, StairModeSettings& mode) {
 
 // The robot's pose in the plan's frame: --start (in `world` when the stairs were found there), else
 // where stair mode engaged along the footfall track, else none (at the alignment pose).
-RobotPoseSource SetRobotPose(const std::vector<double>& start, const StairFrame* world, const std::optional<GroundPose>& tracked_W,
-                             PipelineOptions& options) {
+void SetRobotPose(const std::vector<double>& start, const StairFrame* world, const std::optional<GroundPose>& tracked_W,
+                  PipelineOptions& options) {
   if (!start.empty()) {
-    if (start.size() != 3 || !std::isfinite(start[0]) || !std::isfinite(start[1]) || !std::isfinite(start[2])) {
-      throw BadInput("--start: expected three finite numbers X,Y,YAW");
+    try {
+      options.robot_pose = RobotPoseInPlanFrame(start, world);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(std::string("--start: ") + e.what());
     }
-    GroundPose pose;
-    pose.xy << start[0], start[1];
-    pose.yaw = start[2];
-    options.robot_pose = world ? world->ToStair(pose) : pose;
-    return RobotPoseSource::kGiven;
+    options.robot_pose_source = RobotPoseSource::kGiven;
+    return;
   }
-  if (!tracked_W || !world) return RobotPoseSource::kAlignment;
+  if (!tracked_W || !world) return;
   options.robot_pose = world->ToStair(*tracked_W);
-  return RobotPoseSource::kFootfallTrack;
+  options.robot_pose_source = RobotPoseSource::kFootfallTrack;
 }
 
 void PrintApproach(const StairApproach& a, const Plan& plan) {
@@ -248,7 +245,7 @@ void PrintApproach(const StairApproach& a, const Plan& plan) {
             << " mm from it\n"
             << "  stair mode: " << (a.stair_mode.engaged ? "engaged" : "NOT engaged") << ", robot " << a.stair_mode.distance
             << " m from the flight (engages within " << a.stair_mode.engage_distance << " m)"
-            << (a.robot_known ? "" : ", taken to be at the alignment pose") << "\n";
+            << (a.robot_known() ? "" : ", taken to be at the alignment pose") << "\n";
 }
 
 // Seed 001 [0043]: the operator is warned when stair mode is asked for out of the stairs' range.
@@ -257,26 +254,6 @@ void WarnStairModeOff(const StairApproach& a) {
   std::cerr << "stairplan plan: warning: stair mode is not engaged: the robot is " << a.stair_mode.distance
             << " m from the flight and it engages within " << a.stair_mode.engage_distance
             << " m; the robot must first come to the alignment pose (plan.json's alignment)\n";
-}
-
-// The paper's crawl on the pipeline's map, validated as the pipeline validates.
-PipelineResult PaperCrawlResult(const RobotModel& robot, const Staircase& stairs, PipelineOptions options, bool alternate) {
-  PaperCrawlSettings settings;
-  settings.arrangement = alternate ? CrawlCase::kFrontSwitched : CrawlCase::kRightFirst;
-  options.crawl.body.hip_height_fraction = settings.body.hip_height_fraction;
-  PipelineResult result;
-  result.map = BuildPipelineMap(robot, stairs, options);
-  result.plan = PlanPaperCrawl(robot, stairs, result.map, settings);
-  // The paper's crawl keeps its own start; plan.json says how far it is from the alignment pose.
-  const AlignmentStance aligned = ComputeAlignmentStance(robot, stairs, result.map, options.facing,
-                                                         options.crawl.body.hip_height_fraction, options.crawl.start_gap);
-  result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode);
-  if (result.plan.status == PlanStatus::kOk && options.validate) {
-    TraversalValidator validator(robot, stairs, result.map, options.validation);
-    result.validation = validator.Validate(result.plan);
-    result.validated = true;
-  }
-  return result;
 }
 
 int RunPlan(const std::vector<std::string>& args) {
@@ -288,14 +265,14 @@ int RunPlan(const std::vector<std::string>& args) {
     const auto t0 = std::chrono::steady_clock::now();
     PipelineOptions options;
     options.facing = ParseFacing(o.facing);
-    const bool paper = o.planner == "paper" || o.planner == "paper-alt";
     if (!o.cloud.empty() && !o.footfalls.empty()) throw BadInput("--footfalls: plans on footfalls or on --cloud, not both");
-    if (paper && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     try {
-      if (!paper) options.footsteps = ParseFootstepSource(o.planner);
+      options.footsteps = ParseFootstepSource(o.planner);
     } catch (const std::invalid_argument& e) {
       throw BadInput(std::string("--") + e.what());
     }
+    const bool paper = options.footsteps == FootstepSource::kPaperCrawl || options.footsteps == FootstepSource::kPaperCrawlAlternate;
+    if (paper && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     SetBodyOptions(o, options);
     ApplySettings(o.set, options);
     SetStairMode(o, options.stair_mode);
@@ -307,18 +284,16 @@ int RunPlan(const std::vector<std::string>& args) {
     if (!o.footfalls.empty()) walked = FootfallStaircaseAt(o.footfalls, o.staircase, o.stairs.nosing.value_or(0.0), options.stair_mode);
     const Staircase stairs = perceived ? perceived->stairs : walked ? walked->stairs : ResolveStairs(o.stairs);
     const StairFrame* world = perceived ? &perceived->frame : walked ? &walked->frame : nullptr;
-    const RobotPoseSource pose_source = SetRobotPose(o.start, world, walked ? walked->tracked_W : std::nullopt, options);
+    SetRobotPose(o.start, world, walked ? walked->tracked_W : std::nullopt, options);
     const double load_us = MicrosSince(t0);
     if (perceived) AddPipelineRobotRegions(robot, stairs, options, perceived->map);
-    PipelineResult result = paper ? PaperCrawlResult(robot, stairs, options, o.planner == "paper-alt")
-                            : perceived ? RunPipelineOnMap(robot, stairs, perceived->map, options)
-                                        : RunPipeline(robot, stairs, options);
+    PipelineResult result = perceived ? RunPipelineOnMap(robot, stairs, perceived->map, options) : RunPipeline(robot, stairs, options);
     Plan& plan = result.plan;
     plan.timing_us.insert(plan.timing_us.begin(), {perceived ? "perceive" : "load", load_us});
     nlohmann::json json = PlanToJson(plan, stairs, result.map);
     if (result.validated) json["validation"] = ValidationToJson(result.validation);
     if (perceived) json["fitted"] = perceived->fitted;
-    json.update(StairApproachToJson(result.approach, plan, pose_source, world));
+    json.update(StairApproachToJson(result.approach, plan, world));
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");
     WriteFileAtomically(o.out + "/plan.svg",

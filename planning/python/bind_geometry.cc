@@ -115,6 +115,7 @@ Perceived Perceive(const py::handle& cloud, const std::string& direction, const 
     out.fit["plan_frame_yaw_rad"] = m.TravelYaw(settings.regions.travel);
     out.stairs = std::make_shared<Staircase>(seen.stairs->stairs);
     out.map = std::make_shared<ConstrainedMap>(seen.stairs->map);
+    out.frame = std::make_shared<StairFrame>(StairFrame{m, settings.regions.travel, settings.regions.nosing});
   }
   return out;
 }

@@ -60,14 +60,18 @@ py::object Body(const std::vector<BodyState>& body) {
 }
 
 PlanResult RunPlan(const py::object& robot_arg, const py::object& stairs_arg, const py::kwargs& kwargs) {
-  nlohmann::json options = nlohmann::json::object(), stair_fields = nlohmann::json::object();
+  nlohmann::json options = nlohmann::json::object(), stair_fields = nlohmann::json::object(), start;
   const nlohmann::json given = FromPython(kwargs, "");
   for (const auto& [key, value] : given.items()) {
     const auto& names = StairOptionNames();
     if (value.is_null()) continue;
+    if (key == "start") {
+      start = value;  // plan()'s alone: where the robot stands before these stairs
+      continue;
+    }
     (std::find(names.begin(), names.end(), key) != names.end() ? stair_fields : options)[key] = value;
   }
-  const PipelineOptions pipeline = PipelineOptionsFrom(options);
+  PipelineOptions pipeline = PipelineOptionsFrom(options);
   PlanResult out;
   out.robot = std::make_shared<RobotModel>(RobotArg(robot_arg));
   const Perceived* perceived = py::isinstance<Perceived>(stairs_arg) ? &stairs_arg.cast<const Perceived&>() : nullptr;
@@ -76,15 +80,16 @@ PlanResult RunPlan(const py::object& robot_arg, const py::object& stairs_arg, co
     throw FieldError(stair_fields.begin().key(), "stair fields do not apply to perceived stairs");
   }
   out.stairs = perceived ? perceived->stairs : std::make_shared<Staircase>(StairsArg(stairs_arg, stair_fields));
+  const StairFrame* world = perceived ? perceived->frame.get() : nullptr;
+  SetRobotStart(start, world, pipeline);
   auto result = std::make_shared<PipelineResult>();
   {
     py::gil_scoped_release release;
     *result = RunPlanPipeline(*out.robot, *out.stairs, perceived ? perceived->map.get() : nullptr, pipeline);
     out.json = PlanToJson(result->plan, *out.stairs, result->map);
     if (result->validated) out.json["validation"] = ValidationToJson(result->validation);
-    // As `stairplan plan` writes them; the robot's pose is not given here, so stair mode is judged
-    // at the alignment pose.
-    out.json.update(StairApproachToJson(result->approach, result->plan, RobotPoseSource::kAlignment, nullptr));
+    // As `stairplan plan` writes them: the robot's pose and its source, in the cloud's world too.
+    out.json.update(StairApproachToJson(result->approach, result->plan, world));
   }
   if (perceived != nullptr) out.json["fitted"] = FromPython(perceived->fit, "fit");
   out.result = std::move(result);
@@ -223,7 +228,9 @@ stairs:  None (7 steps, rise 0.17, run 0.27), a Stairs, a dict of stairs YAML ke
 options: the CLI's flags as keywords -- steps, rise, run, nosing, width, direction ('up' or
          'down') override the stairs' fields; facing ('forward' or 'backward'), planner
          ('crawl' or 'step'), body ('path' or 'qp'), horizon (knots, implies body='qp'), nlp
-         ('ipopt' or 'nlopt', implies body='qp'), validate (True), validation_time_step (0.02 s).
+         ('ipopt' or 'nlopt', implies body='qp'), validate (True), validation_time_step (0.02 s),
+         start ((x, y, yaw): the robot's pose, where stair mode is judged; in the cloud's world for
+         a Perception, else in the stairs' frame; default: at the alignment pose).
 
 Returns a Plan (status 'infeasible' with a reason when there is no plan; no exception).
 Raises ValueError (stairplan.FieldError, `.field` names it) for a bad option or stair field,

@@ -55,6 +55,7 @@ py::object StructuredArray(const std::vector<std::pair<std::string, py::object>>
 
 // The shared argument conversions (bind_geometry.cc) and the perceived stairs a plan may run on.
 #include "geometry/constrained_map.h"
+#include "geometry/stair_frame.h"
 #include "geometry/staircase.h"
 #include "kinematics/robot_model.h"
 
@@ -67,6 +68,7 @@ struct Perceived {
   std::string reason;  ///< why not, when not found
   std::shared_ptr<Staircase> stairs;  ///< the fitted staircase, when found
   std::shared_ptr<ConstrainedMap> map;  ///< its constrained map, when found
+  std::shared_ptr<StairFrame> frame;  ///< the stairs' frame in the cloud's world, when found
   py::dict fit;  ///< the tracker's fit
 };
 

@@ -1,5 +1,7 @@
 #include "pipeline_adapter.h"
 
+#include <cmath>
+
 #include "geometry/field_error.h"
 #include "geometry/stair_spec_yaml.h"
 #include "planning/sweep/pipeline_sweep_row.h"
@@ -79,6 +81,20 @@ PipelineOptions PipelineOptionsFrom(const nlohmann::json& o) {
     options.validation.time_step = v.get<double>();
   }
   return options;
+}
+
+void SetRobotStart(const nlohmann::json& start, const StairFrame* world, PipelineOptions& options) {
+  if (start.is_null()) return;
+  std::vector<double> xy_yaw;
+  if (start.is_array()) {
+    for (const nlohmann::json& v : start) xy_yaw.push_back(v.is_number() ? v.get<double>() : NAN);
+  }
+  try {
+    options.robot_pose = RobotPoseInPlanFrame(xy_yaw, world);
+  } catch (const std::invalid_argument& e) {
+    throw FieldError("start", std::string(e.what()) + " (got " + start.dump() + ")");
+  }
+  options.robot_pose_source = RobotPoseSource::kGiven;
 }
 
 StairSpec StairSpecFrom(const nlohmann::json& fields, const std::string& source) {

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "geometry/stair_frame.h"
 #include "geometry/staircase.h"
 #include "planning/plan_pipeline.h"
 
@@ -20,6 +21,11 @@ const std::vector<std::string>& StairOptionNames();
 /// validate, validation_time_step. Absent or null ones keep the CLI's defaults. Throws FieldError
 /// naming the option for a bad value or an unknown name.
 PipelineOptions PipelineOptionsFrom(const nlohmann::json& options);
+
+/// plan()'s `start`, the CLI's --start: the robot's pose (x, y, yaw) [m, m, rad] in `world` when the
+/// stairs were found there (a Perception; may be null: in the stairs' own frame), into `options`
+/// (robot_pose, its source "given"). Null keeps none. Throws FieldError naming start.
+void SetRobotStart(const nlohmann::json& start, const StairFrame* world, PipelineOptions& options);
 
 /// A StairSpec from an object of stairs YAML keys (checked as the YAML reader checks a file).
 /// Throws FieldError naming `source` and the field.

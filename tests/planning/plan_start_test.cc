@@ -65,7 +65,8 @@ TEST_CASE("the plan starts at the alignment pose for a yawed, offset robot, up a
     const AlignmentStance& a = r.approach.alignment;
     REQUIRE(a.found);
     // Stair mode: on, 0.8 m from the flight; the robot turns 0.9 rad back and moves to the pose.
-    CHECK(r.approach.robot_known);
+    CHECK(r.approach.robot_known());
+    CHECK(r.approach.robot_source == RobotPoseSource::kGiven);
     CHECK(r.approach.stair_mode.engaged);
     CHECK(r.approach.stair_mode.distance == Approx(0.8));
     CHECK(r.approach.turn == Approx(-0.9));
@@ -125,7 +126,8 @@ TEST_CASE("stair mode is off beyond the engage distance and on within it, and th
   CHECK_FALSE(ApproachStairs(stairs, a, std::nullopt, near).stair_mode.engaged);
   const StairApproach none = ApproachStairs(stairs, a, std::nullopt, options.stair_mode);
   CHECK(none.stair_mode.engaged);
-  CHECK_FALSE(none.robot_known);
+  CHECK_FALSE(none.robot_known());
+  CHECK(none.robot_source == RobotPoseSource::kAlignment);
   CHECK(none.stair_mode.distance == Approx(a.standoff));
   CHECK(none.move.norm() == 0.0);
 }
@@ -139,7 +141,8 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   options.facing = Facing::kBackward;
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
   const double hip = options.crawl.body.hip_height_fraction, gap = options.crawl.start_gap;
-  const AlignmentStance back = ComputeAlignmentStance(robot, stairs, map, Facing::kBackward, hip, gap);
+  const RobotKinematics kinematics(robot);
+  const AlignmentStance back = ComputeAlignmentStance(kinematics, stairs, map, Facing::kBackward, hip, gap);
   REQUIRE(back.found);
   CHECK(back.yaw == Approx(M_PI));
   // Descending backwards (seed 001 [0042]) the body heads up the stairs in the world.
@@ -151,7 +154,7 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   CHECK(AngleBetween(frame.ToWorld(pose).yaw, ComputeAlignmentPose(frame.model, TravelDirection::kDown, Facing::kBackward, back.standoff).yaw) < 1e-9);
   // The hind hips lead: the feet under them are the leading ones, and the stance is the forward
   // one turned round (its centre shifted by the same COM offset, mirrored).
-  const AlignmentStance fwd = ComputeAlignmentStance(robot, stairs, map, Facing::kForward, hip, gap);
+  const AlignmentStance fwd = ComputeAlignmentStance(kinematics, stairs, map, Facing::kForward, hip, gap);
   REQUIRE(fwd.found);
   for (std::size_t i = 0; i < robot.legs().size(); ++i) {
     const Eigen::Vector3d b = back.feet[i] - back.position, f = fwd.feet[i] - fwd.position;
@@ -162,7 +165,7 @@ TEST_CASE("the alignment stance facing backward: turned round, the COM over the 
   spec.landing_before = 0.3;
   const Staircase short_landing(spec);
   const AlignmentStance none =
-      ComputeAlignmentStance(robot, short_landing, BuildPipelineMap(robot, short_landing, options), Facing::kBackward, hip, gap);
+      ComputeAlignmentStance(kinematics, short_landing, BuildPipelineMap(robot, short_landing, options), Facing::kBackward, hip, gap);
   CHECK_FALSE(none.found);
   CHECK_THAT(none.reason, Catch::Contains("landing_before"));
 }

@@ -1,11 +1,13 @@
 """plan(), Plan, stairs and robots from Python against the CLI's plan.json and the library's rules."""
 import json
+import os
+import subprocess
 
 import numpy as np
 import pytest
 
 import stairplan
-from conftest import shared_path
+from conftest import BIN_DIR, shared_path
 
 
 def test_version_is_the_library_version():
@@ -30,6 +32,27 @@ def test_plan_equals_the_cli_plan_json(default_plans):
     for key in cli:
         assert mine[key] == cli[key], key
     assert json.loads(plan.to_json())["footsteps"] == cli["footsteps"]
+
+
+def test_plan_reports_a_start_pose_as_the_cli_does(tmp_path, default_plan):
+    """A robot 2.5 m before the flight (stair mode off there): `start` is the CLI's --start, and
+    plan.json's stair_mode and alignment say the same, its source "given"."""
+    out = tmp_path / "cli"
+    cli = subprocess.Popen([os.path.join(BIN_DIR, "stairplan"), "plan", "--steps", "2", "--start=-2.5,0.3,0.5",
+                            "--out", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    plan = stairplan.plan(steps=2, start=(-2.5, 0.3, 0.5))  # releases the GIL: both plan at once
+    _, err = cli.communicate()
+    assert cli.returncode == 0, err.decode()
+    with open(out / "plan.json") as f:
+        expected = json.load(f)
+    mine = plan.to_dict()
+    assert mine["stair_mode"]["robot"]["source"] == "given"
+    assert mine["stair_mode"]["robot"]["x"] == -2.5 and mine["stair_mode"]["engaged"] is False
+    assert mine["stair_mode"] == expected["stair_mode"]
+    assert mine["alignment"] == expected["alignment"]
+    assert default_plan.to_dict()["stair_mode"]["robot"]["source"] == "alignment"  # none given
+    with pytest.raises(ValueError, match="start"):
+        stairplan.plan(steps=2, start=(1.0, 2.0))
 
 
 def test_plan_arrays_match_its_dict(default_plan):
@@ -107,6 +130,8 @@ def test_perceive_a_cloud_of_the_default_stairs():
     plan = stairplan.plan(stairs=seen)
     assert plan.ok, plan.status_reason
     assert plan.to_dict()["fitted"]["steps"] == 3
+    # The alignment pose in the cloud's world too, as the CLI writes it for --cloud.
+    assert "world" in plan.to_dict()["alignment"] and "world" in plan.to_dict()["stair_mode"]["robot"]
     with pytest.raises(ValueError, match="rise"):
         stairplan.plan(stairs=seen, rise=0.2)
 

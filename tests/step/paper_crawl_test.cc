@@ -195,3 +195,55 @@ TEST_CASE("paper crawl on the paper's three stairs: no d lets both feet pass the
     CHECK_FALSE(map.InStepRegion(stair, right_foot));
   }
 }
+
+TEST_CASE("the pipeline runs the paper crawl at the paper's posture, validated, the alignment stance made for it", "[step][paper][pipeline]") {
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
+  const Staircase stairs = PaperFlight();
+  CHECK(ParseFootstepSource("paper") == FootstepSource::kPaperCrawl);
+  CHECK(ParseFootstepSource("paper-alt") == FootstepSource::kPaperCrawlAlternate);
+  PipelineOptions options;
+  options.footsteps = FootstepSource::kPaperCrawlAlternate;
+  const PipelineResult r = RunPipeline(robot, stairs, options);
+  // The same plan as the paper's crawl on the map made for its posture (hips at 0.8 of the reach,
+  // not the pipeline's 0.6), validated.
+  PaperCrawlSettings paper;
+  paper.arrangement = CrawlCase::kFrontSwitched;
+  PipelineOptions at_posture;
+  at_posture.crawl.body.hip_height_fraction = paper.body.hip_height_fraction;
+  REQUIRE(at_posture.crawl.body.hip_height_fraction != PipelineOptions{}.crawl.body.hip_height_fraction);
+  const ConstrainedMap map = BuildPipelineMap(robot, stairs, at_posture);
+  const Plan direct = PlanPaperCrawl(robot, stairs, map, paper);
+  REQUIRE(direct.status == PlanStatus::kOk);
+  REQUIRE(r.plan.status == PlanStatus::kOk);
+  CHECK(r.plan.gait == "paper_crawl_alt");
+  CHECK(r.plan.hip_height_fraction == paper.body.hip_height_fraction);
+  REQUIRE(r.plan.footsteps.size() == direct.footsteps.size());
+  for (std::size_t i = 0; i < direct.footsteps.size(); ++i) {
+    CHECK(r.plan.footsteps[i].leg == direct.footsteps[i].leg);
+    CHECK(r.plan.footsteps[i].t_liftoff == direct.footsteps[i].t_liftoff);
+    CHECK((r.plan.footsteps[i].position_W - direct.footsteps[i].position_W).norm() == 0.0);
+  }
+  REQUIRE(r.plan.body.size() == direct.body.size());
+  CHECK(r.plan.body.back().x == direct.body.back().x);
+  CHECK(r.validated);
+  // One attempt: the posture retries do not apply to the paper's posture.
+  CHECK(std::count_if(r.plan.timing_us.begin(), r.plan.timing_us.end(), [](const auto& t) { return t.first == "plan"; }) == 1);
+  // The alignment stance at the paper's posture: standing taller, it differs from the default one.
+  const RobotKinematics kinematics(robot);
+  const AlignmentStance expected = ComputeAlignmentStance(kinematics, stairs, map, Facing::kForward, paper.body.hip_height_fraction,
+                                                          options.crawl.start_gap);
+  const AlignmentStance& a = r.approach.alignment;
+  REQUIRE(a.found);
+  REQUIRE(a.feet.size() == expected.feet.size());
+  CHECK((a.position - expected.position).norm() == 0.0);
+  for (std::size_t i = 0; i < a.feet.size(); ++i) CHECK((a.feet[i] - expected.feet[i]).norm() == 0.0);
+  const PipelineOptions defaults;
+  const AlignmentStance at_default =
+      ComputeAlignmentStance(kinematics, stairs, BuildPipelineMap(robot, stairs, defaults), Facing::kForward,
+                             defaults.crawl.body.hip_height_fraction, defaults.crawl.start_gap);
+  CHECK((a.position - at_default.position).norm() > 1e-4);
+  CHECK(r.approach.stair_mode.engaged);
+  // The paper's crawl has its own body path: asking for the body QP is an error, not ignored.
+  options.body = BodySource::kRecedingHorizonQp;
+  CHECK_THROWS_AS(RunPipeline(robot, stairs, options), std::invalid_argument);
+}
