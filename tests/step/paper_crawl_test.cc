@@ -3,14 +3,19 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "geometry/shapes.h"
 #include "kinematics/robot_kinematics.h"
+#include "planning/gait/crawl_stability.h"
 #include "planning/plan_pipeline.h"
 #include "planning/step/paper_crawl.h"
 #include "planning/swing_trajectory.h"
+#include "planning/validation/traversal_validator.h"
 #include "sanitized.h"
 #include "test_paths.h"
 
@@ -65,6 +70,35 @@ int CheckClimbingSwings(const RobotModel& robot, const Staircase& stairs, const 
     }
   }
   return climbs;
+}
+
+// The COM's largest margin (negative: outside) to the support triangle through a swing of hind
+// leg `r` (0 RH, 1 LH) in the paper's model (planning/gait/crawl_stability.h): hips on the line d
+// above the edges, the COM midway between them, feet at their contact offsets, BW apart.
+double PaperHindSwingBestMargin(const GaitDesignInput& in, const GaitDesign& g, CrawlCase arrangement, std::size_t r) {
+  const bool switched = arrangement == CrawlCase::kFrontSwitched;
+  struct Leg { double hip, side, a; };
+  const std::array<Leg, 4> legs = {{{0.0, -1.0, g.a_min}, {0.0, 1.0, g.a_max},
+                                    {in.body_length, -1.0, switched ? g.a_max : g.a_min},
+                                    {in.body_length, 1.0, switched ? g.a_min : g.a_max}}};
+  const double cos_phi = std::cos(g.phi), sin_phi = std::sin(g.phi);
+  const auto lift = [&](const Leg& l) { return 0.5 * g.cl + l.a * cos_phi; };
+  const double s0 = lift(legs[r]) + 4.0 * g.cl;  // the hind hip along the slope at lift-off
+  double best = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= 200; ++k) {
+    const double s = s0 + g.d_i * k / 200.0;
+    std::vector<Eigen::Vector2d> feet;
+    for (std::size_t i = 0; i < 4; ++i) {
+      if (i == r) continue;
+      const double z = s + legs[i].hip - lift(legs[i]);
+      const double j = std::floor(z / g.cl);
+      REQUIRE(z - j * g.cl >= g.d_i);  // one leg in the air at a time
+      feet.emplace_back((j + 1.0) * in.run + legs[i].a, legs[i].side * 0.5 * in.body_width);
+    }
+    const Eigen::Vector2d com((s + 0.5 * in.body_length) * cos_phi - g.d * sin_phi, 0.0);
+    best = std::max(best, -ConvexHull(feet).SignedDistance(com));
+  }
+  return best;
 }
 
 }  // namespace
@@ -246,4 +280,71 @@ TEST_CASE("the pipeline runs the paper crawl at the paper's posture, validated, 
   // The paper's crawl has its own body path: asking for the body QP is an error, not ignored.
   options.body = BodySource::kRecedingHorizonQp;
   CHECK_THROWS_AS(RunPipeline(robot, stairs, options), std::invalid_argument);
+}
+
+// Why no plan with the paper's design validates on its robot, from the paper's own geometry:
+// conditions (8)-(10) and (13) hold on all three stairs, but the paper's body (hips on the line d
+// above the edges, pitched at phi, no roll) keeps the COM outside the support triangle through
+// the left hind swing by centimetres (the paper's own stability analysis), and the sideways sway
+// that would bring it inside by the validator's margin cannot be carried by the swinging foot.
+TEST_CASE("paper crawl on the paper's three stairs: its conditions hold but its body cannot sway the COM inside", "[step][paper]") {
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
+  const RobotKinematics kinematics(robot);
+  const LegModel& leg = robot.legs().front();
+  const double plane = std::abs(leg.foot_zero_B.y() - leg.hip_B.y());  // leg plane beside the abduction axis
+  const double abduction = std::min(-leg.limits[0].lower, leg.limits[0].upper);
+  CHECK(abduction == Approx(0.5));
+  const ValidationSettings validation;
+  const PipelineOptions pipeline;
+  // Over the nose the foot's centre stays at least its radius from the nose's corner (the
+  // validator wants 5 mm more); any path from the lower tread to the upper one crosses the normal
+  // to the edge line through the nose, so it does so at least `corner` above the edge line. The
+  // hip line is d above it and the body parallel to it: there the foot is at most d - corner
+  // below its hip.
+  const double corner = leg.foot_radius;
+  // How far outward of its plane the abduction puts a foot `depth` below (or above) its hip.
+  const auto outward = [&](double depth) {
+    const double q = std::clamp(std::atan2(depth, plane), -abduction, abduction);
+    return plane * std::cos(q) + depth * std::sin(q) - plane;
+  };
+  // How far above its hip a foot must be to sit `out` outward of its plane.
+  const auto above_hip = [&](double out) { return (out + plane * (1.0 - std::cos(abduction))) / std::sin(abduction); };
+  for (const auto& [run, rise] : {std::pair{0.27, 0.17}, std::pair{0.31, 0.175}, std::pair{0.28, 0.16}}) {
+    INFO(run << " x " << rise);
+    const Staircase stairs = PaperFlight(rise, run);
+    const ConstrainedMap map = BuildPipelineMap(robot, stairs, pipeline);
+    const double nose = stairs.edges()[0].x_nose;
+    double band = 0.0;  // the step region starts this far behind the nose
+    while (!map.InStepRegion(1, {nose + band, leg.foot_zero_B.y()})) band += 0.001;
+    CHECK(band == Approx(0.05).margin(0.002));
+    GaitDesignInput in;
+    in.run = run;
+    in.rise = rise;
+    in.body_length = 0.444;
+    in.body_width = 0.36;
+    // The largest d keeps a_min (eq. (4)) on the step region: every d the controller could take.
+    // (8)-(10) do not depend on d and the offsets move monotonically with it, so its two ends
+    // stand for the whole range; the COM's margin does not depend on it at all.
+    const double d_max = (MinLegLength(run, rise) - band) * std::sin(std::atan2(rise, run));
+    const double below_most = outward(d_max - corner);  // the foot below its hip, as the paper's leg swings
+    for (const double d : {0.01, d_max}) {
+      in.hip_clearance = d;
+      INFO("d " << d);
+      const GaitDesign g = DesignGait(in);
+      CHECK(g.feasible);  // (8), (9), (10) = (13), and both offsets on the tread
+      for (const CrawlCase arrangement : {CrawlCase::kRightFirst, CrawlCase::kFrontSwitched}) {
+        INFO("case " << static_cast<int>(arrangement));
+        const double least_outside = -PaperHindSwingBestMargin(in, g, arrangement, 1);
+        CHECK(least_outside > 0.02);
+        // A sideways sway of y moves the COM at most y toward the inside of the diagonal it
+        // crosses; the swinging left hind foot must follow it outward as it passes the nose.
+        const double sway = least_outside + validation.min_stability_margin;
+        CHECK(sway > below_most + 0.01);
+        // Unless it passes the nose raised 8 cm or more above its hip (on 31 x 17.5 beyond the
+        // leg's reach), which the paper's leg, rotating about its hip, never is.
+        CHECK(above_hip(sway) > 0.08);
+        if (run > 0.3) CHECK(above_hip(sway) > kinematics.leg(0).reach().hi);
+      }
+    }
+  }
 }
