@@ -20,10 +20,24 @@ if(STAIRPLAN_SANITIZE)
   add_compile_definitions(STAIRPLAN_SANITIZED)
 endif()
 
-if(STAIRPLAN_FUZZ)
-  # Coverage feedback for libFuzzer in every library; only the fuzz targets link libFuzzer's main.
-  add_compile_options(-fsanitize=fuzzer-no-link)
-endif()
+# Called by stairplan_add_module: with STAIRPLAN_FUZZ, coverage feedback for libFuzzer in every
+# library (the fuzz targets add their own, tests/fuzz). Test programs, the CLI and the examples
+# link no fuzzer and need none (their objects compiled in about an eighth less CPU time here).
+function(stairplan_fuzz_coverage target)
+  if(STAIRPLAN_FUZZ)
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
+  endif()
+endfunction()
+
+# Called by stairplan_add_module and for the CLI: their sources compiled as a few unity sources, for
+# a build from scratch (scripts/sanitize_configure.sh turns it on). File-local names must then be
+# unique within a library and within the CLI.
+option(STAIRPLAN_UNITY_BUILD "Compile the module libraries and the CLI as a few unity sources" OFF)
+function(stairplan_unity_sources target)
+  if(STAIRPLAN_UNITY_BUILD)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 16)
+  endif()
+endfunction()
 
 # Called by stairplan_add_test: the test properties that set the sanitizers' run-time options.
 # ASan's fake stacks (detect_stack_use_after_return, on in scripts/sanitize.sh) make the

@@ -83,7 +83,7 @@ bool Intervened(const std::vector<Footfall>& f, const FootfallGrid& grid, int a,
   return found;
 }
 
-Eigen::Vector2d Left(const Eigen::Vector2d& d) { return Eigen::Vector2d(-d.y(), d.x()); }
+Eigen::Vector2d LeftOf(const Eigen::Vector2d& d) { return Eigen::Vector2d(-d.y(), d.x()); }
 
 // Pairs within this angle of the centroids' direction step straight up the flight [rad].
 constexpr double kStraightPair = 20.0 * M_PI / 180.0;
@@ -135,7 +135,7 @@ FootfallStaircase BuildStaircase(const std::vector<Footfall>& f, const std::vect
     if (d.dot(dir) > std::cos(kStraightPair)) straight += d;
   }
   if (straight.norm() > 0.0) dir = straight.normalized();
-  const Eigen::Vector2d left = Left(dir);
+  const Eigen::Vector2d left = LeftOf(dir);
   // Edges through the midpoint of the closest footfalls of adjacent clusters.
   std::vector<double> along;
   for (std::size_t j = 0; j + 1 < clusters.size(); ++j) {

@@ -22,13 +22,13 @@ double Percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
-struct Line {
+struct FittedLine {
   double offset = 0.0;  // value at index 0
   double slope = 0.0;
 };
 
 // Weighted least-squares line value = offset + slope * index.
-Line FitLine(const std::vector<int>& index, const std::vector<double>& value, const std::vector<double>& weight = {}) {
+FittedLine FitLine(const std::vector<int>& index, const std::vector<double>& value, const std::vector<double>& weight = {}) {
   const auto w = [&](std::size_t i) { return weight.empty() ? 1.0 : weight[i]; };
   double sw = 0.0, mi = 0.0, mv = 0.0;
   for (std::size_t i = 0; i < index.size(); ++i) {
@@ -43,7 +43,7 @@ Line FitLine(const std::vector<int>& index, const std::vector<double>& value, co
     cov += w(i) * (index[i] - mi) * (value[i] - mv);
     var += w(i) * (index[i] - mi) * (index[i] - mi);
   }
-  Line line;
+  FittedLine line;
   line.slope = var > 0.0 ? cov / var : 0.0;
   line.offset = mv - line.slope * mi;
   return line;
@@ -262,7 +262,7 @@ StairFit FitAlong(const PointCloud& cloud, double best_theta, const StairTracker
   const auto seen_count = std::count(level_seen.begin(), level_seen.end(), true);
   std::vector<double> level_weight;
   for (bool seen : level_seen) level_weight.push_back(seen || seen_count < 2 ? 1.0 : 1e-3);
-  const Line levels = FitLine(level_index, level_height, level_weight);
+  const FittedLine levels = FitLine(level_index, level_height, level_weight);
   StairFit fit;
   for (std::size_t j = 0; j < level_height.size(); ++j) {
     fit.level_residuals.push_back(level_height[j] - (levels.offset + levels.slope * level_index[j]));
@@ -312,7 +312,7 @@ StairFit FitAlong(const PointCloud& cloud, double best_theta, const StairTracker
     edge_weight.push_back(static_cast<double>(std::clamp<std::size_t>(near.size(), 1, 200)));
   }
   // Far edges are sampled sparsely and land a bin or two off: they count for less.
-  const Line edges = FitLine(edge_index, edge_u, edge_weight);  // edge k at offset + k * run
+  const FittedLine edges = FitLine(edge_index, edge_u, edge_weight);  // edge k at offset + k * run
   for (std::size_t k = 0; k < edge_u.size(); ++k) {
     fit.edge_residuals.push_back(edge_u[k] - (edges.offset + edges.slope * edge_index[k]));
   }

@@ -13,8 +13,9 @@ if [ -z "$cxx" ]; then
   echo "sanitize: clang++ not found (scripts/setup.sh sanitize installs clang-14 and libclang-rt-14-dev)" >&2
   exit 1
 fi
-# CI builds this from scratch, so the first build's length is what counts: Ninja and lld, and the
-# test programs as unity sources over one precompiled header (STAIRPLAN_QUICK_TEST_BUILD).
+# CI builds this from scratch, so the first build's length is what counts: Ninja and lld, the
+# module libraries and the CLI as unity sources (STAIRPLAN_UNITY_BUILD), and the test programs as
+# unity sources over one precompiled header (STAIRPLAN_QUICK_TEST_BUILD).
 generator=()
 if command -v ninja >/dev/null; then
   generator=(-G Ninja)
@@ -28,8 +29,9 @@ if command -v ld.lld >/dev/null || command -v ld.lld-14 >/dev/null; then
   linker=(-DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld -DCMAKE_SHARED_LINKER_FLAGS=-fuse-ld=lld)
 fi
 # -O1 keeps the sanitized tests fast enough; line tables are enough for symbolized reports.
-# Benchmarks are left out (they are not tests); warnings are errors only in the normal (gcc) build.
+# Benchmarks and examples are left out (no sanitized test runs them); warnings are errors only in
+# the normal (gcc) build.
 cmake -S . -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" "${linker[@]}" \
-  -DSTAIRPLAN_SANITIZE=ON -DSTAIRPLAN_FUZZ=ON -DSTAIRPLAN_QUICK_TEST_BUILD=ON \
-  -DSTAIRPLAN_BUILD_BENCH=OFF -DSTAIRPLAN_WERROR=OFF >/dev/null
+  -DSTAIRPLAN_SANITIZE=ON -DSTAIRPLAN_FUZZ=ON -DSTAIRPLAN_QUICK_TEST_BUILD=ON -DSTAIRPLAN_UNITY_BUILD=ON \
+  -DSTAIRPLAN_BUILD_BENCH=OFF -DSTAIRPLAN_BUILD_EXAMPLES=OFF -DSTAIRPLAN_WERROR=OFF >/dev/null

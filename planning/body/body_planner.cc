@@ -12,7 +12,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double MicrosSince(Clock::time_point start) {
+double ElapsedMicros(Clock::time_point start) {
   return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
 
@@ -449,7 +449,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
       const Clock::time_point t1 = Clock::now();
       output_.timings.bounds_us += std::chrono::duration<double, std::micro>(t1 - t0).count();
       qp_->Solve(optim::kInf, &result_);
-      output_.timings.solve_us += MicrosSince(t1);
+      output_.timings.solve_us += ElapsedMicros(t1);
       ++output_.solves;
       output_.iterations += result_.info.iterations;
       solved = result_.solved() && result_.x.allFinite();
@@ -480,12 +480,12 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
     solve_estimate_us_ = 0.0;
   } else {
     Linearise(state, command, now);
-    output_.timings.bounds_us = MicrosSince(start);
+    output_.timings.bounds_us = ElapsedMicros(start);
     const double remaining_us = settings_.cycle_budget_s * 1e6 - output_.timings.bounds_us;
     if (remaining_us > solve_estimate_us_) {
       const Clock::time_point t1 = Clock::now();
       qp_->Solve(remaining_us * 1e-6, &result_);
-      const double solve_us = MicrosSince(t1);
+      const double solve_us = ElapsedMicros(t1);
       output_.timings.solve_us = solve_us;
       solve_estimate_us_ = 0.9 * solve_estimate_us_ + 0.1 * solve_us;
       ++output_.solves;
@@ -498,14 +498,14 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
         pull_in_ = 0.0;
         Linearise(state, command, now);
         pull_in_ = kPullIn;
-        const double left_us = settings_.cycle_budget_s * 1e6 - MicrosSince(start);
+        const double left_us = settings_.cycle_budget_s * 1e6 - ElapsedMicros(start);
         if (left_us > 0.0) {
           qp_->Solve(left_us * 1e-6, &result_);
           ++output_.solves;
           solved = result_.solved() && result_.x.allFinite();
         }
       }
-      output_.timings.solve_us = MicrosSince(t1);
+      output_.timings.solve_us = ElapsedMicros(t1);
       if (solved) StoreSolution(result_, now);
     } else {
       result_.status = optim::SolveStatus::kTimeLimit;
@@ -530,7 +530,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
     previous_lateral_.setConstant(state.com_shift_y);
   }
   FillOutput(now);
-  output_.timings.total_us = MicrosSince(start);
+  output_.timings.total_us = ElapsedMicros(start);
   return output_;
 }
 

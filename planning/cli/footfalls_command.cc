@@ -107,7 +107,7 @@ int RunFootfalls(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"footfalls", "find the staircases walked from a footfall CSV", RunFootfalls});
+const CommandRegistrar kFootfallsRegistrar({"footfalls", "find the staircases walked from a footfall CSV", RunFootfalls});
 
 }  // namespace
 }  // namespace stairplan::cli

@@ -155,7 +155,7 @@ int RunGaitDesign(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"gait-design", "the 2012 paper's stair gait design (l_min, D_s, D_o, conditions)", RunGaitDesign});
+const CommandRegistrar kGaitDesignRegistrar({"gait-design", "the 2012 paper's stair gait design (l_min, D_s, D_o, conditions)", RunGaitDesign});
 
 }  // namespace
 }  // namespace stairplan::cli

@@ -16,16 +16,16 @@
 namespace stairplan::cli {
 namespace {
 
-nlohmann::json Xy(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
-nlohmann::json Xyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+nlohmann::json MapXy(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
+nlohmann::json MapXyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
 nlohmann::json StairsJson(const StairFit& fit) {
   if (!fit.found) return nullptr;
   const StairModel& m = fit.model;
   nlohmann::json edges = nlohmann::json::array();
-  for (const EdgeLine& e : m.Edges()) edges.push_back({{"a", Xyz(e.a)}, {"b", Xyz(e.b)}});
+  for (const EdgeLine& e : m.Edges()) edges.push_back({{"a", MapXyz(e.a)}, {"b", MapXyz(e.b)}});
   return {{"steps", m.steps}, {"rise", m.rise}, {"run", m.run}, {"yaw_rad", m.yaw()}, {"width", m.width},
-          {"direction", Xy(m.direction)}, {"center", Xy(m.center)}, {"levels", m.levels}, {"edges", edges},
+          {"direction", MapXy(m.direction)}, {"center", MapXy(m.center)}, {"levels", m.levels}, {"edges", edges},
           {"residuals", {{"level_rms", fit.level_rms}, {"edge_rms", fit.edge_rms}, {"point_rms", fit.point_rms},
                          {"tread_points", fit.tread_points}, {"levels", fit.level_residuals}, {"edges", fit.edge_residuals}}}};
 }
@@ -34,7 +34,7 @@ nlohmann::json StairsJson(const StairFit& fit) {
 nlohmann::json MapJson(const PerceivedStairs& seen, const StairModel& model, const MapFromHeightMapSettings& s) {
   const auto world = [&](const Polygon2& p) {
     nlohmann::json out = nlohmann::json::array();
-    for (const auto& v : p.vertices) out.push_back(Xy(model.StairToWorld(Eigen::Vector3d(v.x(), v.y(), 0.0), s.travel, s.nosing).head<2>()));
+    for (const auto& v : p.vertices) out.push_back(MapXy(model.StairToWorld(Eigen::Vector3d(v.x(), v.y(), 0.0), s.travel, s.nosing).head<2>()));
     return out;
   };
   nlohmann::json stairs = nlohmann::json::array();
@@ -53,7 +53,7 @@ nlohmann::json MapJson(const PerceivedStairs& seen, const StairModel& model, con
 std::string Svg(const StairPerception& p, const MapFromHeightMapSettings& s) {
   const HeightMap& m = p.height_map;
   constexpr double kScale = 200.0;  // px per m
-  constexpr double kLeft = 60.0, kTop = 70.0, kBottom = 50.0, kRight = 20.0;
+  constexpr double kMarginLeft = 60.0, kMarginTop = 70.0, kMarginBottom = 50.0, kMarginRight = 20.0;
   const double w = m.nx() * m.resolution() * kScale, h = m.ny() * m.resolution() * kScale;
   float lo = 1e9f, hi = -1e9f;
   for (int iy = 0; iy < m.ny(); ++iy) {
@@ -64,7 +64,7 @@ std::string Svg(const StairPerception& p, const MapFromHeightMapSettings& s) {
     }
   }
   const auto px = [&](const Eigen::Vector2d& p_W) {
-    return Eigen::Vector2d(kLeft + (p_W.x() - m.origin().x()) * kScale, kTop + h - (p_W.y() - m.origin().y()) * kScale);
+    return Eigen::Vector2d(kMarginLeft + (p_W.x() - m.origin().x()) * kScale, kMarginTop + h - (p_W.y() - m.origin().y()) * kScale);
   };
   std::ostringstream title;
   title << std::setprecision(3) << "stairplan map: " << m.nx() << " x " << m.ny() << " cells of " << m.resolution() * 100
@@ -75,12 +75,12 @@ std::string Svg(const StairPerception& p, const MapFromHeightMapSettings& s) {
     title << "no stairs (" << p.fit.reason << ")";
   }
   std::ostringstream out;
-  const double width = std::max({kLeft + w + kRight, 720.0, kLeft + 7.5 * static_cast<double>(title.str().size())});
-  const double height = kTop + h + kBottom;
+  const double width = std::max({kMarginLeft + w + kMarginRight, 720.0, kMarginLeft + 7.5 * static_cast<double>(title.str().size())});
+  const double height = kMarginTop + h + kMarginBottom;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<g font-family=\"sans-serif\" font-size=\"12\">\n";
-  out << "<text x=\"" << kLeft << "\" y=\"18\" font-size=\"13\" font-weight=\"bold\">" << title.str() << "</text>\n";
-  double x = kLeft;
+  out << "<text x=\"" << kMarginLeft << "\" y=\"18\" font-size=\"13\" font-weight=\"bold\">" << title.str() << "</text>\n";
+  double x = kMarginLeft;
   const auto item = [&](const std::string& style, const std::string& label) {
     out << "<rect x=\"" << x << "\" y=\"30\" width=\"12\" height=\"12\" " << style << "/><text x=\"" << x + 16
         << "\" y=\"41\">" << label << "</text>\n";
@@ -95,21 +95,21 @@ std::string Svg(const StairPerception& p, const MapFromHeightMapSettings& s) {
   // Axes in world metres, ticks every half metre.
   const double x0 = m.origin().x(), x1 = x0 + m.nx() * m.resolution();
   const double y0 = m.origin().y(), y1 = y0 + m.ny() * m.resolution();
-  const double base = kTop + h + 6, left = kLeft - 6;
-  out << "<line x1=\"" << kLeft << "\" y1=\"" << base << "\" x2=\"" << kLeft + w << "\" y2=\"" << base << "\" stroke=\"#222\"/>\n";
+  const double base = kMarginTop + h + 6, left = kMarginLeft - 6;
+  out << "<line x1=\"" << kMarginLeft << "\" y1=\"" << base << "\" x2=\"" << kMarginLeft + w << "\" y2=\"" << base << "\" stroke=\"#222\"/>\n";
   for (double t = std::ceil(x0 * 2) / 2; t <= x1 + 1e-9; t += 0.5) {
     const double u = px({t, y0}).x();
     out << "<line x1=\"" << u << "\" y1=\"" << base << "\" x2=\"" << u << "\" y2=\"" << base + 5 << "\" stroke=\"#222\"/><text x=\""
         << u - 10 << "\" y=\"" << base + 18 << "\">" << (std::abs(t) < 1e-9 ? 0.0 : t) << "</text>\n";
   }
-  out << "<text x=\"" << kLeft + w - 40 << "\" y=\"" << base + 34 << "\">x [m]</text>\n";
-  out << "<line x1=\"" << left << "\" y1=\"" << kTop << "\" x2=\"" << left << "\" y2=\"" << kTop + h << "\" stroke=\"#222\"/>\n";
+  out << "<text x=\"" << kMarginLeft + w - 40 << "\" y=\"" << base + 34 << "\">x [m]</text>\n";
+  out << "<line x1=\"" << left << "\" y1=\"" << kMarginTop << "\" x2=\"" << left << "\" y2=\"" << kMarginTop + h << "\" stroke=\"#222\"/>\n";
   for (double t = std::ceil(y0 * 2) / 2; t <= y1 + 1e-9; t += 0.5) {
     const double v = px({x0, t}).y();
     out << "<line x1=\"" << left - 5 << "\" y1=\"" << v << "\" x2=\"" << left << "\" y2=\"" << v << "\" stroke=\"#222\"/><text x=\"4\" y=\""
         << v + 4 << "\">" << (std::abs(t) < 1e-9 ? 0.0 : t) << "</text>\n";
   }
-  out << "<text x=\"4\" y=\"" << kTop - 8 << "\">y [m]</text>\n</g>\n";
+  out << "<text x=\"4\" y=\"" << kMarginTop - 8 << "\">y [m]</text>\n</g>\n";
   const double cell = m.resolution() * kScale;
   for (int iy = 0; iy < m.ny(); ++iy) {
     for (int ix = 0; ix < m.nx(); ++ix) {
@@ -195,7 +195,7 @@ int RunMap(const std::vector<std::string>& args) {
     const HeightMap& m = p.height_map;
     nlohmann::json out = {
         {"cloud", {{"file", cloud_path}, {"points", cloud.size()}}},
-        {"height_map", {{"resolution", m.resolution()}, {"nx", m.nx()}, {"ny", m.ny()}, {"origin", Xy(m.origin())},
+        {"height_map", {{"resolution", m.resolution()}, {"nx", m.nx()}, {"ny", m.ny()}, {"origin", MapXy(m.origin())},
                         {"measured", m.CountState(CellState::kMeasured)}, {"occluded", m.CountState(CellState::kOccluded)},
                         {"smoothed", m.CountState(CellState::kSmoothed)}, {"poor", m.CountState(CellState::kPoor)},
                         {"unknown", m.CountState(CellState::kUnknown)}}},
@@ -232,7 +232,7 @@ int RunMap(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"map", "map stairs from a point cloud (height map, fitted stairs, constrained map)", RunMap});
+const CommandRegistrar kMapRegistrar({"map", "map stairs from a point cloud (height map, fitted stairs, constrained map)", RunMap});
 
 }  // namespace
 }  // namespace stairplan::cli

@@ -311,7 +311,7 @@ int RunPlan(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"plan", "plan a traversal of a staircase (plan.json, plan.svg)", RunPlan});
+const CommandRegistrar kPlanRegistrar({"plan", "plan a traversal of a staircase (plan.json, plan.svg)", RunPlan});
 
 }  // namespace
 }  // namespace stairplan::cli

@@ -129,7 +129,7 @@ int RunQp(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"qp", "solve or benchmark QPs (QPS files, Online QP sequences)", RunQp});
+const CommandRegistrar kQpRegistrar({"qp", "solve or benchmark QPs (QPS files, Online QP sequences)", RunQp});
 
 }  // namespace
 }  // namespace stairplan::cli

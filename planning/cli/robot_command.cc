@@ -13,7 +13,7 @@
 namespace stairplan::cli {
 namespace {
 
-nlohmann::json Xyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+nlohmann::json RobotXyz(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -26,12 +26,12 @@ nlohmann::json LegJson(const LegKinematics& leg) {
     joints.push_back({{"name", m.joint_names[j]}, {"lower", m.limits[j].lower}, {"upper", m.limits[j].upper},
                       {"effort", m.limits[j].effort}});
   }
-  return {{"name", m.name}, {"foot_link", m.foot_link}, {"hip_B", Xyz(m.hip_B)}, {"joints", joints},
-          {"max_reach_m", m.max_reach}, {"nominal_q", Xyz(leg.nominal())},
+  return {{"name", m.name}, {"foot_link", m.foot_link}, {"hip_B", RobotXyz(m.hip_B)}, {"joints", joints},
+          {"max_reach_m", m.max_reach}, {"nominal_q", RobotXyz(leg.nominal())},
           {"foot_contact", ToString(m.foot_contact)},
           {"foot_contact_point_in_foot_link",
-           Xyz(m.foot_contact == FootContact::kMeshLowestPoint ? m.foot_contact_point : m.foot_sphere_center)},
-          {"foot_sphere_center_in_foot_link", Xyz(m.foot_sphere_center)}, {"foot_radius_m", m.foot_radius}};
+           RobotXyz(m.foot_contact == FootContact::kMeshLowestPoint ? m.foot_contact_point : m.foot_sphere_center)},
+          {"foot_sphere_center_in_foot_link", RobotXyz(m.foot_sphere_center)}, {"foot_radius_m", m.foot_radius}};
 }
 
 // Mesh shapes of the collision model: how many, and their hulls' sizes.
@@ -105,7 +105,7 @@ int RunRobot(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"robot", "summarise a robot: legs, foot contacts, meshes, loading cost", RunRobot});
+const CommandRegistrar kRobotRegistrar({"robot", "summarise a robot: legs, foot contacts, meshes, loading cost", RunRobot});
 
 }  // namespace
 }  // namespace stairplan::cli

@@ -116,7 +116,7 @@ int RunRobustness(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"robustness", "open-loop plan on perturbed stairs vs replanning", RunRobustness});
+const CommandRegistrar kRobustnessRegistrar({"robustness", "open-loop plan on perturbed stairs vs replanning", RunRobustness});
 
 }  // namespace
 }  // namespace stairplan::cli

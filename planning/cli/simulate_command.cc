@@ -180,7 +180,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"simulate", "execute a plan.json in MuJoCo (exit 3 when the robot fails)", RunSimulate});
+const CommandRegistrar kSimulateRegistrar({"simulate", "execute a plan.json in MuJoCo (exit 3 when the robot fails)", RunSimulate});
 
 }  // namespace
 }  // namespace stairplan::cli

@@ -257,7 +257,7 @@ std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const Swe
   return rows;
 }
 
-std::vector<std::string> SplitList(const std::string& text) {
+std::vector<std::string> SplitEntries(const std::string& text) {
   std::vector<std::string> parts;
   std::stringstream in(text);
   for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
@@ -277,7 +277,7 @@ std::vector<SweepJob> Jobs(const SweepOptions& o) {
   }
   MakeOutputDir(o.out, "--out");
   std::vector<SweepJob> jobs;
-  for (const std::string& entry : SplitList(o.robots)) {
+  for (const std::string& entry : SplitEntries(o.robots)) {
     if (entry.empty()) throw BadInput("--robots: an empty entry in '" + o.robots + "'");
     const bool builtin = entry == "builtin";
     SweepJob job;

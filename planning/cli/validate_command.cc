@@ -51,7 +51,7 @@ int RunValidate(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"validate", "replay a plan.json and check it (exit 3 on violations)", RunValidate});
+const CommandRegistrar kValidateRegistrar({"validate", "replay a plan.json and check it (exit 3 on violations)", RunValidate});
 
 }  // namespace
 }  // namespace stairplan::cli

@@ -63,7 +63,7 @@ int RunView(const std::vector<std::string>& args) {
   });
 }
 
-const CommandRegistrar kRegistrar({"view", "write a 3D viewer page (HTML) of a plan.json and its MuJoCo run", RunView});
+const CommandRegistrar kViewRegistrar({"view", "write a 3D viewer page (HTML) of a plan.json and its MuJoCo run", RunView});
 
 }  // namespace
 }  // namespace stairplan::cli

@@ -13,7 +13,7 @@ namespace {
 // The chart's window in (W/BL, H/BL) and its place on the page [px].
 constexpr double kWLo = 0.2, kWHi = 1.0, kHLo = 0.1, kHHi = 0.6;
 constexpr double kLeft = 70.0, kRight = 610.0, kTop = 40.0, kBottom = 440.0;
-constexpr int kColumns = 200, kRows = 250;
+constexpr int kFigureColumns = 200, kFigureRows = 250;
 
 // Building-code bounds on real stairs (DESIGN.md, domain notes) [m]; a missing bound is open.
 struct CodeRange {
@@ -41,12 +41,12 @@ DimensionlessVerdict At(double w, double h, double l, double p) { return Evaluat
 // The feasible region, one rectangle per column and run of feasible rows.
 std::string FeasibleCells(double l, double p) {
   std::string out = "<g fill=\"#b7e4b0\" stroke=\"none\">\n";
-  const double dw = (kWHi - kWLo) / kColumns, dh = (kHHi - kHLo) / kRows;
-  for (int i = 0; i < kColumns; ++i) {
+  const double dw = (kWHi - kWLo) / kFigureColumns, dh = (kHHi - kHLo) / kFigureRows;
+  for (int i = 0; i < kFigureColumns; ++i) {
     const double w = kWLo + (i + 0.5) * dw;
     int start = -1;
-    for (int j = 0; j <= kRows; ++j) {
-      const bool in = j < kRows && At(w, kHLo + (j + 0.5) * dh, l, p).feasible();
+    for (int j = 0; j <= kFigureRows; ++j) {
+      const bool in = j < kFigureRows && At(w, kHLo + (j + 0.5) * dh, l, p).feasible();
       if (in && start < 0) start = j;
       if (!in && start >= 0) {
         const double x = Px(w - 0.5 * dw), y = Py(kHLo + j * dh);
@@ -69,7 +69,7 @@ std::string Boundaries(double l, double p) {
                           {"#2e6fd1", &DimensionlessVerdict::c15},
                           {"#e08a00", &DimensionlessVerdict::c16}};
   std::string out;
-  const int columns = 4 * kColumns, rows = 4 * kRows;
+  const int columns = 4 * kFigureColumns, rows = 4 * kFigureRows;
   const double dw = (kWHi - kWLo) / columns, dh = (kHHi - kHLo) / rows;
   for (const Curve& c : curves) {
     out += std::string("<g fill=\"") + c.colour + "\">\n";

@@ -14,7 +14,7 @@
 namespace stairplan {
 namespace {
 
-double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+double HullCross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
 }
 
@@ -27,18 +27,18 @@ double MarginInHull(std::vector<Eigen::Vector2d> points, const Eigen::Vector2d& 
   std::vector<Eigen::Vector2d> hull(2 * points.size());
   std::size_t k = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {  // lower hull
-    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    while (k >= 2 && HullCross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
     hull[k++] = points[i];
   }
   for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {  // upper hull
-    while (k >= lower && Cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    while (k >= lower && HullCross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
     hull[k++] = points[i];
   }
   if (k < 4) return -std::numeric_limits<double>::infinity();  // fewer than three corners
   double margin = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i + 1 < k; ++i) {  // counter-clockwise: inside is to the left of each edge
     const Eigen::Vector2d edge = hull[i + 1] - hull[i];
-    margin = std::min(margin, Cross(hull[i], hull[i + 1], p) / edge.norm());
+    margin = std::min(margin, HullCross(hull[i], hull[i + 1], p) / edge.norm());
   }
   return margin;
 }

@@ -3,7 +3,7 @@
 namespace stairplan {
 namespace {
 
-nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json OutcomeVec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
 
@@ -14,8 +14,8 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
   j["cause"] = o.cause;
   j["first_cause"] = o.FirstCause();
   j["t_end_s"] = o.t_end;
-  j["final_base"] = Vec(o.final_base_W);
-  j["final_roll_pitch_yaw"] = Vec(o.final_rpy);
+  j["final_base"] = OutcomeVec(o.final_base_W);
+  j["final_roll_pitch_yaw"] = OutcomeVec(o.final_rpy);
   j["final_error_m"] = o.final_error_m;
   j["max_roll_rad"] = o.max_roll;
   j["max_pitch_error_rad"] = o.max_pitch_error;
@@ -28,8 +28,8 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
                              {"t_planned", l.t_planned},
                              {"t_contact", l.t_contact},
                              {"touched", l.touched},
-                             {"target", Vec(l.target_W)},
-                             {"landed", Vec(l.landed_W)},
+                             {"target", OutcomeVec(l.target_W)},
+                             {"landed", OutcomeVec(l.landed_W)},
                              {"error_m", l.error_m},
                              {"stair", l.stair},
                              {"in_step_region", l.in_step_region}});
@@ -55,8 +55,8 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
                             {"swing_phase", e.swing_phase},
                             {"force_n", e.force_n},
                             {"reason", e.reason},
-                            {"at", Vec(e.at_W)},
-                            {"target", Vec(e.target_W)},
+                            {"at", OutcomeVec(e.at_W)},
+                            {"target", OutcomeVec(e.target_W)},
                             {"executed", e.executed}});
   }
   j["min_link_clearance_m"] = o.min_link_clearance_m;
@@ -86,8 +86,8 @@ nlohmann::json SimFramesToJson(const std::vector<SimFrame>& frames) {
   nlohmann::json out = nlohmann::json::array();
   for (const SimFrame& f : frames) {
     nlohmann::json q = nlohmann::json::object();
-    for (std::size_t i = 0; i < f.legs.size() && i < f.joint_q.size(); ++i) q[f.legs[i]] = Vec(f.joint_q[i]);
-    out.push_back({{"t", f.t}, {"base", Vec(f.base_W)}, {"roll_pitch_yaw", Vec(f.base_rpy)}, {"q", q}});
+    for (std::size_t i = 0; i < f.legs.size() && i < f.joint_q.size(); ++i) q[f.legs[i]] = OutcomeVec(f.joint_q[i]);
+    out.push_back({{"t", f.t}, {"base", OutcomeVec(f.base_W)}, {"roll_pitch_yaw", OutcomeVec(f.base_rpy)}, {"q", q}});
   }
   return out;
 }

@@ -9,7 +9,7 @@
 namespace stairplan {
 namespace {
 
-std::string Quoted(const std::string& text) {
+std::string PhysicsCsvQuoted(const std::string& text) {
   std::string out = "\"";
   for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
   return out + "\"";
@@ -71,10 +71,10 @@ std::string PhysicsCsvHeader() {
 
 std::string PhysicsCsvLine(const PhysicsRow& r) {
   std::ostringstream csv;
-  csv << r.index << "," << Quoted(r.label) << "," << r.validator << "," << Quoted(r.validator_cause) << ","
-      << r.status << "," << (r.passed ? 1 : 0) << "," << Quoted(r.cause) << "," << r.landings << ","
+  csv << r.index << "," << PhysicsCsvQuoted(r.label) << "," << r.validator << "," << PhysicsCsvQuoted(r.validator_cause) << ","
+      << r.status << "," << (r.passed ? 1 : 0) << "," << PhysicsCsvQuoted(r.cause) << "," << r.landings << ","
       << r.max_landing_error_m << "," << r.other_contacts << "," << r.min_link_clearance_m << ","
-      << Quoted(r.closest_link) << "," << (r.passed_with_clearance ? 1 : 0) << "," << r.max_torque_ratio << ","
+      << PhysicsCsvQuoted(r.closest_link) << "," << (r.passed_with_clearance ? 1 : 0) << "," << r.max_torque_ratio << ","
       << r.real_time_factor;
   return csv.str();
 }

@@ -7,7 +7,7 @@ namespace stairplan {
 namespace {
 
 // A shell word: single-quoted, with embedded single quotes closed, escaped and reopened.
-std::string Quoted(const std::string& text) {
+std::string ShellQuoted(const std::string& text) {
   std::string out = "'";
   for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
@@ -22,9 +22,9 @@ VideoEncoder::VideoEncoder(VideoOutput output, const std::string& path, int widt
           << " -framerate " << fps << " -i - ";
   if (output == VideoOutput::kMp4) {
     // yuv420p: what players expect; even sizes are MuJoCo's default 640 x 480.
-    command << "-c:v libx264 -preset veryfast -crf 23 -pix_fmt yuv420p -movflags +faststart " << Quoted(path);
+    command << "-c:v libx264 -preset veryfast -crf 23 -pix_fmt yuv420p -movflags +faststart " << ShellQuoted(path);
   } else {
-    command << Quoted(path + "/frame_%05d.png");
+    command << ShellQuoted(path + "/frame_%05d.png");
   }
   pipe_ = popen(command.str().c_str(), "w");
   if (pipe_ == nullptr) throw std::runtime_error(path + ": cannot start ffmpeg");

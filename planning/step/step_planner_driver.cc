@@ -16,7 +16,7 @@ std::string ControllerName(const FixedCadenceController& c) {
   return out.str();
 }
 
-Plan Infeasible(Plan plan, const std::string& reason) {
+Plan MarkInfeasible(Plan plan, const std::string& reason) {
   plan.status = PlanStatus::kInfeasible;
   plan.status_reason = reason;
   return plan;
@@ -58,7 +58,7 @@ Plan PlanWithStepPlanner(const RobotModel& robot, const Staircase& stairs, const
   };
 
   const int last = map.size() - 1;
-  if (map.stair(0).step_region.empty()) return Infeasible(plan, "the first surface has no step region to start on");
+  if (map.stair(0).step_region.empty()) return MarkInfeasible(plan, "the first surface has no step region to start on");
   // Start with the feet under the hips, the leading feet start_gap before the end of the first
   // step region.
   double region_hi = -std::numeric_limits<double>::infinity();
@@ -159,7 +159,7 @@ Plan PlanWithStepPlanner(const RobotModel& robot, const Staircase& stairs, const
     plan.body.push_back(b);
   }
   finish_scores(plan);
-  if (!failure.empty()) return Infeasible(plan, failure);
+  if (!failure.empty()) return MarkInfeasible(plan, failure);
   return plan;
 }
 

@@ -14,7 +14,7 @@ constexpr char kTitle[] = "# stairplan sweep manifest";
 
 const char* TableName(SweepTable table) { return table == SweepTable::kPlans ? "plans" : "physics"; }
 
-std::string Number(double v) {
+std::string ManifestNumber(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%.6g", v);
   return buffer;
@@ -29,8 +29,8 @@ std::string DirectionsText(const std::vector<TravelDirection>& directions) {
 }  // namespace
 
 std::string AxisText(const SweepAxis& axis) {
-  if (axis.count == 1) return Number(axis.lo);
-  return Number(axis.lo) + ":" + Number(axis.hi) + ":" + std::to_string(axis.count);
+  if (axis.count == 1) return ManifestNumber(axis.lo);
+  return ManifestNumber(axis.lo) + ":" + ManifestNumber(axis.hi) + ":" + std::to_string(axis.count);
 }
 
 SweepManifest SweepManifest::Current(SweepTable table, const SweepGrid& grid, const std::string& robot,

@@ -14,14 +14,14 @@
 namespace stairplan {
 namespace {
 
-std::string Number(double v) {
+std::string CsvNumber(double v) {
   if (!std::isfinite(v)) return "";
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%.6g", v);
   return buffer;
 }
 
-std::string Quoted(const std::string& text) {
+std::string CsvQuoted(const std::string& text) {
   std::string out = "\"";
   for (char c : text) {
     if (c == '"') out += '"';
@@ -168,11 +168,11 @@ std::string SweepToCsv(const std::vector<SweepRow>& rows, bool with_times) {
 
 std::string SweepCsvLine(const SweepRow& r, bool with_times) {
   std::ostringstream out;
-  out << r.point.index << "," << ToString(r.point.direction) << "," << r.point.steps << "," << Number(r.point.rise)
-      << "," << Number(r.point.run) << "," << Number(r.point.nosing) << "," << r.status << "," << Number(r.cadence_s)
-      << "," << r.footsteps << "," << Number(r.min_clearance_m) << "," << Number(r.min_stability_margin_m) << ","
-      << Quoted(r.reason);
-  if (with_times) out << "," << Number(r.plan_us) << "," << Number(r.validate_us);
+  out << r.point.index << "," << ToString(r.point.direction) << "," << r.point.steps << "," << CsvNumber(r.point.rise)
+      << "," << CsvNumber(r.point.run) << "," << CsvNumber(r.point.nosing) << "," << r.status << "," << CsvNumber(r.cadence_s)
+      << "," << r.footsteps << "," << CsvNumber(r.min_clearance_m) << "," << CsvNumber(r.min_stability_margin_m) << ","
+      << CsvQuoted(r.reason);
+  if (with_times) out << "," << CsvNumber(r.plan_us) << "," << CsvNumber(r.validate_us);
   return out.str();
 }
 

@@ -18,7 +18,7 @@ using nlohmann::json;
 
 // Millimetre-and-better rounding keeps the page small; nothing drawn needs more.
 double Rounded(double v) { return std::round(v * 1e4) / 1e4; }
-json Vec(const Eigen::Vector3d& v) { return {Rounded(v.x()), Rounded(v.y()), Rounded(v.z())}; }
+json RoundedVec(const Eigen::Vector3d& v) { return {Rounded(v.x()), Rounded(v.y()), Rounded(v.z())}; }
 
 // One frame of poses, flattened: x y z qx qy qz qw per shape.
 void AppendPoses(const std::vector<Eigen::Isometry3d>& poses, json* flat) {
@@ -33,7 +33,7 @@ void AppendPoses(const std::vector<Eigen::Isometry3d>& poses, json* flat) {
 json StairSolids(const Staircase& stairs) {
   json solids = json::array();
   for (const Box3& b : stairs.Solids()) {
-    solids.push_back({{"min", Vec(b.min)}, {"max", Vec(b.max)}, {"nosing", b.kind == SolidKind::kNosing}});
+    solids.push_back({{"min", RoundedVec(b.min)}, {"max", RoundedVec(b.max)}, {"nosing", b.kind == SolidKind::kNosing}});
   }
   return solids;
 }
@@ -75,13 +75,13 @@ json MapRegions(const JsonFieldReader& r, const json& plan_json) {
 json Footsteps(const Plan& plan) {
   json steps = json::array();
   for (std::size_t i = 0; i < plan.initial_feet_W.size() && i < plan.legs.size(); ++i) {
-    steps.push_back({{"leg", plan.legs[i]}, {"t", 0.0}, {"p", Vec(plan.initial_feet_W[i])}, {"ok", true}, {"initial", true}});
+    steps.push_back({{"leg", plan.legs[i]}, {"t", 0.0}, {"p", RoundedVec(plan.initial_feet_W[i])}, {"ok", true}, {"initial", true}});
   }
   for (const Footstep& f : plan.footsteps) {
     steps.push_back({{"leg", f.leg},
                      {"t", Rounded(f.t_touchdown)},
                      {"t_liftoff", Rounded(f.t_liftoff)},
-                     {"p", Vec(f.position_W)},
+                     {"p", RoundedVec(f.position_W)},
                      {"ok", f.in_step_region},
                      {"initial", false}});
   }
@@ -184,7 +184,7 @@ json Violations(const JsonFieldReader& r, const json& report, const std::string&
                    {"kind", kind},
                    {"value", value},
                    {"detail", detail},
-                   {"p", Vec(ViolationPlace(replay, robot, plan, t, leg, kind, detail))}});
+                   {"p", RoundedVec(ViolationPlace(replay, robot, plan, t, leg, kind, detail))}});
   }
   return out;
 }
@@ -206,8 +206,8 @@ json SimImpacts(const JsonFieldReader& r, const json& sim) {
                    {"response", r.Text(list[i], "response", p)},
                    {"executed", executed.get<bool>()},
                    {"reason", r.Text(list[i], "reason", p)},
-                   {"p", Vec(r.Triple(list[i], "at", p))},
-                   {"target", Vec(r.Triple(list[i], "target", p))}});
+                   {"p", RoundedVec(r.Triple(list[i], "at", p))},
+                   {"target", RoundedVec(r.Triple(list[i], "target", p))}});
   }
   return out;
 }
@@ -277,7 +277,7 @@ json BuildViewerScene(const RobotModel& robot, const PlanFile& plan_file, const 
 
   json shapes = json::array();
   for (const ViewerShape& s : viewer_robot.shapes()) {
-    shapes.push_back({{"type", ToString(s.type)}, {"size", Vec(s.size)}, {"link", s.link}, {"group", s.group}});
+    shapes.push_back({{"type", ToString(s.type)}, {"size", RoundedVec(s.size)}, {"link", s.link}, {"group", s.group}});
   }
   json scene;
   scene["robot"] = {{"name", plan.robot_name}, {"legs", plan.legs}, {"shapes", shapes}};
