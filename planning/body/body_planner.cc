@@ -53,7 +53,9 @@ BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const
                          const Plan& footsteps, const BodyPlannerSettings& settings)
     : settings_(settings), schedule_(robot, footsteps, &stairs) {
   settings_.Validate();
-  bounds_ = std::make_shared<KinematicBodyBounds>(robot, stairs, map.facing(), settings_);
+  auto bounds = std::make_shared<KinematicBodyBounds>(robot, stairs, map.facing(), settings_);
+  if (settings_.stance_rows) robot_ = bounds.get();
+  bounds_ = std::move(bounds);
   Initialise(robot, stairs);
 }
 
@@ -83,8 +85,16 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
     c_[static_cast<std::size_t>(l)] = -std::cos(nominal_pitch) * leg.hip_B.x() - std::sin(nominal_pitch) * leg.hip_B.z();
   }
   hip_height_ = bounds_->NominalHipHeight();
-  qp_ = std::make_unique<BodyQp>(settings_, c_);
+  qp_ = std::make_unique<BodyQp>(settings_, c_, robot_ != nullptr);
   const int n = settings_.knots;
+  if (robot_ != nullptr) {
+    const RobotKinematics& kinematics = robot_->kinematics();
+    stance_ws_ = std::make_unique<RobotWorkspace>(kinematics);
+    stance_q_.resize(static_cast<std::size_t>(n * kBodyLegs));
+    for (int k = 0; k < n; ++k) {
+      for (int l = 0; l < kBodyLegs; ++l) stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)] = kinematics.leg(l).nominal();
+    }
+  }
   previous_z_.setZero(n);
   previous_pitch_.setZero(n);
   previous_shift_.setZero(n);
@@ -149,6 +159,8 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     const Eigen::Vector2d xy = schedule_.NeutralBodyXY(knot_phases);
     neutral_x_[k] = xy.x();
     neutral_y_[k] = xy.y();
+    // The trust region's centre: the previous plan (the state before there is one).
+    Eigen::Vector4d v0(state.z, state.pitch, state.com_shift, state.com_shift_y);
     if (k == 0) {
       qp.z_lo[0] = qp.z_hi[0] = state.z;
       qp.pitch_lo[0] = qp.pitch_hi[0] = state.pitch;
@@ -166,6 +178,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.pitch_hi[k] = std::min(pmax, p0 + settings_.trust_pitch);
       qp.shift_lo[k] = std::max(-smax, s0 - settings_.trust_shift);
       qp.shift_hi[k] = std::min(smax, s0 + settings_.trust_shift);
+      v0 << (has_previous_ ? PreviousAt(previous_z_, t) : state.z), p0, s0, y0;
     }
     const double feet_pitch = schedule_.FeetPitch(knot_phases);
     qp.pitch_ref[k] = std::clamp(feet_pitch + command.pitch_offset, -pmax, pmax);
@@ -247,6 +260,11 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     }
     if (k > 0 && narrowest < kRestoreWidth) RestoreShift(k, xy.x(), pl, ph, narrowest);
     SupportRows(k, t, pm);
+    BodyPose at;
+    at.position_W = Eigen::Vector3d(xy.x() + heading * v0[2], xy.y() + heading * v0[3], v0[0]);
+    at.pitch = v0[1];
+    at.yaw = schedule_.yaw();
+    StanceRows(k, at, v0);
   }
 }
 
@@ -303,22 +321,16 @@ void BodyPlanner::SupportRows(int k, double t, double pitch) {
     qp.support_cx[row] = normal.x() * com_.gain.x() * heading;
     qp.support_cy[row] = normal.y() * com_.gain.y() * heading;
     const double edge = normal.dot(pi) - normal.dot(com_base);
+    // A previous plan beyond the row (a swing that just came into the horizon) keeps the QP
+    // feasible through the knot's relaxation, whose penalty brings it back as fast as the
+    // acceleration limits let it.
     const double previous = qp.support_cx[row] * previous_x + qp.support_cy[row] * previous_y;
-    // A previous plan beyond the row (a swing that just came into the horizon) must come back by
-    // half of what the trust region lets the row move per cycle: the row gives way to it, as the
-    // hip rows do, so the QP stays feasible. In the retry (pull_in_ = 0) it only holds it.
-    const double pull = pull_in_ > 0.0 ? std::max(pull_in_, 0.5 * (std::abs(qp.support_cx[row]) * settings_.trust_shift +
-                                                                   std::abs(qp.support_cy[row]) * settings_.trust_lateral))
-                                       : 0.0;
     if (below > 0) {
-      // The others below: normal . COM <= edge - margin.
-      double hi = edge - settings_.stability_margin;
-      if (has_previous_ && previous > hi) hi = std::max(hi, previous - pull);
-      qp.support_hi[row] = hi;
+      qp.support_hi[row] = edge - settings_.stability_margin;  // the others below
+      qp.support_sigma[row] = std::min(qp.support_hi[row] - previous, 0.0);
     } else {
-      double lo = edge + settings_.stability_margin;
-      if (has_previous_ && previous < lo) lo = std::min(lo, previous + pull);
-      qp.support_lo[row] = lo;
+      qp.support_lo[row] = edge + settings_.stability_margin;
+      qp.support_sigma[row] = std::max(qp.support_lo[row] - previous, 0.0);
     }
   }
 }

@@ -24,12 +24,16 @@
 
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
+#include "kinematics/body_pose.h"
+#include "kinematics/robot_kinematics.h"
 #include "kinematics/robot_model.h"
 #include "planning/body/body_bounds.h"
 #include "planning/body/body_planner_settings.h"
 #include "planning/body/body_qp.h"
 #include "planning/body/com_estimate.h"
 #include "planning/body/foot_schedule.h"
+#include "planning/body/kinematic_body_bounds.h"
+#include "planning/body/stance_leg_rows.h"
 #include "planning/optim/solve_result.h"
 #include "planning/plan.h"
 
@@ -129,6 +133,12 @@ class BodyPlanner {
   // Knot k's support rows: the COM estimate inside the polygon of the legs standing through
   // knots k-1..k+1, shrunk by the stability margin (rows free where no polygon applies).
   void SupportRows(int k, double t, double pitch);
+  // Knot k's stance rows: every stance leg's joints and extension linearised at the pose `at`
+  // (the trust region's centre; rows free for swing legs, at knot 0 and without kinematics).
+  void StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v0);
+  // Leg l's clearance row at knot k: its closest link point's distance to the stairs (FCL),
+  // linearised through `rows`' joint derivative; free when the leg is far from them.
+  void ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows);
   // Moves knot k's shift reference to the shift that widens its narrowest stance-leg range.
   void RestoreShift(int k, double neutral_x, double pitch_lo, double pitch_hi, double width);
   // Previous plan's pitch and shift at time t (held beyond its ends).
@@ -143,6 +153,12 @@ class BodyPlanner {
   FootSchedule schedule_;
   std::shared_ptr<BodyBounds> bounds_;
   std::unique_ptr<BodyQp> qp_;
+  // The robot's kinematics and collision model (bounds_; null with given bounds or without
+  // settings_.stance_rows: no stance rows),
+  // the stance rows' workspace and each (knot, leg)'s last joint angles, the next cycle's IK seed.
+  KinematicBodyBounds* robot_ = nullptr;
+  std::unique_ptr<RobotWorkspace> stance_ws_;
+  std::vector<Eigen::Vector3d> stance_q_;  // k * 4 + leg
   std::array<Eigen::Vector3d, kBodyLegs> hips_B_{};
   std::array<double, kBodyLegs> c_{};
   double hip_height_ = 0.0;

@@ -40,6 +40,7 @@ void BodyPlannerSettings::Validate() const {
   CheckRange("max_lateral_accel", max_lateral_accel, 0.0, 1e3);
   CheckRange("trust_lateral", trust_lateral, 0.0, 1.0);
   if (!(reach_margin >= 0.0 && reach_margin <= 0.5)) throw FieldError("reach_margin", "must be in [0, 0.5] m");
+  if (!(joint_margin >= 0.0 && joint_margin <= 0.5)) throw FieldError("joint_margin", "must be in [0, 0.5] rad");
   if (!(clearance_margin >= 0.0 && clearance_margin <= 0.5)) throw FieldError("clearance_margin", "must be in [0, 0.5] m");
   CheckRange("grid_dx", grid_dx, 0.0, 0.5);
   CheckRange("grid_pitch", grid_pitch, 0.0, 1.0);
@@ -56,6 +57,11 @@ void BodyPlannerSettings::Set(const std::string& name, double value) {
     knots = static_cast<int>(value);
     return;
   }
+  if (name == "stance_rows") {
+    if (!(value == 0.0 || value == 1.0)) throw FieldError(name, "must be 0 (off) or 1 (on)");
+    stance_rows = value == 1.0;
+    return;
+  }
   if (name == "warmup_solves") {
     if (!(value >= 1 && value <= 100000 && value == std::floor(value))) throw FieldError(name, "must be a whole number in [1, 100000]");
     warmup_solves = static_cast<int>(value);
@@ -68,6 +74,7 @@ void BodyPlannerSettings::Set(const std::string& name, double value) {
       {"max_shift", &max_shift}, {"max_height_accel", &max_height_accel}, {"max_pitch_accel", &max_pitch_accel},
       {"max_shift_accel", &max_shift_accel}, {"stability_margin", &stability_margin}, {"lateral_weight", &lateral_weight},
       {"max_lateral_shift", &max_lateral_shift}, {"max_lateral_accel", &max_lateral_accel}, {"reach_margin", &reach_margin},
+      {"joint_margin", &joint_margin},
       {"clearance_margin", &clearance_margin}, {"grid_dx", &grid_dx}, {"grid_pitch", &grid_pitch},
       {"grid_height", &grid_height}, {"trust_pitch", &trust_pitch}, {"trust_shift", &trust_shift},
       {"trust_lateral", &trust_lateral}, {"cycle_budget_s", &cycle_budget_s}};

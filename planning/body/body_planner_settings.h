@@ -51,6 +51,13 @@ struct BodyPlannerSettings {
 
   // --- Bounds from kinematics and collision.
   double reach_margin = 0.01;      ///< hip height kept this far inside the IK-feasible range [m]
+  /// Rows of every stance leg in the QP: its joints within their limits, its extension within
+  /// the knee's range and its links clear of the stairs, linearised through KDL and FCL each
+  /// cycle (body_qp.h). Off until plans made with them validate at least as often as without
+  /// (today they do not: the CHANGELOG's entry has the numbers). Set(): 0 or 1.
+  bool stance_rows = false;
+  /// Stance legs' joints kept this far inside their limits (the linearised stance rows) [rad].
+  double joint_margin = 0.02;
   /// Every stance leg's links at least this far from the stairs [m]. The lower legs of real robots
   /// stand a few millimetres above the tread under the foot, so larger margins rule out standing.
   double clearance_margin = 0.0;

@@ -1,13 +1,26 @@
 #include "planning/body/body_qp.h"
 
+#include <array>
 #include <cmath>
 
 #include "planning/body/difference_matrices.h"
 
 namespace stairplan {
 
-BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients)
-    : knots_(settings.knots), settings_(settings), c_(row_coefficients), lateral_apart_(settings.stability_margin < 0.0) {
+namespace {
+
+// Curvature of the relaxation's cost: the dual active-set solver needs a positive definite
+// Hessian; against kRelaxPenalty it changes nothing.
+constexpr double kRelaxCurvature = 1.0;
+
+}  // namespace
+
+BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients,
+               bool stance_rows)
+    : knots_(settings.knots),
+      settings_(settings),
+      c_(row_coefficients),
+      lateral_apart_(settings.stability_margin < 0.0 && !stance_rows) {
   settings_.Validate();
   const int n = knots_;
   for (int l = 0; l < kBodyLegs; ++l) {
@@ -31,6 +44,10 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   shift_ = program_.AddVariables("com_shift", n);
   optim::Program& lateral_program = lateral_apart_ ? lateral_program_ : program_;
   lateral_ = lateral_program.AddVariables("com_shift_y", n);
+  if (!lateral_apart_) {
+    relax_ = program_.AddVariables("relax", n);
+    program_.SetVariableBounds(relax_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Ones(n));
+  }
 
   // Costs (0.5 x'Hx + g'x: a weight w on (a'x - r)^2 adds 2w aa' to H).
   const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
@@ -46,6 +63,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   program_.AddCrossQuadraticCost(z_, pitch_, 2.0 * wh * sum_c * identity);
   program_.AddQuadraticCost(shift_, 2.0 * settings_.shift_weight * identity + smooth, zero);
   lateral_program.AddQuadraticCost(lateral_, 2.0 * settings_.lateral_weight * identity + smooth, zero);
+  if (!lateral_apart_) program_.AddQuadraticCost(relax_, 2.0 * kRelaxCurvature * identity, Eigen::VectorXd::Constant(n, kRelaxPenalty));
 
   // Hip rows: z_k + c_g pitch_k, row k * groups + g.
   Eigen::MatrixXd a_z = Eigen::MatrixXd::Zero(groups_ * n, n), a_p = a_z;
@@ -73,6 +91,15 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
                                              "acceleration");
   const Eigen::VectorXd lateral_accel = Eigen::VectorXd::Constant(n - 2, settings_.max_lateral_accel * dt * dt);
   lateral_program.AddLinearConstraint({{lateral_, d2}}, -lateral_accel, lateral_accel, "lateral_acceleration");
+  // The weight shifts come to rest at the horizon's end: a plan ending in motion toward a shift
+  // limit leaves the next cycle, whose last knot lies beyond, no way to stop within the
+  // acceleration limits (the plan shifted by a cycle is then outside the QP's feasible set).
+  Eigen::MatrixXd last = Eigen::MatrixXd::Zero(1, n);
+  last(0, n - 2) = -1.0;
+  last(0, n - 1) = 1.0;
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(1);
+  program_.AddLinearConstraint({{shift_, last}}, rest, rest, "shift_at_rest");
+  lateral_program.AddLinearConstraint({{lateral_, last}}, rest, rest, "lateral_at_rest");
 
   // Support rows: free until the planner gives them feet (none when the lateral QP is apart).
   const int support_count = lateral_apart_ ? 0 : kSupportRows * n;
@@ -81,17 +108,26 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   if (lateral_apart_) {
     support_rows_ = {"support", program_.num_rows(), 0};
   } else {
-    support_rows_ = program_.AddLinearConstraint({{shift_, no_coefficients}, {lateral_, no_coefficients}}, -support_free,
-                                                 support_free, "support");
+    support_rows_ = program_.AddLinearConstraint(
+        {{shift_, no_coefficients}, {lateral_, no_coefficients}, {relax_, no_coefficients}}, -support_free,
+        support_free, "support");
   }
   support_cx.setZero(kSupportRows * n);
   support_cy.setZero(kSupportRows * n);
+  support_sigma.setZero(kSupportRows * n);
   pushed_cx_ = support_cx;
   pushed_cy_ = support_cy;
+  pushed_sigma_ = support_sigma;
   support_lo.setConstant(kSupportRows * n, -optim::kInf);
   support_hi.setConstant(kSupportRows * n, optim::kInf);
   coefficient_row_.setZero(1, n);
   single_row_ = {support_rows_.name, support_rows_.start, 1};
+  one_row_ = {"stance or clearance", 0, 1};
+
+  // Stance and clearance rows: free until the planner linearises a stance leg into them.
+  const int legs_rows = stance_rows ? kBodyLegs * n : 0;
+  AddKnotRows("stance", kStanceRows * legs_rows, kStanceRows * kBodyLegs, &stance, &stance_);
+  AddKnotRows("clearance", legs_rows, kBodyLegs, &clearance, &clearance_);
 
   for (Eigen::VectorXd* v : {&z_lo, &pitch_lo, &shift_lo, &lateral_lo}) v->setConstant(n, -optim::kInf);
   for (Eigen::VectorXd* v : {&z_hi, &pitch_hi, &shift_hi, &lateral_hi}) v->setConstant(n, optim::kInf);
@@ -136,22 +172,72 @@ void BodyQp::PushInputs() {
   program_.SetVariableBounds(shift_, shift_lo, shift_hi);
   lateral_program.SetVariableBounds(lateral_, lateral_lo, lateral_hi);
   program_.SetConstraintBounds(hip_rows_, hip_lo, hip_hi);
-  if (lateral_apart_) return;  // no support rows
+  if (lateral_apart_) return;  // no support or stance rows
+  PushSupportRows();
+  PushKnotRows(stance, &stance_);
+  PushKnotRows(clearance, &clearance_);
+}
+
+void BodyQp::AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows) {
+  const int n = knots_;
+  if (count > 0) {
+    const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(count, n);
+    const Eigen::VectorXd free = Eigen::VectorXd::Constant(count, optim::kInf);
+    rows->rows = program_.AddLinearConstraint(
+        {{z_, none}, {pitch_, none}, {shift_, none}, {lateral_, none}, {relax_, none}}, -free, free, name);
+  } else {
+    rows->rows = {name, program_.num_rows(), 0};
+  }
+  rows->per_knot = per_knot;
+  rows->pushed.setZero(count, 5);
+  inputs->a.setZero(count, 4);
+  inputs->lo.setConstant(count, -optim::kInf);
+  inputs->hi.setConstant(count, optim::kInf);
+  inputs->sigma.setZero(count);
+}
+
+void BodyQp::SetCoefficient(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value) {
+  coefficient_row_(0, k) = value;
+  program_.SetConstraintCoefficients(row, block, coefficient_row_);
+  coefficient_row_(0, k) = 0.0;
+}
+
+void BodyQp::PushSupportRows() {
   // Only rows whose feet changed get new coefficients: the solver keeps its factorisation when
   // they are inactive (the planner changes a pair's feet only while its row is free).
   for (int row = 0; row < static_cast<int>(support_cx.size()); ++row) {
-    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row]) continue;
+    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row] &&
+        support_sigma[row] == pushed_sigma_[row]) {
+      continue;
+    }
     const int k = row / kSupportRows;
     single_row_.start = support_rows_.start + row;
-    coefficient_row_(0, k) = support_cx[row];
-    program_.SetConstraintCoefficients(single_row_, shift_, coefficient_row_);
-    coefficient_row_(0, k) = support_cy[row];
-    program_.SetConstraintCoefficients(single_row_, lateral_, coefficient_row_);
-    coefficient_row_(0, k) = 0.0;
+    SetCoefficient(single_row_, shift_, k, support_cx[row]);
+    SetCoefficient(single_row_, lateral_, k, support_cy[row]);
+    SetCoefficient(single_row_, relax_, k, support_sigma[row]);
     pushed_cx_[row] = support_cx[row];
     pushed_cy_[row] = support_cy[row];
+    pushed_sigma_[row] = support_sigma[row];
   }
   program_.SetConstraintBounds(support_rows_, support_lo, support_hi);
+}
+
+void BodyQp::PushKnotRows(const KnotRows& inputs, PushedRows* rows) {
+  if (rows->rows.size == 0) return;
+  // Free rows keep whatever coefficients they had: pushing them would only cost time.
+  const std::array<const optim::VariableBlock*, 5> blocks{&z_, &pitch_, &shift_, &lateral_, &relax_};
+  for (int row = 0; row < rows->rows.size; ++row) {
+    if (inputs.lo[row] == -optim::kInf && inputs.hi[row] == optim::kInf) continue;
+    const int k = row / rows->per_knot;
+    one_row_.start = rows->rows.start + row;
+    for (int v = 0; v < 5; ++v) {
+      const double value = v < 4 ? inputs.a(row, v) : inputs.sigma[row];
+      if (value == rows->pushed(row, v)) continue;
+      SetCoefficient(one_row_, *blocks[static_cast<std::size_t>(v)], k, value);
+      rows->pushed(row, v) = value;
+    }
+  }
+  program_.SetConstraintBounds(rows->rows, inputs.lo, inputs.hi);
 }
 
 void BodyQp::Solve(double time_limit_s, optim::SolveResult* result) {

@@ -11,14 +11,25 @@
 //        (legs whose hips share c, e.g. the front pair, share a row: half the rows to scan;
 //        the solver copes with identical rows, tests/optim/active_set_degenerate_test.cc)
 //        |second differences| <= max accel * dt^2        height, pitch, shift, lateral
-//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k <= support_hi_kr
+//        shift and lateral at rest over the last two knots (the next cycle can always stop)
+//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k + e_kr relax_k <= support_hi_kr
 //                                 one row per knot and pair r of legs (6): the COM on the inner
 //                                 side of the support polygon's edge between the two feet
+//        stance_lo_klj <= a_klj . (z_k, pitch_k, shift_k, lateral_k) + e_klj relax_k <= stance_hi_klj
+//                                 per knot, stance leg l and row j (4): its three joints within
+//                                 their limits and its extension within the knee's range,
+//                                 linearised through the leg's KDL Jacobian (stance_leg_rows.h)
 //        variable bounds (limits intersected with the cycle's trust region; knot 0 pinned)
 //
-// Without stability rows (stability_margin < 0, the default) nothing couples the sideways shift to
-// the rest, so it is its own small QP with its own solver (lateral_program()): the per-cycle
-// solver's cost grows with n^2 per active-set change, and 40 of the 160 variables never took part.
+// relax_k in [0, 1] is one elastic variable per knot, the share of the linearisation point's
+// violations (e: the violated bound minus the row's value there, 0 for rows it satisfies) the plan
+// may keep at that knot, with an exact penalty (kRelaxPenalty). At relax_k = 1 the point itself
+// satisfies every row, so the QP is feasible whatever the previous plan broke (a swing that came
+// into the horizon, a linearisation that moved), and rows the point satisfies stay hard.
+//
+// Without stability and stance rows (stability_margin < 0 and no kinematics, as with a fake
+// BodyBounds) nothing couples the sideways shift to the rest, so it is its own small QP with its
+// own solver (lateral_program()): the per-cycle solver's cost grows with n^2 per active-set change.
 //
 // c_l = -hip_x_l cos(pitch_nominal) is the hip's height change per unit pitch at the flight's
 // nominal pitch. It is fixed so the matrix never changes; the planner evaluates the exact hip
@@ -44,7 +55,9 @@ class BodyQp {
  public:
   /// `row_coefficients`: c_l per leg; legs within kRowMergeTolerance share a row (and the mean
   /// coefficient). Throws std::invalid_argument naming the field for bad settings.
-  BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients);
+  /// `stance_rows`: with the stance legs' kinematic rows (the planner has the robot's kinematics).
+  BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients,
+         bool stance_rows = false);
 
   /// Coefficients closer than this share one row [m/rad].
   static constexpr double kRowMergeTolerance = 1e-3;
@@ -63,6 +76,15 @@ class BodyQp {
   static constexpr int kSupportRows = 6;
   /// The legs (i < j) of support row `r` (0 .. kSupportRows - 1).
   static std::array<int, 2> SupportPair(int r);
+  /// Stance rows per leg and knot: three joints and the extension (StanceLegRows::kRows).
+  static constexpr int kStanceRows = 4;
+  /// Index of stance row `j` of leg `leg` at knot `k`.
+  static int StanceRow(int k, int leg, int j) { return (k * kBodyLegs + leg) * kStanceRows + j; }
+  /// Index of the clearance row of leg `leg` at knot `k`.
+  static int ClearanceRow(int k, int leg) { return k * kBodyLegs + leg; }
+  /// Cost of keeping all of one knot's violations (relax 1): far above what any row is worth to
+  /// the other costs, so the penalty is exact.
+  static constexpr double kRelaxPenalty = 1e6;
 
   // ---- per-cycle inputs, filled in place by the planner (sizes fixed at construction) ----
   ///@{
@@ -80,6 +102,21 @@ class BodyQp {
   /// (+-inf: none). Coefficients are pushed only where they changed.
   Eigen::VectorXd support_cx, support_cy, support_lo, support_hi;
   ///@}
+  /// Support rows' relaxation coefficients: the violated bound minus the row's value at the
+  /// linearisation point (0 where it holds there).
+  Eigen::VectorXd support_sigma;
+  /// Rows of one family over one knot's (z, pitch, shift, lateral) each, softened by its relaxation.
+  struct KnotRows {
+    Eigen::MatrixXd a;       ///< coefficients, one row per constraint (4 columns)
+    ///@{
+    Eigen::VectorXd lo, hi;  ///< bounds (+-inf: none; the coefficients of a free row are ignored)
+    ///@}
+    Eigen::VectorXd sigma;   ///< relaxation coefficients as support_sigma's
+  };
+  /// The stance legs' joint and extension rows, StanceRow(k, leg, j).
+  KnotRows stance;
+  /// The stance legs' clearance to the stairs, ClearanceRow(k, leg) (lower bounds only).
+  KnotRows clearance;
 
   /// Pushes the inputs into the program(s) and solves warm; `time_limit_s` may be +inf.
   /// Allocation-free after the first call. Without support rows the sideways shift is its own
@@ -112,6 +149,14 @@ class BodyQp {
   const optim::ConstraintRows& support_rows() const { return support_rows_; }
   /// The hip-height rows, in program().
   const optim::ConstraintRows& hip_rows() const { return hip_rows_; }
+  /// The stance legs' joint and extension rows, in program() (empty without stance rows).
+  const optim::ConstraintRows& stance_rows() const { return stance_.rows; }
+  /// The stance legs' clearance rows, in program() (empty without stance rows).
+  const optim::ConstraintRows& clearance_rows() const { return clearance_.rows; }
+  /// True when the program has the stance legs' rows (joints, extension, clearance).
+  bool has_stance_rows() const { return stance_.rows.size > 0; }
+  /// The relaxation variables, one per knot, in program() (empty when lateral_apart()).
+  const optim::VariableBlock& relax() const { return relax_; }
   /// Writes the linear cost of the current inputs into the program (done by Solve too); lets
   /// other solvers (Ipopt, for comparison) solve the same QP.
   void PushInputs();
@@ -128,13 +173,27 @@ class BodyQp {
   optim::Program lateral_program_;  // the sideways shift when apart (else empty)
   optim::ActiveSetQpSolver lateral_solver_;
   optim::SolveResult lateral_result_;
-  optim::VariableBlock z_, pitch_, shift_, lateral_;
+  optim::VariableBlock z_, pitch_, shift_, lateral_, relax_;
   optim::ConstraintRows hip_rows_, accel_rows_, support_rows_;
+  // A KnotRows family's rows in the program and the coefficients pushed into them.
+  struct PushedRows {
+    optim::ConstraintRows rows;
+    int per_knot = 0;
+    Eigen::MatrixXd pushed;  // a and sigma
+  };
+  PushedRows stance_, clearance_;
   optim::ActiveSetQpSolver solver_;
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
-  Eigen::VectorXd pushed_cx_, pushed_cy_;  // support coefficients in the program
+  Eigen::VectorXd pushed_cx_, pushed_cy_, pushed_sigma_;  // support coefficients in the program
   Eigen::MatrixXd coefficient_row_;        // 1 x knots, zero but for one entry
   optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
+  optim::ConstraintRows one_row_;          // one row of a KnotRows family (likewise)
+  void PushSupportRows();
+  // Adds `count` free rows over one knot's variables each; the inputs sized to match.
+  void AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows);
+  void PushKnotRows(const KnotRows& inputs, PushedRows* rows);
+  // Writes `value` as knot k's coefficient of `block` into `row` (one row).
+  void SetCoefficient(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value);
 };
 
 }  // namespace stairplan

@@ -8,9 +8,11 @@
 namespace stairplan {
 namespace {
 
-// Below this |det J| (relative to the Jacobian's scale) the leg is at a singularity, stretched
-// straight: the joint rows would have unbounded coefficients and the reach row binds instead.
-constexpr double kSingularDet = 1e-6;
+// Below this |det J| (relative to the product of its columns' lengths) the leg is near a
+// singularity, stretched nearly straight: the joint rows' first-order model is then wrong within
+// millimetres (their coefficients grow as 1/det), so only the extension row, which stays smooth
+// there, bounds the leg.
+constexpr double kSingularDet = 0.02;
 // Step of the first joint for the flexion joint's derivative (forward difference) [rad].
 constexpr double kTurnStep = 1e-6;
 
@@ -69,6 +71,7 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   } else {
     for (int j = 0; j < 3; ++j) SetRow(&rows, j, Eigen::Vector4d::Zero(), 0.0, 0.0);
   }
+  rows.dq = dq;
   // Extension: the flexion joint to foot distance within the knee's range. (The distance from the
   // hip's first joint is no bound: how far a leg reaches from there depends on the direction,
   // through the offsets between the first two joints.) The flexion joint turns with the first

@@ -27,6 +27,9 @@ struct StanceLegRows {
   std::array<double, kRows> lo{}, hi{};  ///< each row's bounds
   ///@}
   Eigen::Vector3d q = Eigen::Vector3d::Zero();  ///< the joints at the pose (IK; within limits)
+  /// The joints' change per unit change of (z, pitch, along, sideways), the foot held; zero near a
+  /// singularity.
+  Eigen::Matrix<double, 3, 4> dq = Eigen::Matrix<double, 3, 4>::Zero();
   bool reached = false;  ///< IK put the foot on its contact within the limits at the pose
 };
 

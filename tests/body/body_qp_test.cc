@@ -49,7 +49,7 @@ TEST_CASE("the sideways shift solved apart gives the joint QP's plan", "[body][q
   const int n = apart.knots();
   CHECK(apart.program().num_variables() == 3 * n);
   CHECK(apart.lateral_program().num_variables() == n);
-  CHECK(joint.program().num_variables() == 4 * n);
+  CHECK(joint.program().num_variables() == 5 * n);  // and one relaxation per knot
   FillInputs(&apart);
   FillInputs(&joint);
   optim::SolveResult a, j;
@@ -70,4 +70,45 @@ TEST_CASE("the sideways shift solved apart gives the joint QP's plan", "[body][q
     CHECK(apart.LateralOf(a)[0] == Approx(0.005));
     CHECK(std::abs(apart.LateralOf(a)[n - 1]) < 0.005);
   }
+}
+
+TEST_CASE("a row the knot cannot hold is relaxed at the exact penalty, and rows that can hold are kept exactly",
+          "[body][qp]") {
+  const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
+  BodyPlannerSettings settings;
+  BodyQp qp(settings, c, /*stance_rows=*/true);
+  REQUIRE(qp.has_stance_rows());
+  REQUIRE_FALSE(qp.lateral_apart());
+  const int n = qp.knots();
+  FillInputs(&qp);
+  // Knot 10, leg 0: height at least 2 m, out of reach of the acceleration limits from 0.45 m.
+  const int bad = BodyQp::StanceRow(10, 0, 3);
+  qp.stance.a.row(bad) << 1.0, 0.0, 0.0, 0.0;
+  qp.stance.lo[bad] = 2.0;
+  qp.stance.hi[bad] = optim::kInf;
+  qp.stance.sigma[bad] = 2.0 - 0.45;  // what the previous plan, z = 0.45 m, breaks it by
+  // Knot 20, leg 1: the forward shift at most 1 mm, which the trust box allows.
+  const int good = BodyQp::StanceRow(20, 1, 0);
+  qp.stance.a.row(good) << 0.0, 0.0, 1.0, 0.0;
+  qp.stance.lo[good] = -optim::kInf;
+  qp.stance.hi[good] = 0.001;
+  qp.stance.sigma[good] = 0.0;  // the previous plan holds it
+  optim::SolveResult r;
+  qp.Solve(optim::kInf, &r);
+  REQUIRE(r.solved());
+  const auto relax = r.x.segment(qp.relax().start, n);
+  const double z10 = r.x[qp.z().start + 10];
+  // The relaxation makes up exactly what the row misses, and nowhere else is any needed.
+  CHECK(relax[10] * (2.0 - 0.45) == Approx(2.0 - z10).margin(1e-6));
+  CHECK(relax[10] > 0.5);
+  CHECK(relax[10] <= 1.0);
+  for (int k = 0; k < n; ++k) {
+    if (k != 10) CHECK(relax[k] < 1e-7);
+  }
+  CHECK(r.x[qp.shift().start + 20] <= 0.001 + 1e-9);
+  // And that row mattered: freed, the plan goes past it.
+  qp.stance.hi[good] = optim::kInf;
+  qp.Solve(optim::kInf, &r);
+  REQUIRE(r.solved());
+  CHECK(r.x[qp.shift().start + 20] > 0.002);
 }

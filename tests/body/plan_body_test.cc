@@ -157,3 +157,23 @@ TEST_CASE("the QP body keeps the centre of mass over the crawl's support polygon
     CHECK(right < -0.01);
   }
 }
+
+TEST_CASE("with stance rows the body QP keeps every stance leg within its limits and clear of the stairs",
+          "[body][stance_rows]") {
+  const RobotModel& robot = BuiltinRobot();
+  BodyPlannerSettings settings;
+  settings.stance_rows = true;
+  StairSpec spec;
+  spec.steps = 3;
+  const Staircase stairs(spec);
+  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
+  const Plan footsteps = PlanCrawl(robot, stairs, map);
+  REQUIRE(footsteps.status == PlanStatus::kOk);
+  const Plan plan = PlanBody(robot, stairs, map, footsteps, settings);
+  INFO(ToString(plan.status) << " " << plan.status_reason);
+  CHECK(plan.status == PlanStatus::kOk);
+  const Violations v = CheckEveryKnot(robot, stairs, plan, settings.clearance_margin);
+  INFO("independent check: " << v.count << " of " << v.checked << " " << v.first);
+  CHECK(v.checked > 500);
+  CHECK(v.count == 0);
+}

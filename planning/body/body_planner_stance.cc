@@ -1,0 +1,107 @@
+// BodyPlanner's stance rows: each stance leg's joint limits and extension, linearised at the
+// trust region's centre through the leg's KDL Jacobian (stance_leg_rows.h), and its clearance to
+// the stairs (FCL's closest points, moved with the body and the joints), as rows of the QP.
+#include <algorithm>
+#include <cmath>
+
+#include "collision/clearance.h"
+#include "collision/stance_check.h"
+#include "planning/body/body_planner.h"
+
+namespace stairplan {
+namespace {
+
+// A leg farther than this from the stairs gets no clearance row this cycle: within the trust
+// region its links move far less [m].
+constexpr double kClearanceRange = 0.05;
+// Clearance the rows keep beyond clearance_margin: the validator asks 5 mm of every leg link,
+// and a millimetre covers the linearisation between cycles [m].
+constexpr double kClearanceInset = 0.006;
+// Step of the finite differences of the closest point's motion [m or rad].
+constexpr double kPointStep = 1e-5;
+
+// `at` moved by `step` along body variable v (z, pitch, along, sideways of the heading).
+BodyPose Moved(const BodyPose& at, int v, double step) {
+  BodyPose moved = at;
+  const double c = std::cos(at.yaw), s = std::sin(at.yaw);
+  if (v == kBodyZ) moved.position_W.z() += step;
+  if (v == kBodyPitch) moved.pitch += step;
+  if (v == kBodyAlong) moved.position_W += step * Eigen::Vector3d(c, s, 0.0);
+  if (v == kBodySideways) moved.position_W += step * Eigen::Vector3d(-s, c, 0.0);
+  return moved;
+}
+
+}  // namespace
+
+void BodyPlanner::StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v0) {
+  BodyQp& qp = *qp_;
+  if (!qp.has_stance_rows()) return;
+  const StanceLegMargins margins{settings_.joint_margin, settings_.reach_margin};
+  const Eigen::Matrix3d body_rotation = at.ToIsometry().linear();
+  for (int l = 0; l < kBodyLegs; ++l) {
+    const int first = BodyQp::StanceRow(k, l, 0);
+    for (int j = 0; j < BodyQp::kStanceRows; ++j) {
+      qp.stance.lo[first + j] = -optim::kInf;
+      qp.stance.hi[first + j] = optim::kInf;
+    }
+    qp.clearance.lo[BodyQp::ClearanceRow(k, l)] = -optim::kInf;
+    const LegPhase& phase = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
+    if (k == 0 || !phase.stance) continue;  // knot 0 is the measured state
+    const LegKinematics& kin = robot_->kinematics().leg(l);
+    LegWorkspace& ws = stance_ws_->leg(l);
+    Eigen::Vector3d& q = stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)];
+    // The foot's sphere rests on the contact; its offset from the foot origin turns with the foot.
+    const Eigen::Matrix3d foot_rotation = body_rotation * kin.FootPose(q, ws).linear();
+    const Eigen::Vector3d origin = FootOriginForContact(kin.model(), phase.foot_W, foot_rotation);
+    const StanceLegRows rows = LinearizeStanceLeg(kin, ws, origin, at, q, margins);
+    q = rows.q;
+    for (int j = 0; j < BodyQp::kStanceRows; ++j) {
+      const std::size_t js = static_cast<std::size_t>(j);
+      const double lo = rows.lo[js], hi = rows.hi[js];
+      if (!(std::isfinite(lo) && std::isfinite(hi))) continue;  // a row without coefficients
+      const double at_v0 = rows.a[js].dot(v0);
+      qp.stance.a.row(first + j) = rows.a[js].transpose();
+      qp.stance.lo[first + j] = lo + at_v0;
+      qp.stance.hi[first + j] = hi + at_v0;
+      qp.stance.sigma[first + j] = lo > 0.0 ? lo : hi < 0.0 ? hi : 0.0;  // what the centre breaks
+    }
+    ClearanceRow(k, l, at, v0, rows);
+  }
+}
+
+void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows) {
+  const RobotKinematics& kinematics = robot_->kinematics();
+  ClearanceOptions options;
+  options.prune_above = kClearanceRange;
+  const Clearance c =
+      LegStairClearance(kinematics, robot_->collision_model(), robot_->stair_model(), l, rows.q, at, *stance_ws_, options);
+  if (!(c.distance < kClearanceRange) || c.shape < 0 || c.leg != l) return;
+  Eigen::Vector3d normal = c.point_robot_W - c.point_other_W;
+  const double length = normal.norm();
+  if (!(length > 1e-9)) return;  // touching: no direction to move away in
+  normal *= (c.distance < 0.0 ? -1.0 : 1.0) / length;
+  // The closest point, fixed on its link, moves with the body and with the joints, which turn
+  // to keep the foot on its contact.
+  const LegKinematics& kin = kinematics.leg(l);
+  LegWorkspace& ws = stance_ws_->leg(l);
+  const int segment = robot_->collision_model().leg_shapes(l)[static_cast<std::size_t>(c.shape)].segment;
+  const auto point_at = [&](const BodyPose& pose, const Eigen::Vector3d& q) -> Eigen::Isometry3d {
+    const Eigen::Isometry3d body_W = pose.ToIsometry();
+    return segment < 0 ? body_W : body_W * kin.LinkFrames(q, ws)[static_cast<std::size_t>(segment)];
+  };
+  const Eigen::Vector3d point_link = point_at(at, rows.q).inverse() * c.point_robot_W;
+  Eigen::Vector4d grad;
+  for (int v = 0; v < 4; ++v) {
+    const Eigen::Vector3d p = point_at(Moved(at, v, kPointStep), rows.q + kPointStep * rows.dq.col(v)) * point_link;
+    grad[v] = normal.dot(p - c.point_robot_W) / kPointStep;
+  }
+  const double norm = grad.norm();
+  if (!(norm > 1e-9)) return;
+  const int row = BodyQp::ClearanceRow(k, l);
+  qp_->clearance.a.row(row) = (grad / norm).transpose();
+  const double lo = (settings_.clearance_margin + kClearanceInset - c.distance) / norm;
+  qp_->clearance.lo[row] = lo + grad.dot(v0) / norm;
+  qp_->clearance.sigma[row] = std::max(lo, 0.0);
+}
+
+}  // namespace stairplan
