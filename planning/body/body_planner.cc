@@ -321,16 +321,22 @@ void BodyPlanner::SupportRows(int k, double t, double pitch) {
     qp.support_cx[row] = normal.x() * com_.gain.x() * heading;
     qp.support_cy[row] = normal.y() * com_.gain.y() * heading;
     const double edge = normal.dot(pi) - normal.dot(com_base);
-    // A previous plan beyond the row (a swing that just came into the horizon) keeps the QP
-    // feasible through the knot's relaxation, whose penalty brings it back as fast as the
-    // acceleration limits let it.
     const double previous = qp.support_cx[row] * previous_x + qp.support_cy[row] * previous_y;
+    // A previous plan beyond the row (a swing that just came into the horizon) must come back by
+    // half of what the trust region lets the row move per cycle: the row gives way to it, as the
+    // hip rows do, so the QP stays feasible. In the retry (pull_in_ = 0) it only holds it.
+    const double pull = pull_in_ > 0.0 ? std::max(pull_in_, 0.5 * (std::abs(qp.support_cx[row]) * settings_.trust_shift +
+                                                                   std::abs(qp.support_cy[row]) * settings_.trust_lateral))
+                                       : 0.0;
     if (below > 0) {
-      qp.support_hi[row] = edge - settings_.stability_margin;  // the others below
-      qp.support_sigma[row] = std::min(qp.support_hi[row] - previous, 0.0);
+      // The others below: normal . COM <= edge - margin.
+      double hi = edge - settings_.stability_margin;
+      if (has_previous_ && previous > hi) hi = std::max(hi, previous - pull);
+      qp.support_hi[row] = hi;
     } else {
-      qp.support_lo[row] = edge + settings_.stability_margin;
-      qp.support_sigma[row] = std::max(qp.support_lo[row] - previous, 0.0);
+      double lo = edge + settings_.stability_margin;
+      if (has_previous_ && previous < lo) lo = std::min(lo, previous + pull);
+      qp.support_lo[row] = lo;
     }
   }
 }

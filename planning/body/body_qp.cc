@@ -91,15 +91,18 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
                                              "acceleration");
   const Eigen::VectorXd lateral_accel = Eigen::VectorXd::Constant(n - 2, settings_.max_lateral_accel * dt * dt);
   lateral_program.AddLinearConstraint({{lateral_, d2}}, -lateral_accel, lateral_accel, "lateral_acceleration");
-  // The weight shifts come to rest at the horizon's end: a plan ending in motion toward a shift
-  // limit leaves the next cycle, whose last knot lies beyond, no way to stop within the
-  // acceleration limits (the plan shifted by a cycle is then outside the QP's feasible set).
+  // With stance rows the weight shifts come to rest at the horizon's end: a plan ending in motion
+  // toward a shift limit leaves the next cycle, whose last knot lies beyond, no way to stop within
+  // the acceleration limits (the plan shifted by a cycle is then outside the QP's feasible set).
+  // Without them (the default) the NLP refinement's test found Ipopt failing from such plans.
   Eigen::MatrixXd last = Eigen::MatrixXd::Zero(1, n);
   last(0, n - 2) = -1.0;
   last(0, n - 1) = 1.0;
   const Eigen::VectorXd rest = Eigen::VectorXd::Zero(1);
-  program_.AddLinearConstraint({{shift_, last}}, rest, rest, "shift_at_rest");
-  lateral_program.AddLinearConstraint({{lateral_, last}}, rest, rest, "lateral_at_rest");
+  if (stance_rows) {
+    program_.AddLinearConstraint({{shift_, last}}, rest, rest, "shift_at_rest");
+    program_.AddLinearConstraint({{lateral_, last}}, rest, rest, "lateral_at_rest");
+  }
 
   // Support rows: free until the planner gives them feet (none when the lateral QP is apart).
   const int support_count = lateral_apart_ ? 0 : kSupportRows * n;

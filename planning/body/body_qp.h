@@ -11,7 +11,8 @@
 //        (legs whose hips share c, e.g. the front pair, share a row: half the rows to scan;
 //        the solver copes with identical rows, tests/optim/active_set_degenerate_test.cc)
 //        |second differences| <= max accel * dt^2        height, pitch, shift, lateral
-//        shift and lateral at rest over the last two knots (the next cycle can always stop)
+//        with stance rows: shift and lateral at rest over the last two knots (the next cycle can
+//        always stop)
 //        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k + e_kr relax_k <= support_hi_kr
 //                                 one row per knot and pair r of legs (6): the COM on the inner
 //                                 side of the support polygon's edge between the two feet
