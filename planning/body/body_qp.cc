@@ -44,7 +44,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   shift_ = program_.AddVariables("com_shift", n);
   optim::Program& lateral_program = lateral_apart_ ? lateral_program_ : program_;
   lateral_ = lateral_program.AddVariables("com_shift_y", n);
-  if (!lateral_apart_) {
+  if (stance_rows) {
     relax_ = program_.AddVariables("relax", n);
     program_.SetVariableBounds(relax_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Ones(n));
   }
@@ -63,7 +63,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   program_.AddCrossQuadraticCost(z_, pitch_, 2.0 * wh * sum_c * identity);
   program_.AddQuadraticCost(shift_, 2.0 * settings_.shift_weight * identity + smooth, zero);
   lateral_program.AddQuadraticCost(lateral_, 2.0 * settings_.lateral_weight * identity + smooth, zero);
-  if (!lateral_apart_) program_.AddQuadraticCost(relax_, 2.0 * kRelaxCurvature * identity, Eigen::VectorXd::Constant(n, kRelaxPenalty));
+  if (stance_rows) program_.AddQuadraticCost(relax_, 2.0 * kRelaxCurvature * identity, Eigen::VectorXd::Constant(n, kRelaxPenalty));
 
   // Hip rows: z_k + c_g pitch_k, row k * groups + g.
   Eigen::MatrixXd a_z = Eigen::MatrixXd::Zero(groups_ * n, n), a_p = a_z;
@@ -95,11 +95,11 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   // toward a shift limit leaves the next cycle, whose last knot lies beyond, no way to stop within
   // the acceleration limits (the plan shifted by a cycle is then outside the QP's feasible set).
   // Without them (the default) the NLP refinement's test found Ipopt failing from such plans.
-  Eigen::MatrixXd last = Eigen::MatrixXd::Zero(1, n);
-  last(0, n - 2) = -1.0;
-  last(0, n - 1) = 1.0;
-  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(1);
   if (stance_rows) {
+    Eigen::MatrixXd last = Eigen::MatrixXd::Zero(1, n);
+    last(0, n - 2) = -1.0;
+    last(0, n - 1) = 1.0;
+    const Eigen::VectorXd rest = Eigen::VectorXd::Zero(1);
     program_.AddLinearConstraint({{shift_, last}}, rest, rest, "shift_at_rest");
     program_.AddLinearConstraint({{lateral_, last}}, rest, rest, "lateral_at_rest");
   }
@@ -111,16 +111,13 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   if (lateral_apart_) {
     support_rows_ = {"support", program_.num_rows(), 0};
   } else {
-    support_rows_ = program_.AddLinearConstraint(
-        {{shift_, no_coefficients}, {lateral_, no_coefficients}, {relax_, no_coefficients}}, -support_free,
-        support_free, "support");
+    support_rows_ = program_.AddLinearConstraint({{shift_, no_coefficients}, {lateral_, no_coefficients}}, -support_free,
+                                                 support_free, "support");
   }
   support_cx.setZero(kSupportRows * n);
   support_cy.setZero(kSupportRows * n);
-  support_sigma.setZero(kSupportRows * n);
   pushed_cx_ = support_cx;
   pushed_cy_ = support_cy;
-  pushed_sigma_ = support_sigma;
   support_lo.setConstant(kSupportRows * n, -optim::kInf);
   support_hi.setConstant(kSupportRows * n, optim::kInf);
   coefficient_row_.setZero(1, n);
@@ -209,18 +206,13 @@ void BodyQp::PushSupportRows() {
   // Only rows whose feet changed get new coefficients: the solver keeps its factorisation when
   // they are inactive (the planner changes a pair's feet only while its row is free).
   for (int row = 0; row < static_cast<int>(support_cx.size()); ++row) {
-    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row] &&
-        support_sigma[row] == pushed_sigma_[row]) {
-      continue;
-    }
+    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row]) continue;
     const int k = row / kSupportRows;
     single_row_.start = support_rows_.start + row;
     SetCoefficient(single_row_, shift_, k, support_cx[row]);
     SetCoefficient(single_row_, lateral_, k, support_cy[row]);
-    SetCoefficient(single_row_, relax_, k, support_sigma[row]);
     pushed_cx_[row] = support_cx[row];
     pushed_cy_[row] = support_cy[row];
-    pushed_sigma_[row] = support_sigma[row];
   }
   program_.SetConstraintBounds(support_rows_, support_lo, support_hi);
 }

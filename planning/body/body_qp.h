@@ -13,23 +13,24 @@
 //        |second differences| <= max accel * dt^2        height, pitch, shift, lateral
 //        with stance rows: shift and lateral at rest over the last two knots (the next cycle can
 //        always stop)
-//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k + e_kr relax_k <= support_hi_kr
+//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k <= support_hi_kr
 //                                 one row per knot and pair r of legs (6): the COM on the inner
 //                                 side of the support polygon's edge between the two feet
 //        stance_lo_klj <= a_klj . (z_k, pitch_k, shift_k, lateral_k) + e_klj relax_k <= stance_hi_klj
 //                                 per knot, stance leg l and row j (4): its three joints within
 //                                 their limits and its extension within the knee's range,
 //                                 linearised through the leg's KDL Jacobian (stance_leg_rows.h)
+//        clearance_lo_kl <= b_kl . (z_k, pitch_k, shift_k, lateral_k) + e_kl relax_k
+//                                 per knot and stance leg: its links clear of the stairs (FCL)
 //        variable bounds (limits intersected with the cycle's trust region; knot 0 pinned)
 //
-// relax_k in [0, 1] is one elastic variable per knot, the share of the linearisation point's
+// With stance rows, relax_k in [0, 1] is one elastic variable per knot, the share of the linearisation point's
 // violations (e: the violated bound minus the row's value there, 0 for rows it satisfies) the plan
 // may keep at that knot, with an exact penalty (kRelaxPenalty). At relax_k = 1 the point itself
 // satisfies every row, so the QP is feasible whatever the previous plan broke (a swing that came
 // into the horizon, a linearisation that moved), and rows the point satisfies stay hard.
 //
-// Without stability and stance rows (stability_margin < 0 and no kinematics, as with a fake
-// BodyBounds) nothing couples the sideways shift to the rest, so it is its own small QP with its
+// Without stability and stance rows (stability_margin < 0, stance rows off) nothing couples the sideways shift to the rest, so it is its own small QP with its
 // own solver (lateral_program()): the per-cycle solver's cost grows with n^2 per active-set change.
 //
 // c_l = -hip_x_l cos(pitch_nominal) is the hip's height change per unit pitch at the flight's
@@ -103,16 +104,15 @@ class BodyQp {
   /// (+-inf: none). Coefficients are pushed only where they changed.
   Eigen::VectorXd support_cx, support_cy, support_lo, support_hi;
   ///@}
-  /// Support rows' relaxation coefficients: the violated bound minus the row's value at the
-  /// linearisation point (0 where it holds there).
-  Eigen::VectorXd support_sigma;
   /// Rows of one family over one knot's (z, pitch, shift, lateral) each, softened by its relaxation.
   struct KnotRows {
     Eigen::MatrixXd a;       ///< coefficients, one row per constraint (4 columns)
     ///@{
     Eigen::VectorXd lo, hi;  ///< bounds (+-inf: none; the coefficients of a free row are ignored)
     ///@}
-    Eigen::VectorXd sigma;   ///< relaxation coefficients as support_sigma's
+    /// Relaxation coefficients: the violated bound minus the row's value at the linearisation
+    /// point (0 where it holds there).
+    Eigen::VectorXd sigma;
   };
   /// The stance legs' joint and extension rows, StanceRow(k, leg, j).
   KnotRows stance;
@@ -156,7 +156,7 @@ class BodyQp {
   const optim::ConstraintRows& clearance_rows() const { return clearance_.rows; }
   /// True when the program has the stance legs' rows (joints, extension, clearance).
   bool has_stance_rows() const { return stance_.rows.size > 0; }
-  /// The relaxation variables, one per knot, in program() (empty when lateral_apart()).
+  /// The relaxation variables, one per knot, in program() (empty without stance rows).
   const optim::VariableBlock& relax() const { return relax_; }
   /// Writes the linear cost of the current inputs into the program (done by Solve too); lets
   /// other solvers (Ipopt, for comparison) solve the same QP.
@@ -185,7 +185,7 @@ class BodyQp {
   PushedRows stance_, clearance_;
   optim::ActiveSetQpSolver solver_;
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
-  Eigen::VectorXd pushed_cx_, pushed_cy_, pushed_sigma_;  // support coefficients in the program
+  Eigen::VectorXd pushed_cx_, pushed_cy_;  // support coefficients in the program
   Eigen::MatrixXd coefficient_row_;        // 1 x knots, zero but for one entry
   optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
   optim::ConstraintRows one_row_;          // one row of a KnotRows family (likewise)

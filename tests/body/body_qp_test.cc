@@ -49,7 +49,7 @@ TEST_CASE("the sideways shift solved apart gives the joint QP's plan", "[body][q
   const int n = apart.knots();
   CHECK(apart.program().num_variables() == 3 * n);
   CHECK(apart.lateral_program().num_variables() == n);
-  CHECK(joint.program().num_variables() == 5 * n);  // and one relaxation per knot
+  CHECK(joint.program().num_variables() == 4 * n);
   FillInputs(&apart);
   FillInputs(&joint);
   optim::SolveResult a, j;
