@@ -91,15 +91,17 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
                                              "acceleration");
   const Eigen::VectorXd lateral_accel = Eigen::VectorXd::Constant(n - 2, settings_.max_lateral_accel * dt * dt);
   lateral_program.AddLinearConstraint({{lateral_, d2}}, -lateral_accel, lateral_accel, "lateral_acceleration");
-  // With stance rows the weight shifts come to rest at the horizon's end: a plan ending in motion
-  // toward a shift limit leaves the next cycle, whose last knot lies beyond, no way to stop within
-  // the acceleration limits (the plan shifted by a cycle is then outside the QP's feasible set).
-  // Without them (the default) the NLP refinement's test found Ipopt failing from such plans.
+  // With stance rows the pitch and the weight shifts come to rest at the horizon's end: a plan
+  // ending in motion toward a limit leaves the next cycle, whose last knot lies beyond, no way to
+  // stop within the acceleration limits (the plan shifted by a cycle is then outside the QP's
+  // feasible set). Without them (the default) the NLP refinement's test found Ipopt failing from
+  // such plans.
   if (stance_rows) {
     Eigen::MatrixXd last = Eigen::MatrixXd::Zero(1, n);
     last(0, n - 2) = -1.0;
     last(0, n - 1) = 1.0;
     const Eigen::VectorXd rest = Eigen::VectorXd::Zero(1);
+    program_.AddLinearConstraint({{pitch_, last}}, rest, rest, "pitch_at_rest");
     program_.AddLinearConstraint({{shift_, last}}, rest, rest, "shift_at_rest");
     program_.AddLinearConstraint({{lateral_, last}}, rest, rest, "lateral_at_rest");
   }
