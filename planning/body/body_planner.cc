@@ -179,6 +179,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.shift_lo[k] = std::max(-smax, s0 - settings_.trust_shift);
       qp.shift_hi[k] = std::min(smax, s0 + settings_.trust_shift);
       v0 << (has_previous_ ? PreviousAt(previous_z_, t) : state.z), p0, s0, y0;
+      if (k == 1) KeepAccelerationAcrossCycles(state, now);
     }
     const double feet_pitch = schedule_.FeetPitch(knot_phases);
     qp.pitch_ref[k] = std::clamp(feet_pitch + command.pitch_offset, -pmax, pmax);
@@ -266,6 +267,27 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     at.yaw = schedule_.yaw();
     StanceRows(k, at, v0);
   }
+}
+
+void BodyPlanner::KeepAccelerationAcrossCycles(const BodyState& state, double now) {
+  // Knot 0 is the state, the body executed a cycle ago is the previous plan's at now - dt (the
+  // state itself before there is a plan): knot 1 may differ from their straight line by the
+  // acceleration limit, as the rows within the horizon ask of every other knot. Without this each
+  // cycle may pick a new velocity, and the executed body jumps where a row enters the horizon.
+  if (!has_previous_) return;
+  BodyQp& qp = *qp_;
+  const double dt = settings_.knot_dt, t = now - dt;
+  const auto window = [&](double current, double before, double max_accel, double& lo, double& hi) {
+    const double straight = 2.0 * current - before, reach = max_accel * dt * dt;
+    lo = std::max(lo, straight - reach);
+    hi = std::min(hi, straight + reach);
+    if (lo > hi) lo = hi = std::clamp(straight, hi, lo);  // the trust region or a limit is nearer: its edge
+  };
+  window(state.z, PreviousAt(previous_z_, t), settings_.max_height_accel, qp.z_lo[1], qp.z_hi[1]);
+  window(state.pitch, PreviousAt(previous_pitch_, t), settings_.max_pitch_accel, qp.pitch_lo[1], qp.pitch_hi[1]);
+  window(state.com_shift, PreviousAt(previous_shift_, t), settings_.max_shift_accel, qp.shift_lo[1], qp.shift_hi[1]);
+  window(state.com_shift_y, PreviousAt(previous_lateral_, t), settings_.max_lateral_accel, qp.lateral_lo[1],
+         qp.lateral_hi[1]);
 }
 
 void BodyPlanner::SupportRows(int k, double t, double pitch) {

@@ -130,15 +130,20 @@ class BodyPlanner {
   void Initialise(const RobotModel& robot, const Staircase& stairs);
   // Fills the QP's inputs around the previous plan; returns the number of conflicting rows.
   void Linearise(const BodyState& state, const BodyCommand& command, double now);
+  // Bounds knot 1 so that the body executed a cycle ago, the state and knot 1 keep within the
+  // acceleration limits.
+  void KeepAccelerationAcrossCycles(const BodyState& state, double now);
   // Knot k's support rows: the COM estimate inside the polygon of the legs standing through
   // knots k-1..k+1, shrunk by the stability margin (rows free where no polygon applies).
   void SupportRows(int k, double t, double pitch);
-  // Knot k's stance rows: every stance leg's joints and extension linearised at the pose `at`
-  // (the trust region's centre; rows free for swing legs, at knot 0 and without kinematics).
+  // Knot k's leg rows: every leg's joints, extension and clearance linearised at the pose `at`
+  // (the trust region's centre), a stance leg's foot on its contact, a swing leg's on its swing
+  // trajectory (rows free at knot 0 and without kinematics).
   void StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v0);
   // Leg l's clearance row at knot k: its closest link point's distance to the stairs (FCL),
-  // linearised through `rows`' joint derivative; free when the leg is far from them.
-  void ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows);
+  // linearised through `rows`' joint derivative; free when the leg is far from them. A swing
+  // leg's foot contact shape is left out (its path is the swing trajectory's).
+  void ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows, bool swing);
   // Moves knot k's shift reference to the shift that widens its narrowest stance-leg range.
   void RestoreShift(int k, double neutral_x, double pitch_lo, double pitch_hi, double width);
   // Previous plan's pitch and shift at time t (held beyond its ends).
