@@ -115,6 +115,7 @@ Clearance ShapesAgainstStairs(const std::vector<CollisionShape>& shapes, const P
   const auto& solids = stairs.solids();
   for (std::size_t i = 0; i < shapes.size(); ++i) {
     const CollisionShape& shape = shapes[i];
+    if (options.skip_foot_contact && shape.foot_contact) continue;
     const Eigen::Isometry3d pose_W = pose_of(shape);
     const double support_z = support_z_of(shape, pose_W);
     for (std::size_t s = 0; s < solids.size(); ++s) {

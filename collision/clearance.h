@@ -38,6 +38,9 @@ struct ClearanceOptions {
   /// other treads, and the support itself when they dip below the contact.
   bool skip_foot_support = true;
   double support_tolerance = 2e-3;  ///< [m]
+  /// Leaves the foot's contact shape out: a swing foot goes where its swing trajectory takes it,
+  /// so a body planner's rows look at the rest of the leg, which the body does move.
+  bool skip_foot_contact = false;
   /// Shape pairs that are surely farther apart than this are not measured: a result at or above
   /// it then says only "at least this far". For yes/no checks against a margin (stance checks
   /// probe thousands of poses); infinity (the default) measures the exact clearance.

@@ -17,6 +17,9 @@ constexpr double kClearanceRange = 0.05;
 // Clearance the rows keep beyond clearance_margin: the validator asks 5 mm of every leg link,
 // and a millimetre covers the linearisation between cycles [m].
 constexpr double kClearanceInset = 0.006;
+// A swing leg's links sweep past the stairs between knots (its foot moves up to a centimetre per
+// knot near a nosing): they keep this much more [m].
+constexpr double kSwingClearanceInset = 0.006;
 // Step of the finite differences of the closest point's motion [m or rad].
 constexpr double kPointStep = 1e-5;
 
@@ -45,14 +48,17 @@ void BodyPlanner::StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v
       qp.stance.hi[first + j] = optim::kInf;
     }
     qp.clearance.lo[BodyQp::ClearanceRow(k, l)] = -optim::kInf;
+    if (k == 0) continue;  // knot 0 is the measured state
     const LegPhase& phase = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
-    if (k == 0 || !phase.stance) continue;  // knot 0 is the measured state
+    // A swing leg's foot is where its swing trajectory has it at the knot: its joints and links
+    // answer to the body's motion as a stance leg's do.
+    const Eigen::Vector3d contact = phase.stance ? phase.foot_W : schedule_.SwingFoot(l, phase);
     const LegKinematics& kin = robot_->kinematics().leg(l);
     LegWorkspace& ws = stance_ws_->leg(l);
     Eigen::Vector3d& q = stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)];
     // The foot's sphere rests on the contact; its offset from the foot origin turns with the foot.
     const Eigen::Matrix3d foot_rotation = body_rotation * kin.FootPose(q, ws).linear();
-    const Eigen::Vector3d origin = FootOriginForContact(kin.model(), phase.foot_W, foot_rotation);
+    const Eigen::Vector3d origin = FootOriginForContact(kin.model(), contact, foot_rotation);
     const StanceLegRows rows = LinearizeStanceLeg(kin, ws, origin, at, q, margins);
     q = rows.q;
     for (int j = 0; j < BodyQp::kStanceRows; ++j) {
@@ -65,14 +71,16 @@ void BodyPlanner::StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v
       qp.stance.hi[first + j] = hi + at_v0;
       qp.stance.sigma[first + j] = lo > 0.0 ? lo : hi < 0.0 ? hi : 0.0;  // what the centre breaks
     }
-    ClearanceRow(k, l, at, v0, rows);
+    ClearanceRow(k, l, at, v0, rows, !phase.stance);
   }
 }
 
-void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows) {
+void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows,
+                               bool swing) {
   const RobotKinematics& kinematics = robot_->kinematics();
   ClearanceOptions options;
   options.prune_above = kClearanceRange;
+  options.skip_foot_contact = swing;
   const Clearance c =
       LegStairClearance(kinematics, robot_->collision_model(), robot_->stair_model(), l, rows.q, at, *stance_ws_, options);
   if (!(c.distance < kClearanceRange) || c.shape < 0 || c.leg != l) return;
@@ -99,7 +107,8 @@ void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Ve
   if (!(norm > 1e-9)) return;
   const int row = BodyQp::ClearanceRow(k, l);
   qp_->clearance.a.row(row) = (grad / norm).transpose();
-  const double lo = (settings_.clearance_margin + kClearanceInset - c.distance) / norm;
+  const double inset = kClearanceInset + (swing ? kSwingClearanceInset : 0.0);
+  const double lo = (settings_.clearance_margin + inset - c.distance) / norm;
   qp_->clearance.lo[row] = lo + grad.dot(v0) / norm;
   qp_->clearance.sigma[row] = std::max(lo, 0.0);
 }
