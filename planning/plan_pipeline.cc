@@ -215,8 +215,10 @@ PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs
 
 PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& given) {
   const PipelineOptions options = ForFootstepSource(given);
-  // The paper's crawl plans at the paper's posture whatever crawl.body says: nothing to retry.
-  const std::size_t retries = IsPaperCrawl(options.footsteps) ? 0 : options.posture_retries.size();
+  // The paper's crawl plans at the paper's posture whatever crawl.body says, and the body
+  // optimisation finds its own: only the quasi-static path retries postures.
+  const bool retry = !IsPaperCrawl(options.footsteps) && options.body == BodySource::kQuasiStaticPath;
+  const std::size_t retries = retry ? options.posture_retries.size() : 0;
   const RobotKinematics kinematics(robot);
   PipelineResult first;
   bool near_miss = false;
@@ -225,8 +227,6 @@ PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, con
     if (attempt > 0) {
       const BodyPosture& posture = options.posture_retries[attempt - 1];
       if (posture.near_miss_only && !near_miss) continue;
-      // The body QP's reach bounds do not hold on keep_stance_length's footholds (CrawlSettings).
-      if (posture.keep_stance_length && options.body != BodySource::kQuasiStaticPath) continue;
       tried.crawl.body.hip_height_fraction = posture.hip_height_fraction;
       tried.crawl.body.pitch_fraction = posture.pitch_fraction;
       tried.crawl.keep_stance_length = options.crawl.keep_stance_length || posture.keep_stance_length;
