@@ -1,8 +1,8 @@
 // The validator's dynamic-feasibility check for one robot: at an instant of a plan, the wrench
 // the body's motion needs (m (a - g) from the COM acceleration, dL/dt from the body's angular
-// acceleration and the base link's URDF inertia) must come from the stance feet's contact forces
-// inside their friction pyramids and within the legs' effort limits (tau = J^T f with the KDL foot
-// Jacobian). The QP is ContactWrenchQp; this file turns the robot and the instant into its input.
+// acceleration and the URDF inertia of the base and the links fixed to it) must come from the
+// stance feet's contact forces inside their friction pyramids and within the legs' effort limits
+// (tau = J^T f with the KDL foot Jacobian). The QP is ContactWrenchQp; this file turns the robot and the instant into its input.
 //
 // What it leaves out, knowingly: the legs' own inertia and weight in the joint torques (the legs
 // are light beside the base), the momentum of the legs' motion, the Euler-rate products of the
@@ -44,7 +44,7 @@ class ContactWrenchCheck {
 
   /// False when some joint of the URDF has no effort limit (effort <= 0): then no torque row binds.
   bool torque_limits_checked() const { return torque_limits_checked_; }
-  /// False when the base link has no URDF inertia: then dL/dt is taken as zero.
+  /// False when neither the base link nor a link fixed to it has a URDF inertia: then dL/dt is zero.
   bool body_inertia_known() const { return body_inertia_known_; }
   /// The residual above which an instant fails [N].
   double tolerance() const { return qp_.tolerance(); }
@@ -52,7 +52,7 @@ class ContactWrenchCheck {
  private:
   const RobotKinematics& kinematics_;
   double mass_ = 0.0;
-  Eigen::Matrix3d inertia_B_ = Eigen::Matrix3d::Zero();  // base link, about its own centre, base axes
+  Eigen::Matrix3d inertia_B_ = Eigen::Matrix3d::Zero();  // base and fixed links, about their centre, base axes
   bool body_inertia_known_ = false;
   bool torque_limits_checked_ = false;
   std::array<Eigen::Vector3d, 4> effort_{};

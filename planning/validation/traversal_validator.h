@@ -95,7 +95,7 @@ struct ValidationSettings {
 struct DynamicsReport {
   DynamicsCheckMode mode = DynamicsCheckMode::kOff;  ///< off, reported, or part of the verdict
   bool torque_limits_checked = false;  ///< the URDF gives every joint an effort limit
-  bool body_inertia_known = false;     ///< the base link has a URDF inertia (else dL/dt = 0)
+  bool body_inertia_known = false;     ///< the base (or a link fixed to it) has a URDF inertia (else dL/dt = 0)
   double friction = 0.0;               ///< the friction coefficient it assumed
   double tolerance_n = 0.0;            ///< residual above which an instant fails [N]
   double max_residual_n = 0.0;         ///< largest wrench residual over the instants [N]
