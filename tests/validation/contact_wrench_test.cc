@@ -4,11 +4,13 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <regex>
 #include <string>
 
 #include "geometry/shapes.h"
 #include "kinematics/builtin_robot.h"
 #include "planning/plan_pipeline.h"
+#include "planning/validation/contact_wrench_check.h"
 #include "planning/validation/contact_wrench_qp.h"
 #include "planning/validation/traversal_validator.h"
 
@@ -162,6 +164,36 @@ TEST_CASE("a sideways push beyond the friction pyramid names the friction cone, 
   const WrenchResult& heavy = qp.Solve(weak, Standing(com, {0.0, 0.0, 0.8 * kG}));  // 530 N for 475 N of motors
   CHECK_FALSE(heavy.within_tolerance);
   CHECK(heavy.limit == WrenchLimit::kTorqueLimit);
+}
+
+TEST_CASE("a robot whose URDF has no effort limits is checked without torque rows, and says so", "[dynamics]") {
+  const RobotModel limited = BuiltinRobot();
+  const RobotModel unlimited = RobotModel::FromUrdfString(
+      std::regex_replace(BuiltinRobotUrdf(), std::regex("effort=\"[0-9.]+\""), "effort=\"0\""), "stairbot without efforts");
+  const RobotKinematics with(limited), without(unlimited);
+  RobotWorkspace ws_with(with), ws_without(without);
+  ContactWrenchCheck check_with(with, limited.total_mass()), check_without(without, unlimited.total_mass());
+  CHECK(check_with.torque_limits_checked());
+  CHECK_FALSE(check_without.torque_limits_checked());
+  CHECK(check_with.body_inertia_known());
+  // Standing on the nominal stance under a 5 g upward push: the motors cannot, unlimited ones can.
+  WrenchInstant instant;
+  instant.body.position_W = {0.0, 0.0, 0.45};
+  for (int l = 0; l < 4; ++l) {
+    const auto i = static_cast<std::size_t>(l);
+    instant.q[i] = with.leg(l).nominal();
+    instant.feet_W[i] = instant.body.ToIsometry() * with.leg(l).FootPosition(instant.q[i], ws_with.leg(l));
+    instant.normals_W[i] = Eigen::Vector3d::UnitZ();
+    instant.stance[i] = true;
+    instant.com_W += 0.25 * instant.feet_W[i] + Eigen::Vector3d(0, 0, 0.1);
+  }
+  instant.rates.linear_W = {0.0, 0.0, 5 * kG};
+  const WrenchResult& r_with = check_with.Check(instant, ws_with);
+  CHECK_FALSE(r_with.within_tolerance);
+  CHECK(r_with.limit == WrenchLimit::kTorqueLimit);
+  CHECK(check_without.Check(instant, ws_without).within_tolerance);
+  instant.rates.linear_W.setZero();
+  CHECK(check_with.Check(instant, ws_with).within_tolerance);
 }
 
 TEST_CASE("the contact-wrench QP rejects bad settings and inputs by name", "[dynamics]") {
