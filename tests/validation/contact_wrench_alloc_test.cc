@@ -6,6 +6,7 @@
 
 #include "alloc_counter.h"
 #include "kinematics/builtin_robot.h"
+#include "nominal_stance.h"
 #include "planning/validation/contact_wrench_check.h"
 
 using namespace stairplan;
@@ -14,15 +15,7 @@ TEST_CASE("the dynamic check allocates nothing per instant after warm-up", "[dyn
   const RobotKinematics kinematics(BuiltinRobot());
   RobotWorkspace ws(kinematics);
   ContactWrenchCheck check(kinematics, BuiltinRobot().total_mass());
-  WrenchInstant instant;
-  instant.body.position_W = {0.0, 0.0, 0.45};
-  for (int l = 0; l < 4; ++l) {
-    const auto i = static_cast<std::size_t>(l);
-    instant.q[i] = kinematics.leg(l).nominal();
-    instant.feet_W[i] = instant.body.ToIsometry() * kinematics.leg(l).FootPosition(instant.q[i], ws.leg(l));
-    instant.normals_W[i] = Eigen::Vector3d::UnitZ();
-    instant.stance[i] = true;
-  }
+  WrenchInstant instant = testing::NominalStance(kinematics, ws);
   const auto step = [&](int k) {
     instant.stance[static_cast<std::size_t>(k % 4)] = k % 3 != 0;  // a foot lifts and lands
     instant.com_W = {0.02 * std::sin(0.3 * k), 0.02 * std::cos(0.2 * k), 0.4};

@@ -13,6 +13,7 @@
 #include "planning/validation/contact_wrench_check.h"
 #include "planning/validation/contact_wrench_qp.h"
 #include "planning/validation/traversal_validator.h"
+#include "nominal_stance.h"
 #include "sanitized.h"
 
 using namespace stairplan;
@@ -185,16 +186,7 @@ TEST_CASE("a robot whose URDF has no effort limits is checked without torque row
   CHECK_FALSE(check_without.torque_limits_checked());
   CHECK(check_with.body_inertia_known());
   // Standing on the nominal stance under a 5 g upward push: the motors cannot, unlimited ones can.
-  WrenchInstant instant;
-  instant.body.position_W = {0.0, 0.0, 0.45};
-  for (int l = 0; l < 4; ++l) {
-    const auto i = static_cast<std::size_t>(l);
-    instant.q[i] = with.leg(l).nominal();
-    instant.feet_W[i] = instant.body.ToIsometry() * with.leg(l).FootPosition(instant.q[i], ws_with.leg(l));
-    instant.normals_W[i] = Eigen::Vector3d::UnitZ();
-    instant.stance[i] = true;
-    instant.com_W += 0.25 * instant.feet_W[i] + Eigen::Vector3d(0, 0, 0.1);
-  }
+  WrenchInstant instant = testing::NominalStance(with, ws_with);
   instant.rates.linear_W = {0.0, 0.0, 5 * kG};
   const WrenchResult& r_with = check_with.Check(instant, ws_with);
   CHECK_FALSE(r_with.within_tolerance);
