@@ -47,12 +47,22 @@ nlohmann::json StairsToJson(const Staircase& stairs) {
 nlohmann::json ValidationToJson(const ValidationReport& report) {
   nlohmann::json violations = nlohmann::json::array();
   for (const Violation& v : report.violations) {
-    violations.push_back({{"t", v.t}, {"leg", v.leg}, {"kind", ToString(v.kind)}, {"value", v.value}, {"detail", v.detail}});
+    violations.push_back({{"t", v.t}, {"leg", v.leg}, {"kind", ToString(v.kind)}, {"family", ToString(FamilyOf(v.kind))},
+                          {"value", v.value}, {"detail", v.detail}});
   }
   const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  const DynamicsReport& d = report.dynamics;
+  nlohmann::json dynamics = {{"mode", ToString(d.mode)}, {"torque_limits_checked", d.torque_limits_checked},
+                             {"body_inertia_known", d.body_inertia_known}, {"friction", d.friction},
+                             {"tolerance_n", d.tolerance_n}, {"max_residual_n", finite(d.max_residual_n)},
+                             {"max_residual_t", d.max_residual_t}, {"failed_instants", d.failed_instants}};
+  if (d.failed_instants > 0) {
+    dynamics["first_failure"] = {{"t", d.first_failure_t}, {"kind", ToString(d.first_failure_kind)},
+                                 {"leg", ToString(d.first_failure_leg)}};
+  }
   return {{"ok", report.ok}, {"min_clearance_m", finite(report.min_clearance_m)},
           {"min_stability_margin_m", finite(report.min_stability_margin_m)}, {"samples", report.samples},
-          {"violations", violations}};
+          {"dynamics", dynamics}, {"violations", violations}};
 }
 
 namespace {

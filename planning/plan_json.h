@@ -14,7 +14,10 @@ namespace stairplan {
 
 /// The resolved staircase as JSON (spec fields plus per-surface geometry).
 nlohmann::json StairsToJson(const Staircase& stairs);
-/// The validator's report: ok, min_clearance_m, min_stability_margin_m, violations [{t, leg, kind, value, detail}].
+/// The validator's report: ok, min_clearance_m, min_stability_margin_m, samples, dynamics {mode,
+/// torque_limits_checked, body_inertia_known, friction, tolerance_n, max_residual_n, max_residual_t,
+/// failed_instants, first_failure {t, kind, leg} when one fails}, violations [{t, leg, kind, family,
+/// value, detail}].
 nlohmann::json ValidationToJson(const ValidationReport& report);
 /// The whole plan: robot, stairs, map regions, footsteps, body, cadence, status, timings, and the
 /// version and schema_version of the writer.

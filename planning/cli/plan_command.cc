@@ -14,6 +14,7 @@
 #include "geometry/stair_spec_yaml.h"
 #include "planning/cli/cli_common.h"
 #include "planning/cli/stair_flags.h"
+#include "planning/cli/validator_flags.h"
 #include "planning/plan_pipeline.h"
 #include "planning/plan_json.h"
 #include "planning/plan_svg.h"
@@ -76,25 +77,26 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
                "Start at the alignment pose, the feet in the robot's standing stance there (default: on the crawl's "
                "footholds nearest under the hips; plan.json's alignment.plan_start_offset_m says how far that is)");
   app.add_flag("--json", o.json, "Print the plan JSON on stdout instead of the summary");
-  app.add_option("--set", o.set, "Override a body planner setting, body.NAME=VALUE (e.g. body.stability_margin=0.03)");
+  app.add_option("--set", o.set,
+                 "Override a body planner or validator setting, body.NAME=VALUE or validator.NAME=VALUE (e.g. "
+                 "body.stability_margin=0.03, validator.friction=0.5)");
 }
 
-// --set body.NAME=VALUE: the body planner's settings by their field names.
+// --set body.NAME=VALUE / validator.NAME=VALUE: the body planner's or the validator's settings by
+// their field names.
 void ApplySettings(const std::vector<std::string>& assignments, PipelineOptions& options) {
   for (const std::string& a : assignments) {
     const std::size_t eq = a.find('=');
-    const std::string prefix = "body.";
+    const bool validator = a.rfind("validator.", 0) == 0;
+    const std::string prefix = validator ? "validator." : "body.";
     if (eq == std::string::npos || a.compare(0, prefix.size(), prefix) != 0) {
-      throw BadInput("--set: expected body.NAME=VALUE (got '" + a + "')");
+      throw BadInput("--set: expected body.NAME=VALUE or validator.NAME=VALUE (got '" + a + "')");
     }
-    double value = 0.0;
-    try {
-      std::size_t used = 0;
-      value = std::stod(a.substr(eq + 1), &used);
-      if (used != a.size() - eq - 1) throw std::invalid_argument("trailing characters");
-    } catch (const std::exception&) {
-      throw BadInput("--set: '" + a.substr(eq + 1) + "' is not a number (in '" + a + "')");
+    if (validator) {
+      ApplyValidatorSetting(a, options.validation);
+      continue;
     }
+    const double value = SettingValue(a);
     try {
       options.body_qp.Set(a.substr(prefix.size(), eq - prefix.size()), value);
       options.body_qp.Validate();
@@ -197,6 +199,7 @@ void PrintValidation(const PipelineResult& result) {
   const ValidationReport& v = result.validation;
   std::cout << "  validated: " << (v.ok ? "ok" : "VIOLATIONS") << ", min clearance " << v.min_clearance_m * 1000
             << " mm, min stability margin " << v.min_stability_margin_m * 1000 << " mm\n";
+  std::cout << "  " << DynamicsSummary(v) << "\n";
   if (!v.violations.empty()) {
     const Violation& first = v.violations.front();
     std::cout << "  first violation: t=" << first.t << " s, " << first.leg << ", " << ToString(first.kind) << " ("

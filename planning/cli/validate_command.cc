@@ -5,6 +5,7 @@
 
 #include "planning/cli/cli_common.h"
 #include "planning/cli/stair_flags.h"
+#include "planning/cli/validator_flags.h"
 #include "planning/json_version.h"
 #include "planning/plan_json.h"
 #include "planning/plan_json_reader.h"
@@ -15,7 +16,7 @@ namespace stairplan::cli {
 namespace {
 
 int RunValidate(const std::vector<std::string>& args) {
-  CLI::App app("Validate a plan: reach, joint limits, clearances, stability, step regions", "validate");
+  CLI::App app("Validate a plan: reach, joint limits, clearances, stability, step regions, dynamics", "validate");
   std::string path, robot_path;
   StairFlags true_stairs;
   bool json = false;
@@ -25,12 +26,15 @@ int RunValidate(const std::vector<std::string>& args) {
   RobotFlags robot_flags;
   AddRobotFlags(app, robot_flags);
   app.add_flag("--json", json, "Print the validation report as JSON");
+  std::vector<std::string> settings;
+  app.add_option("--set", settings, "Override a validator setting, validator.NAME=VALUE (e.g. validator.friction=0.5)");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("validate", [&] {
     const PlanFile file = ReadPlanJsonFile(path);
     const RobotModel robot = LoadPlanRobot(file, robot_path, robot_flags);
     const Staircase stairs = true_stairs.file.empty() ? Staircase(file.stairs) : ResolveStairs(true_stairs);
-    const PipelineOptions options = OptionsForPlan(file.plan);
+    PipelineOptions options = OptionsForPlan(file.plan);
+    for (const std::string& a : settings) ApplyValidatorSetting(a, options.validation);
     const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
     TraversalValidator validator(robot, stairs, map, options.validation);
     const ValidationReport report =
@@ -42,6 +46,7 @@ int RunValidate(const std::vector<std::string>& args) {
       std::cout << "stairplan validate: " << path << ": " << (report.ok ? "valid" : "INVALID") << ", "
                 << report.samples << " instants, min clearance " << report.min_clearance_m * 1000
                 << " mm, min stability margin " << report.min_stability_margin_m * 1000 << " mm\n";
+      std::cout << "  " << DynamicsSummary(report) << "\n";
       for (const Violation& v : report.violations) {
         std::cout << "  t=" << v.t << " s  " << v.leg << "  " << ToString(v.kind) << "  " << v.value
                   << (v.detail.empty() ? "" : "  " + v.detail) << "\n";

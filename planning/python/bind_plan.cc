@@ -237,8 +237,11 @@ Raises ValueError (stairplan.FieldError, `.field` names it) for a bad option or 
 FileNotFoundError for a missing file. Releases the GIL while planning.)");
   m.def("validate", &Validate, py::arg("plan"), py::arg("robot") = py::none(),
         R"(Replays a Plan or a plan.json file through the validator (IK, joint limits, clearances,
-stability, step regions, body acceleration), as `stairplan validate`. Returns the report dict:
-ok, min_clearance_m, min_stability_margin_m, violations [{t, leg, kind, value, detail}].)");
+stability, step regions, body acceleration, dynamics), as `stairplan validate`. Returns the report
+dict: ok, min_clearance_m, min_stability_margin_m, samples, dynamics {mode,
+torque_limits_checked, body_inertia_known, friction, tolerance_n, max_residual_n, max_residual_t,
+failed_instants, first_failure {t, kind, leg} when one fails}, violations [{t, leg, kind, family,
+value, detail}].)");
   m.def("simulate", &SimulatePlan, py::arg("plan"), py::arg("settings") = py::none(),
         R"(Executes a Plan in MuJoCo, as `stairplan simulate`; returns the outcome dict (success,
 cause, landings, contacts, peak torques, slip, ...). Numeric simulation settings by name, as

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "geometry/field_error.h"
+#include "planning/validation/body_rates.h"
 
 namespace stairplan {
 namespace {
@@ -13,6 +14,30 @@ namespace {
 constexpr double kTouchTolerance = 1e-4;  // a foot sphere this deep in its tread still only touches [m]
 
 bool QuasiStatic(const std::string& gait) { return gait.rfind("crawl", 0) == 0; }
+
+// The leg a violation's leg name means, kNone for the body, leg pairs and unknown names.
+LegId LegIdOfName(const RobotKinematics& kinematics, const std::string& name) {
+  for (int l = 0; l < kinematics.leg_count(); ++l) {
+    if (kinematics.leg(l).name() == name) return LegIdFromIndex(l);
+  }
+  return LegId::kNone;
+}
+
+ViolationKind KindOf(WrenchLimit limit) {
+  switch (limit) {
+    case WrenchLimit::kFrictionCone: return ViolationKind::kFrictionCone;
+    case WrenchLimit::kTorqueLimit: return ViolationKind::kTorqueLimit;
+    case WrenchLimit::kNone:
+    case WrenchLimit::kWrenchUnattainable: return ViolationKind::kWrenchUnattainable;
+  }
+  return ViolationKind::kWrenchUnattainable;
+}
+
+// Every stair surface of a Staircase is a level top (one height per surface): the normal under any
+// foot on the stairs is up. Kept as the one place to change when surfaces tilt.
+Eigen::Vector3d SurfaceNormalUnder(const Staircase& /*stairs*/, const Eigen::Vector3d& /*foot_W*/) {
+  return Eigen::Vector3d::UnitZ();
+}
 
 }  // namespace
 
@@ -26,8 +51,40 @@ const char* ToString(ViolationKind kind) {
     case ViolationKind::kBodyCollision: return "body_collision";
     case ViolationKind::kStability: return "stability";
     case ViolationKind::kBodyAcceleration: return "body_acceleration";
+    case ViolationKind::kFrictionCone: return "friction_cone";
+    case ViolationKind::kTorqueLimit: return "torque_limit";
+    case ViolationKind::kWrenchUnattainable: return "wrench_unattainable";
   }
   return "unknown";
+}
+
+const char* ToString(CheckFamily family) {
+  switch (family) {
+    case CheckFamily::kStepRegions: return "step_regions";
+    case CheckFamily::kKinematics: return "kinematics";
+    case CheckFamily::kCollision: return "collision";
+    case CheckFamily::kStability: return "stability";
+    case CheckFamily::kBodyAcceleration: return "body_acceleration";
+    case CheckFamily::kDynamics: return "dynamics";
+  }
+  return "unknown";
+}
+
+CheckFamily FamilyOf(ViolationKind kind) {
+  switch (kind) {
+    case ViolationKind::kFootOutsideStepRegion: return CheckFamily::kStepRegions;
+    case ViolationKind::kOutOfReach:
+    case ViolationKind::kJointLimits: return CheckFamily::kKinematics;
+    case ViolationKind::kStairCollision:
+    case ViolationKind::kLegCollision:
+    case ViolationKind::kBodyCollision: return CheckFamily::kCollision;
+    case ViolationKind::kStability: return CheckFamily::kStability;
+    case ViolationKind::kBodyAcceleration: return CheckFamily::kBodyAcceleration;
+    case ViolationKind::kFrictionCone:
+    case ViolationKind::kTorqueLimit:
+    case ViolationKind::kWrenchUnattainable: return CheckFamily::kDynamics;
+  }
+  return CheckFamily::kDynamics;
 }
 
 void ValidationSettings::Validate() const {
@@ -38,6 +95,27 @@ void ValidationSettings::Validate() const {
   if (max_violations < 1) throw FieldError("max_violations", "must be at least 1");
   swing.Validate();
   ik.Validate();
+  dynamics.Validate();
+}
+
+void ValidationSettings::Set(const std::string& name, double value) {
+  if (name == "dynamics") {
+    if (!(value == 0.0 || value == 1.0 || value == 2.0)) throw FieldError(name, "must be 0 (off), 1 (report) or 2 (judge)");
+    dynamics.mode = static_cast<DynamicsCheckMode>(static_cast<int>(value));
+    return;
+  }
+  if (name == "friction_faces") {
+    if (!(value >= 4 && value <= 64 && value == std::floor(value))) throw FieldError(name, "must be a whole number in [4, 64]");
+    dynamics.friction_faces = static_cast<int>(value);
+    return;
+  }
+  const std::map<std::string, double*> fields = {
+      {"friction", &dynamics.friction}, {"residual_tolerance", &dynamics.residual_tolerance},
+      {"time_step", &time_step}, {"min_clearance", &min_clearance}, {"min_stability_margin", &min_stability_margin},
+      {"max_body_acceleration", &max_body_acceleration}};
+  const auto it = fields.find(name);
+  if (it == fields.end()) throw FieldError(name, "is not a validator setting");
+  *it->second = value;
 }
 
 TraversalValidator::TraversalValidator(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
@@ -49,12 +127,18 @@ TraversalValidator::TraversalValidator(const RobotModel& robot, const Staircase&
   stance.min_clearance = settings_.min_clearance;
   checker_ = std::make_unique<StanceChecker>(robot, stairs, stance);
   com_ = std::make_unique<ComModel>(checker_->kinematics());
+  wrench_ = std::make_unique<ContactWrenchCheck>(checker_->kinematics(), com_->total_mass(), settings_.dynamics);
 }
 
 ValidationReport TraversalValidator::Validate(const Plan& plan) {
   ValidationReport report;
   report.min_clearance_m = std::numeric_limits<double>::infinity();
   report.min_stability_margin_m = std::numeric_limits<double>::infinity();
+  report.dynamics.mode = settings_.dynamics.mode;
+  report.dynamics.torque_limits_checked = wrench_->torque_limits_checked();
+  report.dynamics.body_inertia_known = wrench_->body_inertia_known();
+  report.dynamics.friction = settings_.dynamics.friction;
+  report.dynamics.tolerance_n = wrench_->tolerance();
   CheckTouchdowns(plan, report);
   if (QuasiStatic(plan.gait)) CheckBodyAcceleration(plan, report);
   std::set<double> times;
@@ -84,7 +168,8 @@ void TraversalValidator::CheckTouchdowns(const Plan& plan, ValidationReport& rep
     double distance = 0.0;
     map_.NearestStepRegion(f.position_W.head<2>(), &distance);
     report.violations.push_back({f.t_touchdown, f.leg, ViolationKind::kFootOutsideStepRegion, distance,
-                                 stair < 0 ? "off the stairs" : "stair " + std::to_string(stair)});
+                                 stair < 0 ? "off the stairs" : "stair " + std::to_string(stair),
+                                 LegIdOfName(checker_->kinematics(), f.leg)});
   }
 }
 
@@ -121,7 +206,9 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
   std::set<std::pair<std::string, ViolationKind>> seen;
   for (const Violation& v : report.violations) seen.insert({v.leg, v.kind});
   const auto add = [&](const std::string& leg, ViolationKind kind, double value, const std::string& detail) {
-    if (seen.insert({leg, kind}).second) report.violations.push_back({t, leg, kind, value, detail});
+    if (seen.insert({leg, kind}).second) {
+      report.violations.push_back({t, leg, kind, value, detail, LegIdOfName(kinematics, leg)});
+    }
   };
   for (int l = 0; l < 4; ++l) {
     const LegStance& leg = r.legs[static_cast<std::size_t>(l)];
@@ -150,6 +237,7 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
   if (!(body_clearance.distance > settings_.min_clearance)) {
     add("body", ViolationKind::kBodyCollision, body_clearance.distance, ToString(body_clearance.part));
   }
+  if (settings_.dynamics.mode != DynamicsCheckMode::kOff) CheckDynamics(plan, t, r, contacts, stance, report);
   const int stance_count = static_cast<int>(std::count(stance.begin(), stance.end(), true));
   if (stance_count >= 3 && (QuasiStatic(plan.gait) || settings_.stability_for_dynamic_gaits)) {
     std::array<Eigen::Vector3d, 4> q;
@@ -163,6 +251,43 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
     report.min_stability_margin_m = std::min(report.min_stability_margin_m, margin);
     if (margin < settings_.min_stability_margin) add("body", ViolationKind::kStability, margin, "");
   }
+}
+
+// The first instant each leg and limit fails is listed (as every other check lists its first
+// time); the summary keeps the worst residual and how many instants failed.
+void TraversalValidator::CheckDynamics(const Plan& plan, double t, const StanceResult& stance_result,
+                                       const std::array<Eigen::Vector3d, 4>& contacts, const std::array<bool, 4>& stance,
+                                       ValidationReport& report) {
+  instant_.body = BodyPoseAt(plan.body, t);
+  instant_.rates = BodyRatesAt(plan.body, t);
+  for (std::size_t l = 0; l < 4; ++l) {
+    instant_.q[l] = stance_result.legs[l].ik.q;
+    instant_.feet_W[l] = contacts[l];
+    instant_.normals_W[l] = SurfaceNormalUnder(stairs_, contacts[l]);
+    instant_.stance[l] = stance[l];
+  }
+  instant_.com_W = com_->Com(instant_.body, instant_.q, checker_->workspace());
+  const WrenchResult& w = wrench_->Check(instant_, checker_->workspace());
+  DynamicsReport& summary = report.dynamics;
+  if (w.residual > summary.max_residual_n) {
+    summary.max_residual_n = w.residual;
+    summary.max_residual_t = t;
+  }
+  if (w.within_tolerance) return;
+  const ViolationKind kind = KindOf(w.limit);
+  if (summary.failed_instants++ == 0) {
+    summary.first_failure_t = t;
+    summary.first_failure_kind = kind;
+    summary.first_failure_leg = w.leg;
+  }
+  if (settings_.dynamics.mode != DynamicsCheckMode::kJudge) return;
+  const std::string leg = w.leg == LegId::kNone ? std::string("body") : std::string(ToString(w.leg));
+  for (const Violation& v : report.violations) {
+    if (v.kind == kind && v.leg == leg) return;
+  }
+  std::string detail = "friction " + std::to_string(settings_.dynamics.friction);
+  if (!w.solved) detail += ", the QP did not solve";
+  report.violations.push_back({t, leg, kind, w.residual, detail, w.leg});
 }
 
 }  // namespace stairplan

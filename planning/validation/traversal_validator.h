@@ -1,6 +1,8 @@
-// The validator: replays a plan quasi-statically at a fine time step and proves it reachable,
-// within joint limits, collision-free (legs against the stairs, contralateral legs, the body) and
-// statically stable where the gait needs it, with every foot landing inside its step region.
+// The validator: replays a plan at a fine time step and proves it reachable, within joint limits,
+// collision-free (legs against the stairs, contralateral legs, the body), statically stable where
+// the gait needs it and dynamically feasible (contact forces in friction cones within the motors'
+// effort limits produce the body's motion: ContactWrenchCheck), with every foot landing inside its
+// step region.
 // It is our own check of our own plans; MuJoCo (planning/simulation) is the independent one.
 #pragma once
 
@@ -15,6 +17,8 @@
 #include "planning/plan_timeline.h"
 #include "planning/swing_trajectory.h"
 #include "planning/com_model.h"
+#include "planning/validation/contact_wrench_check.h"
+#include "planning/validation/leg_id.h"
 
 namespace stairplan {
 
@@ -28,9 +32,26 @@ enum class ViolationKind {
   kBodyCollision,          ///< the body closer to the stairs than the margin
   kStability,              ///< the centre of mass outside the support polygon (by less than the margin)
   kBodyAcceleration,       ///< a quasi-static plan's body accelerating faster than a robot can (value in m/s^2)
+  kFrictionCone,           ///< dynamics: a stance foot's friction pyramid binds (value: wrench residual [N])
+  kTorqueLimit,            ///< dynamics: a stance leg's effort limit binds (value: wrench residual [N])
+  kWrenchUnattainable,     ///< dynamics: the feet would have to pull, or none stands (value: wrench residual [N])
 };
 /// Returns the kind as plan.json writes it, e.g. "stair_collision".
 const char* ToString(ViolationKind kind);
+
+/// The validator's families of checks, each a question about the plan.
+enum class CheckFamily {
+  kStepRegions,  ///< every touchdown inside its step region
+  kKinematics,   ///< every foot reachable within the joint limits
+  kCollision,    ///< legs, leg pairs and the body clear of the stairs and of each other
+  kStability,    ///< a quasi-static gait's COM inside its support polygon
+  kBodyAcceleration,  ///< a quasi-static gait's body accelerating no faster than a robot can
+  kDynamics,     ///< the body's motion produced by contact forces in friction cones within effort limits
+};
+/// "step_regions", "kinematics", "collision", "stability", "body_acceleration", "dynamics".
+const char* ToString(CheckFamily family);
+/// The family a kind of violation belongs to.
+CheckFamily FamilyOf(ViolationKind kind);
 
 /// One violation found by the validator: when, which leg, what and by how much.
 struct Violation {
@@ -39,6 +60,7 @@ struct Violation {
   ViolationKind kind = ViolationKind::kStairCollision;  ///< what went wrong
   double value = 0.0;  ///< clearance, margin or distance that failed [m]; an acceleration [m/s^2]
   std::string detail;  ///< e.g. the link and stair part involved
+  LegId leg_id = LegId::kNone;  ///< the leg, when one leg is meant (kNone for the body and leg pairs)
 };
 
 /// What the validator checks and with what margins.
@@ -58,9 +80,30 @@ struct ValidationSettings {
   int max_violations = 64;             ///< violations listed at most (the first ones in time)
   SwingSettings swing;                 ///< for footsteps whose plan gives no swing apex
   IkSettings ik;  ///< IK of the feet, as the planners solve it
+  ContactWrenchSettings dynamics;  ///< the dynamic check: friction, pyramid faces, residual tolerance
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
+  /// Sets a numeric field by name: "friction", "friction_faces", "residual_tolerance" and
+  /// "dynamics" (0 off, 1 report, 2 judge) of the dynamic check, or "time_step", "min_clearance",
+  /// "min_stability_margin", "max_body_acceleration". Throws std::invalid_argument naming an
+  /// unknown field or a bad value.
+  void Set(const std::string& name, double value);
+};
+
+/// The dynamic check's summary over a plan.
+struct DynamicsReport {
+  DynamicsCheckMode mode = DynamicsCheckMode::kOff;  ///< off, reported, or part of the verdict
+  bool torque_limits_checked = false;  ///< the URDF gives every joint an effort limit
+  bool body_inertia_known = false;     ///< the base (or a link fixed to it) has a URDF inertia (else dL/dt = 0)
+  double friction = 0.0;               ///< the friction coefficient it assumed
+  double tolerance_n = 0.0;            ///< residual above which an instant fails [N]
+  double max_residual_n = 0.0;         ///< largest wrench residual over the instants [N]
+  double max_residual_t = 0.0;         ///< when it occurred [s]
+  int failed_instants = 0;             ///< instants whose residual exceeds the tolerance
+  double first_failure_t = 0.0;        ///< the first of them [s]
+  ViolationKind first_failure_kind = ViolationKind::kWrenchUnattainable;  ///< what bound there
+  LegId first_failure_leg = LegId::kNone;  ///< which leg bound there
 };
 
 /// The validator's verdict on a plan.
@@ -70,10 +113,11 @@ struct ValidationReport {
   double min_stability_margin_m = 0.0;  ///< smallest COM margin over quasi-static phases
   std::vector<Violation> violations;    ///< in time order; the first is the first violation
   int samples = 0;  ///< instants replayed
+  DynamicsReport dynamics;  ///< the dynamic check's summary
 };
 
 /// Built once per robot and staircase; Validate() may be called for many plans. Not thread-safe.
-/// Replays a plan and judges it: IK, joint limits, clearances, stability, step regions, body acceleration.
+/// Replays a plan and judges it: IK, joint limits, clearances, stability, step regions, body acceleration, dynamics.
 class TraversalValidator {
  public:
   /// Builds the robot's kinematics and collision model and the stairs' solids. Throws
@@ -88,12 +132,17 @@ class TraversalValidator {
   void CheckTouchdowns(const Plan& plan, ValidationReport& report) const;
   void CheckBodyAcceleration(const Plan& plan, ValidationReport& report) const;
   void CheckInstant(const Plan& plan, double t, ValidationReport& report);
+  // The dynamic check at one instant, from the stance result's joint angles.
+  void CheckDynamics(const Plan& plan, double t, const StanceResult& stance_result, const std::array<Eigen::Vector3d, 4>& contacts,
+                     const std::array<bool, 4>& stance, ValidationReport& report);
 
   const Staircase& stairs_;
   const ConstrainedMap& map_;
   ValidationSettings settings_;
   std::unique_ptr<StanceChecker> checker_;
   std::unique_ptr<ComModel> com_;
+  std::unique_ptr<ContactWrenchCheck> wrench_;
+  WrenchInstant instant_;  // reused by every instant
 };
 
 }  // namespace stairplan

@@ -52,6 +52,25 @@ TEST_CASE("validate catches a foot moved off its tread", "[cli][validate]") {
   CHECK_THAT(out, Catch::Contains("foot_outside_step_region"));
 }
 
+TEST_CASE("validate judges dynamics with validator settings and names a bad one", "[cli][validate]") {
+  const std::string dir = MakeTempDir("validate-dynamics");
+  const std::string plan = WritePlan(dir, FullOrSanitized<std::string>("", " --steps 3"));
+  std::string out, err;
+  // Reported by default: the summary line, the verdict untouched.
+  CHECK(Validate(plan + " --set validator.friction=0.2", dir, &out, &err) == 0);
+  CHECK_THAT(out, Catch::Contains("dynamics (report): FAILS"));
+  // Judged: the slipping foot is a violation, exit 3, and the JSON names its family.
+  CHECK(Validate(plan + " --set validator.friction=0.2 --set validator.dynamics=2 --json", dir, &out, &err) == 3);
+  const json report = json::parse(out);
+  CHECK(report["dynamics"]["mode"] == "judge");
+  CHECK(report["dynamics"]["failed_instants"].get<int>() > 0);
+  bool slip = false;
+  for (const json& v : report["violations"]) slip = slip || (v["kind"] == "friction_cone" && v["family"] == "dynamics");
+  CHECK(slip);
+  CHECK(Validate(plan + " --set validator.frction=0.2", dir, &out, &err) == 2);
+  CHECK_THAT(err, Catch::Contains("validator.frction"));
+}
+
 TEST_CASE("validate rejects broken plan files naming the field", "[cli][validate]") {
   const std::string dir = MakeTempDir("validate-bad");
   json plan = json::parse(ReadFile(WritePlan(dir, FullOrSanitized<std::string>("", " --steps 3"))));
