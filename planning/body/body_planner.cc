@@ -90,6 +90,7 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
   if (robot_ != nullptr) {
     const RobotKinematics& kinematics = robot_->kinematics();
     stance_ws_ = std::make_unique<RobotWorkspace>(kinematics);
+    com_model_ = std::make_unique<ComModel>(kinematics);
     stance_q_.resize(static_cast<std::size_t>(n * kBodyLegs));
     for (int k = 0; k < n; ++k) {
       for (int l = 0; l < kBodyLegs; ++l) stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)] = kinematics.leg(l).nominal();
@@ -260,12 +261,12 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.hip_hi[row] = row_hi;
     }
     if (k > 0 && narrowest < kRestoreWidth) RestoreShift(k, xy.x(), pl, ph, narrowest);
-    SupportRows(k, t, pm);
     BodyPose at;
     at.position_W = Eigen::Vector3d(xy.x() + heading * v0[2], xy.y() + heading * v0[3], v0[0]);
     at.pitch = v0[1];
     at.yaw = schedule_.yaw();
-    StanceRows(k, at, v0);
+    StanceRows(k, at, v0);  // first: the support rows read the legs' joints it solved
+    SupportRows(k, t, pm, at, v0);
   }
 }
 
@@ -290,7 +291,20 @@ void BodyPlanner::KeepAccelerationAcrossCycles(const BodyState& state, double no
          qp.lateral_hi[1]);
 }
 
-void BodyPlanner::SupportRows(int k, double t, double pitch) {
+Eigen::Vector2d BodyPlanner::ComBase(int k, double pitch, const Eigen::Vector2d& feet_sum, const BodyPose& at,
+                                     const Eigen::Vector4d& v0) {
+  const Eigen::Vector2d shift = schedule_.heading() * v0.tail<2>();
+  if (com_model_ == nullptr) return com_.At(Eigen::Vector2d(neutral_x_[k], neutral_y_[k]), feet_sum, pitch);
+  // With the legs' joints at the linearisation point (the leg rows' IK, swing legs on their
+  // trajectories) the COM there is exact; the affine estimate's gain carries it over the trust
+  // region. The estimate alone misses the legs' own motion by centimetres on heavy-legged robots.
+  std::array<Eigen::Vector3d, kBodyLegs> q;
+  for (int l = 0; l < kBodyLegs; ++l) q[static_cast<std::size_t>(l)] = stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)];
+  const Eigen::Vector2d exact = com_model_->Com(at, q, *stance_ws_).head<2>();
+  return exact - com_.gain.cwiseProduct(shift);
+}
+
+void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at, const Eigen::Vector4d& v0) {
   BodyQp& qp = *qp_;
   constexpr int kRows = BodyQp::kSupportRows;
   for (int r = 0; r < kRows; ++r) {
@@ -316,7 +330,7 @@ void BodyPlanner::SupportRows(int k, double t, double pitch) {
   }
   if (standing < 3) return;  // no polygon: the gait is not quasi-static here
   const double heading = schedule_.heading();
-  const Eigen::Vector2d com_base = com_.At(Eigen::Vector2d(neutral_x_[k], neutral_y_[k]), feet_sum, pitch);
+  const Eigen::Vector2d com_base = ComBase(k, pitch, feet_sum, at, v0);
   const double previous_x = has_previous_ ? PreviousAt(previous_shift_, t) : 0.0;
   const double previous_y = has_previous_ ? PreviousAt(previous_lateral_, t) : 0.0;
   const auto contact = [&](int l) -> Eigen::Vector2d {

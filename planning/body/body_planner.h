@@ -34,6 +34,7 @@
 #include "planning/body/foot_schedule.h"
 #include "planning/body/kinematic_body_bounds.h"
 #include "planning/body/stance_leg_rows.h"
+#include "planning/com_model.h"
 #include "planning/optim/solve_result.h"
 #include "planning/plan.h"
 
@@ -135,7 +136,11 @@ class BodyPlanner {
   void KeepAccelerationAcrossCycles(const BodyState& state, double now);
   // Knot k's support rows: the COM estimate inside the polygon of the legs standing through
   // knots k-1..k+1, shrunk by the stability margin (rows free where no polygon applies).
-  void SupportRows(int k, double t, double pitch);
+  void SupportRows(int k, double t, double pitch, const BodyPose& at, const Eigen::Vector4d& v0);
+  // The COM at knot k without the weight shifts: from the leg rows' joints at the linearisation
+  // point `at` (v0) when there are leg rows, else from the affine estimate.
+  Eigen::Vector2d ComBase(int k, double pitch, const Eigen::Vector2d& feet_sum, const BodyPose& at,
+                          const Eigen::Vector4d& v0);
   // Knot k's leg rows: every leg's joints, extension and clearance linearised at the pose `at`
   // (the trust region's centre), a stance leg's foot on its contact, a swing leg's on its swing
   // trajectory (rows free at knot 0 and without kinematics).
@@ -164,6 +169,7 @@ class BodyPlanner {
   KinematicBodyBounds* robot_ = nullptr;
   std::unique_ptr<RobotWorkspace> stance_ws_;
   std::vector<Eigen::Vector3d> stance_q_;  // k * 4 + leg
+  std::unique_ptr<ComModel> com_model_;     // the exact COM (with leg rows only)
   std::array<Eigen::Vector3d, kBodyLegs> hips_B_{};
   std::array<double, kBodyLegs> c_{};
   double hip_height_ = 0.0;
