@@ -357,6 +357,21 @@ void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at,
     qp.support_cx[row] = normal.x() * com_.gain.x() * heading;
     qp.support_cy[row] = normal.y() * com_.gain.y() * heading;
     const double edge = normal.dot(pi) - normal.dot(com_base);
+    if (qp.has_stance_rows()) {
+      // Elastic, as the leg rows: a plan the new row excludes (a swing that came into the
+      // horizon) keeps the share the relaxation pays for, and the penalty brings it in as fast as
+      // the acceleration limits let it. Rows that only give way (below) cannot be pulled in at
+      // knots the pinned state and the acceleration limits hold, and then hold the plan still.
+      const double value = qp.support_cx[row] * v0[2] + qp.support_cy[row] * v0[3];
+      if (below > 0) {
+        qp.support_hi[row] = edge - settings_.stability_margin;
+        qp.support_sigma[row] = std::min(qp.support_hi[row] - value, 0.0);
+      } else {
+        qp.support_lo[row] = edge + settings_.stability_margin;
+        qp.support_sigma[row] = std::max(qp.support_lo[row] - value, 0.0);
+      }
+      continue;
+    }
     const double previous = qp.support_cx[row] * previous_x + qp.support_cy[row] * previous_y;
     // A previous plan beyond the row (a swing that just came into the horizon) must come back by
     // half of what the trust region lets the row move per cycle: the row gives way to it, as the

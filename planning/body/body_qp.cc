@@ -113,13 +113,16 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   if (lateral_apart_) {
     support_rows_ = {"support", program_.num_rows(), 0};
   } else {
-    support_rows_ = program_.AddLinearConstraint({{shift_, no_coefficients}, {lateral_, no_coefficients}}, -support_free,
-                                                 support_free, "support");
+    std::vector<optim::LinearTerm> terms{{shift_, no_coefficients}, {lateral_, no_coefficients}};
+    if (stance_rows) terms.push_back({relax_, no_coefficients});
+    support_rows_ = program_.AddLinearConstraint(terms, -support_free, support_free, "support");
   }
   support_cx.setZero(kSupportRows * n);
   support_cy.setZero(kSupportRows * n);
+  support_sigma.setZero(kSupportRows * n);
   pushed_cx_ = support_cx;
   pushed_cy_ = support_cy;
+  pushed_sigma_ = support_sigma;
   support_lo.setConstant(kSupportRows * n, -optim::kInf);
   support_hi.setConstant(kSupportRows * n, optim::kInf);
   coefficient_row_.setZero(1, n);
@@ -129,7 +132,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   // Stance and clearance rows: free until the planner linearises a stance leg into them.
   const int legs_rows = stance_rows ? kBodyLegs * n : 0;
   AddKnotRows("stance", kStanceRows * legs_rows, kStanceRows * kBodyLegs, &stance, &stance_);
-  AddKnotRows("clearance", legs_rows, kBodyLegs, &clearance, &clearance_);
+  AddKnotRows("clearance", stance_rows ? kClearanceRows * n : 0, kClearanceRows, &clearance, &clearance_);
 
   for (Eigen::VectorXd* v : {&z_lo, &pitch_lo, &shift_lo, &lateral_lo}) v->setConstant(n, -optim::kInf);
   for (Eigen::VectorXd* v : {&z_hi, &pitch_hi, &shift_hi, &lateral_hi}) v->setConstant(n, optim::kInf);
@@ -208,13 +211,16 @@ void BodyQp::PushSupportRows() {
   // Only rows whose feet changed get new coefficients: the solver keeps its factorisation when
   // they are inactive (the planner changes a pair's feet only while its row is free).
   for (int row = 0; row < static_cast<int>(support_cx.size()); ++row) {
-    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row]) continue;
+    const bool sigma_changed = relax_.size > 0 && support_sigma[row] != pushed_sigma_[row];
+    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row] && !sigma_changed) continue;
     const int k = row / kSupportRows;
     single_row_.start = support_rows_.start + row;
     SetCoefficient(single_row_, shift_, k, support_cx[row]);
     SetCoefficient(single_row_, lateral_, k, support_cy[row]);
+    if (sigma_changed) SetCoefficient(single_row_, relax_, k, support_sigma[row]);
     pushed_cx_[row] = support_cx[row];
     pushed_cy_[row] = support_cy[row];
+    pushed_sigma_[row] = support_sigma[row];
   }
   program_.SetConstraintBounds(support_rows_, support_lo, support_hi);
 }

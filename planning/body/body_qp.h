@@ -13,7 +13,7 @@
 //        |second differences| <= max accel * dt^2        height, pitch, shift, lateral
 //        with stance rows: shift and lateral at rest over the last two knots (the next cycle can
 //        always stop)
-//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k <= support_hi_kr
+//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k (+ e_kr relax_k) <= support_hi_kr
 //                                 one row per knot and pair r of legs (6): the COM on the inner
 //                                 side of the support polygon's edge between the two feet
 //        stance_lo_klj <= a_klj . (z_k, pitch_k, shift_k, lateral_k) + e_klj relax_k <= stance_hi_klj
@@ -21,7 +21,8 @@
 //                                 their limits and its extension within the knee's range,
 //                                 linearised through the leg's KDL Jacobian (stance_leg_rows.h)
 //        clearance_lo_kl <= b_kl . (z_k, pitch_k, shift_k, lateral_k) + e_kl relax_k
-//                                 per knot and stance leg: its links clear of the stairs (FCL)
+//                                 per knot and leg, and of the body: its links clear of the
+//                                 stairs (FCL)
 //        variable bounds (limits intersected with the cycle's trust region; knot 0 pinned)
 //
 // With stance rows, relax_k in [0, 1] is one elastic variable per knot, the share of the linearisation point's
@@ -82,8 +83,10 @@ class BodyQp {
   static constexpr int kStanceRows = 4;
   /// Index of stance row `j` of leg `leg` at knot `k`.
   static int StanceRow(int k, int leg, int j) { return (k * kBodyLegs + leg) * kStanceRows + j; }
-  /// Index of the clearance row of leg `leg` at knot `k`.
-  static int ClearanceRow(int k, int leg) { return k * kBodyLegs + leg; }
+  /// Clearance rows per knot: one per leg and one of the body.
+  static constexpr int kClearanceRows = kBodyLegs + 1;
+  /// Index of the clearance row of leg `leg` at knot `k` (leg kBodyLegs: the body's).
+  static int ClearanceRow(int k, int leg) { return k * kClearanceRows + leg; }
   /// Cost of keeping all of one knot's violations (relax 1): far above what any row is worth to
   /// the other costs, so the penalty is exact.
   static constexpr double kRelaxPenalty = 1e6;
@@ -104,6 +107,8 @@ class BodyQp {
   /// (+-inf: none). Coefficients are pushed only where they changed.
   Eigen::VectorXd support_cx, support_cy, support_lo, support_hi;
   ///@}
+  /// With stance rows, the support rows' relaxation coefficients (as KnotRows::sigma); unused without.
+  Eigen::VectorXd support_sigma;
   /// Rows of one family over one knot's (z, pitch, shift, lateral) each, softened by its relaxation.
   struct KnotRows {
     Eigen::MatrixXd a;       ///< coefficients, one row per constraint (4 columns)
@@ -116,7 +121,7 @@ class BodyQp {
   };
   /// The stance legs' joint and extension rows, StanceRow(k, leg, j).
   KnotRows stance;
-  /// The stance legs' clearance to the stairs, ClearanceRow(k, leg) (lower bounds only).
+  /// The legs' and the body's clearance to the stairs, ClearanceRow(k, leg) (lower bounds only).
   KnotRows clearance;
 
   /// Pushes the inputs into the program(s) and solves warm; `time_limit_s` may be +inf.
@@ -185,7 +190,7 @@ class BodyQp {
   PushedRows stance_, clearance_;
   optim::ActiveSetQpSolver solver_;
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
-  Eigen::VectorXd pushed_cx_, pushed_cy_;  // support coefficients in the program
+  Eigen::VectorXd pushed_cx_, pushed_cy_, pushed_sigma_;  // support coefficients in the program
   Eigen::MatrixXd coefficient_row_;        // 1 x knots, zero but for one entry
   optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
   optim::ConstraintRows one_row_;          // one row of a KnotRows family (likewise)
