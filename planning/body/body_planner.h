@@ -40,6 +40,8 @@
 
 namespace stairplan {
 
+struct Clearance;
+
 /// What the operator asks of the body on top of the plan.
 struct BodyCommand {
   double height_offset = 0.0;  ///< added to the desired hip height [m]
@@ -149,6 +151,13 @@ class BodyPlanner {
   // linearised through `rows`' joint derivative; free when the leg is far from them. A swing
   // leg's foot contact shape is left out (its path is the swing trajectory's).
   void ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows, bool swing);
+  // The body's clearance row at knot k: its closest point's distance to the stairs (FCL).
+  void BodyClearanceRow(int k, const BodyPose& at, const Eigen::Vector4d& v0);
+  // Clearance row `row` from the closest pair `c` and the closest robot point moved by a small
+  // step along each body variable (`moved`, one column per variable), kept `inset` beyond the
+  // clearance margin.
+  void SetClearanceRow(int row, const Clearance& c, const Eigen::Vector4d& v0, double inset,
+                       const Eigen::Matrix<double, 3, 4>& moved);
   // Moves knot k's shift reference to the shift that widens its narrowest stance-leg range.
   void RestoreShift(int k, double neutral_x, double pitch_lo, double pitch_hi, double width);
   // Previous plan's pitch and shift at time t (held beyond its ends).

@@ -73,6 +73,22 @@ void BodyPlanner::StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v
     }
     ClearanceRow(k, l, at, v0, rows, !phase.stance);
   }
+  BodyClearanceRow(k, at, v0);
+}
+
+void BodyPlanner::BodyClearanceRow(int k, const BodyPose& at, const Eigen::Vector4d& v0) {
+  const int row = BodyQp::ClearanceRow(k, kBodyLegs);
+  qp_->clearance.lo[row] = -optim::kInf;
+  if (k == 0) return;  // knot 0 is the measured state
+  ClearanceOptions options;
+  options.prune_above = kClearanceRange;
+  const Clearance c = BodyStairClearance(robot_->collision_model(), robot_->stair_model(), at, options);
+  if (!(c.distance < kClearanceRange) || c.shape < 0) return;
+  // The closest point, fixed on the body, moves with it.
+  const Eigen::Vector3d point_B = at.ToIsometry().inverse() * c.point_robot_W;
+  Eigen::Matrix<double, 3, 4> moved;
+  for (int v = 0; v < 4; ++v) moved.col(v) = Moved(at, v, kPointStep).ToIsometry() * point_B;
+  SetClearanceRow(row, c, v0, kClearanceInset, moved);
 }
 
 void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows,
@@ -84,10 +100,6 @@ void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Ve
   const Clearance c =
       LegStairClearance(kinematics, robot_->collision_model(), robot_->stair_model(), l, rows.q, at, *stance_ws_, options);
   if (!(c.distance < kClearanceRange) || c.shape < 0 || c.leg != l) return;
-  Eigen::Vector3d normal = c.point_robot_W - c.point_other_W;
-  const double length = normal.norm();
-  if (!(length > 1e-9)) return;  // touching: no direction to move away in
-  normal *= (c.distance < 0.0 ? -1.0 : 1.0) / length;
   // The closest point, fixed on its link, moves with the body and with the joints, which turn
   // to keep the foot on its contact.
   const LegKinematics& kin = kinematics.leg(l);
@@ -98,16 +110,25 @@ void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Ve
     return segment < 0 ? body_W : body_W * kin.LinkFrames(q, ws)[static_cast<std::size_t>(segment)];
   };
   const Eigen::Vector3d point_link = point_at(at, rows.q).inverse() * c.point_robot_W;
-  Eigen::Vector4d grad;
+  const double inset = kClearanceInset + (swing ? kSwingClearanceInset : 0.0);
+  Eigen::Matrix<double, 3, 4> moved;
   for (int v = 0; v < 4; ++v) {
-    const Eigen::Vector3d p = point_at(Moved(at, v, kPointStep), rows.q + kPointStep * rows.dq.col(v)) * point_link;
-    grad[v] = normal.dot(p - c.point_robot_W) / kPointStep;
+    moved.col(v) = point_at(Moved(at, v, kPointStep), rows.q + kPointStep * rows.dq.col(v)) * point_link;
   }
+  SetClearanceRow(BodyQp::ClearanceRow(k, l), c, v0, inset, moved);
+}
+
+void BodyPlanner::SetClearanceRow(int row, const Clearance& c, const Eigen::Vector4d& v0, double inset,
+                                  const Eigen::Matrix<double, 3, 4>& moved) {
+  Eigen::Vector3d normal = c.point_robot_W - c.point_other_W;
+  const double length = normal.norm();
+  if (!(length > 1e-9)) return;  // touching: no direction to move away in
+  normal *= (c.distance < 0.0 ? -1.0 : 1.0) / length;
+  Eigen::Vector4d grad;
+  for (int v = 0; v < 4; ++v) grad[v] = normal.dot(moved.col(v) - c.point_robot_W) / kPointStep;
   const double norm = grad.norm();
   if (!(norm > 1e-9)) return;
-  const int row = BodyQp::ClearanceRow(k, l);
   qp_->clearance.a.row(row) = (grad / norm).transpose();
-  const double inset = kClearanceInset + (swing ? kSwingClearanceInset : 0.0);
   const double lo = (settings_.clearance_margin + inset - c.distance) / norm;
   qp_->clearance.lo[row] = lo + grad.dot(v0) / norm;
   qp_->clearance.sigma[row] = std::max(lo, 0.0);
