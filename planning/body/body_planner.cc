@@ -268,6 +268,17 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     StanceRows(k, at, v0);  // first: the support rows read the legs' joints it solved
     SupportRows(k, t, pm, at, v0);
   }
+  if (qp.has_stance_rows()) ProgressRows();
+}
+
+void BodyPlanner::ProgressRows() {
+  BodyQp& qp = *qp_;
+  const double heading = schedule_.heading();
+  for (int k = 0; k + 1 < settings_.knots; ++k) {
+    // x = neutral_x + heading shift: its advance along the heading is the neutral body's plus
+    // the shift's change, which may not be negative.
+    qp.progress_lo[k] = -heading * (neutral_x_[k + 1] - neutral_x_[k]);
+  }
 }
 
 void BodyPlanner::KeepAccelerationAcrossCycles(const BodyState& state, double now) {

@@ -133,6 +133,9 @@ class BodyPlanner {
   void Initialise(const RobotModel& robot, const Staircase& stairs);
   // Fills the QP's inputs around the previous plan; returns the number of conflicting rows.
   void Linearise(const BodyState& state, const BodyCommand& command, double now);
+  // The progress rows (with leg rows): the body's advance along the heading, knot to knot, is
+  // negative only by what the QP's retreat variables pay for.
+  void ProgressRows();
   // Bounds knot 1 so that the body executed a cycle ago, the state and knot 1 keep within the
   // acceleration limits.
   void KeepAccelerationAcrossCycles(const BodyState& state, double now);

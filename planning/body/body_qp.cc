@@ -106,6 +106,21 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
     program_.AddLinearConstraint({{lateral_, last}}, rest, rest, "lateral_at_rest");
   }
 
+  // Progress rows (with stance rows): the body moves against the travel only by what the retreat
+  // variables pay for, at a price far below the relaxation's (the support and leg rows come first)
+  // and far above what moving back could gain the other costs.
+  if (stance_rows) {
+    retreat_ = program_.AddVariables("retreat", n - 1);
+    program_.SetVariableBounds(retreat_, Eigen::VectorXd::Zero(n - 1), Eigen::VectorXd::Constant(n - 1, optim::kInf));
+    program_.AddQuadraticCost(retreat_, 2.0 * kRelaxCurvature * Eigen::MatrixXd::Identity(n - 1, n - 1),
+                              Eigen::VectorXd::Constant(n - 1, kRetreatPenalty));
+    const Eigen::VectorXd free = Eigen::VectorXd::Constant(n - 1, optim::kInf);
+    progress_rows_ = program_.AddLinearConstraint({{shift_, d1}, {retreat_, Eigen::MatrixXd::Identity(n - 1, n - 1)}},
+                                                  -free, free, "progress");
+  }
+  progress_lo.setConstant(n - 1, -optim::kInf);
+  progress_hi_.setConstant(n - 1, optim::kInf);
+
   // Support rows: free until the planner gives them feet (none when the lateral QP is apart).
   const int support_count = lateral_apart_ ? 0 : kSupportRows * n;
   const Eigen::MatrixXd no_coefficients = Eigen::MatrixXd::Zero(support_count, n);
@@ -179,6 +194,7 @@ void BodyQp::PushInputs() {
   program_.SetConstraintBounds(hip_rows_, hip_lo, hip_hi);
   if (lateral_apart_) return;  // no support or stance rows
   PushSupportRows();
+  PushProgressRows();
   PushKnotRows(stance, &stance_);
   PushKnotRows(clearance, &clearance_);
 }
@@ -223,6 +239,10 @@ void BodyQp::PushSupportRows() {
     pushed_sigma_[row] = support_sigma[row];
   }
   program_.SetConstraintBounds(support_rows_, support_lo, support_hi);
+}
+
+void BodyQp::PushProgressRows() {
+  if (progress_rows_.size > 0) program_.SetConstraintBounds(progress_rows_, progress_lo, progress_hi_);
 }
 
 void BodyQp::PushKnotRows(const KnotRows& inputs, PushedRows* rows) {

@@ -11,8 +11,10 @@
 //        (legs whose hips share c, e.g. the front pair, share a row: half the rows to scan;
 //        the solver copes with identical rows, tests/optim/active_set_degenerate_test.cc)
 //        |second differences| <= max accel * dt^2        height, pitch, shift, lateral
-//        with stance rows: shift and lateral at rest over the last two knots (the next cycle can
-//        always stop)
+//        with stance rows: pitch, shift and lateral at rest over the last two knots (the next
+//        cycle can always stop), and progress rows (the body moves against the travel only as
+//        far as the penalised retreat_k lets it: shift_{k+1} - shift_k + retreat_k >= minus the
+//        neutral body's advance)
 //        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k (+ e_kr relax_k) <= support_hi_kr
 //                                 one row per knot and pair r of legs (6): the COM on the inner
 //                                 side of the support polygon's edge between the two feet
@@ -90,6 +92,8 @@ class BodyQp {
   /// Cost of keeping all of one knot's violations (relax 1): far above what any row is worth to
   /// the other costs, so the penalty is exact.
   static constexpr double kRelaxPenalty = 1e6;
+  /// Cost of one metre of the body's motion against the travel (with stance rows).
+  static constexpr double kRetreatPenalty = 1e4;
 
   // ---- per-cycle inputs, filled in place by the planner (sizes fixed at construction) ----
   ///@{
@@ -109,6 +113,10 @@ class BodyQp {
   ///@}
   /// With stance rows, the support rows' relaxation coefficients (as KnotRows::sigma); unused without.
   Eigen::VectorXd support_sigma;
+  /// With stance rows, progress row k: shift_{k+1} - shift_k + retreat_k >= progress_lo_k (knots - 1
+  /// rows; the planner puts minus the neutral body's advance there, so that the body moves
+  /// against the travel only by the retreat, which costs kRetreatPenalty per metre). Unused without.
+  Eigen::VectorXd progress_lo;
   /// Rows of one family over one knot's (z, pitch, shift, lateral) each, softened by its relaxation.
   struct KnotRows {
     Eigen::MatrixXd a;       ///< coefficients, one row per constraint (4 columns)
@@ -179,7 +187,7 @@ class BodyQp {
   optim::Program lateral_program_;  // the sideways shift when apart (else empty)
   optim::ActiveSetQpSolver lateral_solver_;
   optim::SolveResult lateral_result_;
-  optim::VariableBlock z_, pitch_, shift_, lateral_, relax_;
+  optim::VariableBlock z_, pitch_, shift_, lateral_, relax_, retreat_;
   optim::ConstraintRows hip_rows_, accel_rows_, support_rows_;
   // A KnotRows family's rows in the program and the coefficients pushed into them.
   struct PushedRows {
@@ -191,10 +199,13 @@ class BodyQp {
   optim::ActiveSetQpSolver solver_;
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
   Eigen::VectorXd pushed_cx_, pushed_cy_, pushed_sigma_;  // support coefficients in the program
+  optim::ConstraintRows progress_rows_;
+  Eigen::VectorXd progress_hi_;  // +inf
   Eigen::MatrixXd coefficient_row_;        // 1 x knots, zero but for one entry
   optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
   optim::ConstraintRows one_row_;          // one row of a KnotRows family (likewise)
   void PushSupportRows();
+  void PushProgressRows();
   // Adds `count` free rows over one knot's variables each; the inputs sized to match.
   void AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows);
   void PushKnotRows(const KnotRows& inputs, PushedRows* rows);
