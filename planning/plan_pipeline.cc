@@ -126,6 +126,7 @@ void AddRobotRegions(const RobotKinematics& kinematics, const Staircase& stairs,
   AddRobotCollisionRegions(kinematics, collision, stairs, map, regions);
 }
 
+// BuildPipelineMap with kinematics made elsewhere: RunPipeline's attempts share one.
 ConstrainedMap BuildMap(const RobotKinematics& kinematics, const Staircase& stairs, const PipelineOptions& options) {
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
   AddRobotRegions(kinematics, stairs, options, map);
@@ -196,9 +197,7 @@ void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, c
 }
 
 ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
-  ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
-  AddPipelineRobotRegions(robot, stairs, options, map);
-  return map;
+  return BuildMap(RobotKinematics(robot), stairs, options);
 }
 
 PipelineOptions OptionsForPlan(const Plan& plan) {
