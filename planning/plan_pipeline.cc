@@ -66,10 +66,6 @@ Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const C
   return plan;
 }
 
-bool IsPaperCrawl(FootstepSource source) {
-  return source == FootstepSource::kPaperCrawl || source == FootstepSource::kPaperCrawlAlternate;
-}
-
 PaperCrawlSettings PaperSettings(FootstepSource source) {
   PaperCrawlSettings settings;
   settings.arrangement = source == FootstepSource::kPaperCrawlAlternate ? CrawlCase::kFrontSwitched : CrawlCase::kRightFirst;
@@ -182,6 +178,10 @@ FootstepSource ParseFootstepSource(const std::string& text) {
   if (text == "paper") return FootstepSource::kPaperCrawl;
   if (text == "paper-alt") return FootstepSource::kPaperCrawlAlternate;
   throw std::invalid_argument("planner: must be 'crawl', 'step', 'paper' or 'paper-alt' (got '" + text + "')");
+}
+
+bool IsPaperCrawl(FootstepSource source) {
+  return source == FootstepSource::kPaperCrawl || source == FootstepSource::kPaperCrawlAlternate;
 }
 
 StepPlannerSettings CrawlControllers() {

@@ -230,6 +230,13 @@ TEST_CASE("paper crawl on the paper's three stairs: no d lets both feet pass the
   }
 }
 
+TEST_CASE("the paper crawl's footstep sources are its two cases only", "[step][paper][pipeline]") {
+  CHECK(IsPaperCrawl(FootstepSource::kPaperCrawl));
+  CHECK(IsPaperCrawl(FootstepSource::kPaperCrawlAlternate));
+  CHECK_FALSE(IsPaperCrawl(FootstepSource::kSelectedCrawl));
+  CHECK_FALSE(IsPaperCrawl(FootstepSource::kStepPlanner));
+}
+
 TEST_CASE("the pipeline runs the paper crawl at the paper's posture, validated, the alignment stance made for it", "[step][paper][pipeline]") {
   const RobotModel robot = RobotModel::FromUrdfFile(testing::SourceDir() + "/data/robots/quattroped2012.urdf");
   const Staircase stairs = PaperFlight();
