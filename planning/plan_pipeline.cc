@@ -130,11 +130,10 @@ ConstrainedMap BuildMap(const RobotKinematics& kinematics, const Staircase& stai
 }
 
 // RunPipelineOnMap with the kinematics built once for the whole run: the map's robot regions and
-// the alignment stance use the same ones.
+// the alignment stance use the same ones. `options` come resolved by ForFootstepSource.
 PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
-                        const PipelineOptions& given) {
+                        PipelineOptions options) {
   const RobotModel& robot = kinematics.robot();
-  PipelineOptions options = ForFootstepSource(given);
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
   if (stairs.direction() == TravelDirection::kDown) {
     options.crawl.shift_duration = std::max(options.crawl.shift_duration, options.descent_shift_duration);
@@ -209,7 +208,7 @@ PipelineOptions OptionsForPlan(const Plan& plan) {
 
 PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
                                 const PipelineOptions& given) {
-  return RunOnMap(RobotKinematics(robot), stairs, std::move(map), given);
+  return RunOnMap(RobotKinematics(robot), stairs, std::move(map), ForFootstepSource(given));
 }
 
 PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& given) {
