@@ -66,10 +66,6 @@ Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const C
   return plan;
 }
 
-bool IsPaperCrawl(FootstepSource source) {
-  return source == FootstepSource::kPaperCrawl || source == FootstepSource::kPaperCrawlAlternate;
-}
-
 PaperCrawlSettings PaperSettings(FootstepSource source) {
   PaperCrawlSettings settings;
   settings.arrangement = source == FootstepSource::kPaperCrawlAlternate ? CrawlCase::kFrontSwitched : CrawlCase::kRightFirst;
@@ -126,6 +122,7 @@ void AddRobotRegions(const RobotKinematics& kinematics, const Staircase& stairs,
   AddRobotCollisionRegions(kinematics, collision, stairs, map, regions);
 }
 
+// BuildPipelineMap with kinematics made elsewhere: RunPipeline's attempts share one.
 ConstrainedMap BuildMap(const RobotKinematics& kinematics, const Staircase& stairs, const PipelineOptions& options) {
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
   AddRobotRegions(kinematics, stairs, options, map);
@@ -133,11 +130,10 @@ ConstrainedMap BuildMap(const RobotKinematics& kinematics, const Staircase& stai
 }
 
 // RunPipelineOnMap with the kinematics built once for the whole run: the map's robot regions and
-// the alignment stance use the same ones.
+// the alignment stance use the same ones. `options` come resolved by ForFootstepSource.
 PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
-                        const PipelineOptions& given) {
+                        PipelineOptions options) {
   const RobotModel& robot = kinematics.robot();
-  PipelineOptions options = ForFootstepSource(given);
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
   if (stairs.direction() == TravelDirection::kDown) {
     options.crawl.shift_duration = std::max(options.crawl.shift_duration, options.descent_shift_duration);
@@ -183,6 +179,10 @@ FootstepSource ParseFootstepSource(const std::string& text) {
   throw std::invalid_argument("planner: must be 'crawl', 'step', 'paper' or 'paper-alt' (got '" + text + "')");
 }
 
+bool IsPaperCrawl(FootstepSource source) {
+  return source == FootstepSource::kPaperCrawl || source == FootstepSource::kPaperCrawlAlternate;
+}
+
 StepPlannerSettings CrawlControllers() {
   StepPlannerSettings settings;
   settings.gaits = {Gait::kCrawl, Gait::kCrawlAlternate};
@@ -196,9 +196,7 @@ void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, c
 }
 
 ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
-  ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, options.facing, options.map);
-  AddPipelineRobotRegions(robot, stairs, options, map);
-  return map;
+  return BuildMap(RobotKinematics(robot), stairs, options);
 }
 
 PipelineOptions OptionsForPlan(const Plan& plan) {
@@ -210,7 +208,7 @@ PipelineOptions OptionsForPlan(const Plan& plan) {
 
 PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
                                 const PipelineOptions& given) {
-  return RunOnMap(RobotKinematics(robot), stairs, std::move(map), given);
+  return RunOnMap(RobotKinematics(robot), stairs, std::move(map), ForFootstepSource(given));
 }
 
 PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& given) {

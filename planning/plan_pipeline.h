@@ -46,6 +46,9 @@ enum class BodySource {
 /// "crawl", "step", "paper" or "paper-alt"; throws std::invalid_argument otherwise.
 FootstepSource ParseFootstepSource(const std::string& text);
 
+/// True for the 2012 paper's crawl, either case: it plans its own posture and body path.
+bool IsPaperCrawl(FootstepSource source);
+
 /// Step planner settings with the crawl gaits only.
 StepPlannerSettings CrawlControllers();
 

@@ -274,8 +274,7 @@ int RunPlan(const std::vector<std::string>& args) {
     } catch (const std::invalid_argument& e) {
       throw BadInput(std::string("--") + e.what());
     }
-    const bool paper = options.footsteps == FootstepSource::kPaperCrawl || options.footsteps == FootstepSource::kPaperCrawlAlternate;
-    if (paper && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
+    if (IsPaperCrawl(options.footsteps) && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     SetBodyOptions(o, options);
     ApplySettings(o.set, options);
     SetStairMode(o, options.stair_mode);

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "geometry/stair_friction.h"
 #include "planning/cli/cli_common.h"
 #include "planning/cli/stair_flags.h"
 #include "planning/json_version.h"
@@ -77,7 +78,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   std::string path, robot_path, frames_dir, video, out, trace;
   std::vector<std::string> overrides;
   StairFlags true_stairs;
-  double frame_ms = 100.0, friction = 0.8, video_speed = 1.0;
+  double frame_ms = 100.0, friction = kStairFriction, video_speed = 1.0;
   bool print_json = false, no_responses = false;
   std::string impacts = "torque_residual";
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
@@ -94,7 +95,9 @@ int RunSimulate(const std::vector<std::string>& args) {
                      "Interval between frames [ms] (default 100, 40 with --video or --frames); given, --out also holds "
                      "the frames (for `stairplan view --sim`)")
           ->check(CLI::Range(1.0, 10000.0));
-  app.add_option("--friction", friction, "Sliding friction of every contact (default 0.8)")->check(CLI::Range(0.0, 10.0));
+  std::ostringstream friction_help;
+  friction_help << "Sliding friction of every contact (default " << kStairFriction << ")";
+  app.add_option("--friction", friction, friction_help.str())->check(CLI::Range(0.0, 10.0));
   app.add_option("--out", out, "Also write the JSON result to this file");
   app.add_option("--set", overrides,
                  "Override a simulation setting, name=value (e.g. kp_per_kg=10; time_scale=3 replays 3x slower than planned)");

@@ -60,31 +60,59 @@ double HullMargin(std::array<Eigen::Vector2d, 4> points, int n, const Eigen::Vec
   return margin;
 }
 
-}  // namespace
-
-CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDesign& g, CrawlCase arrangement,
-                                      int samples) {
-  if (!(g.d_s > 0.0)) throw std::invalid_argument("EvaluateCrawlStability: design: needs D_s > 0 (condition (10))");
-  if (samples < 4) throw std::invalid_argument("EvaluateCrawlStability: samples must be >= 4");
+// The paper's legs in the order RH, LH, RF, LF, at the contact offsets of `arrangement`.
+std::array<CrawlLeg, 4> CrawlLegs(const GaitDesignInput& input, const GaitDesign& g, CrawlCase arrangement) {
   const bool switched = arrangement == CrawlCase::kFrontSwitched;
-  const std::array<CrawlLeg, 4> legs = {{
+  return {{
       {"RH", 0.0, -1.0, g.a_min},
       {"LH", 0.0, 1.0, g.a_max},
       {"RF", input.body_length, -1.0, switched ? g.a_max : g.a_min},
       {"LF", input.body_length, 1.0, switched ? g.a_min : g.a_max},
   }};
-  const double cos_phi = std::cos(g.phi);
-  const double sin_phi = std::sin(g.phi);
-  // A leg with contact offset a leaves step j when its hip reaches (j + 1/2) CL + a cos(phi) along
-  // the slope: there its hip is equidistant from both contacts (the paper's Figure 2(a)).
-  const auto lift_phase = [&](const CrawlLeg& leg) { return 0.5 * g.cl + leg.a * cos_phi; };
+}
+
+// A leg with contact offset a leaves step j when its hip reaches (j + 1/2) CL + a cos(phi) along
+// the slope: there its hip is equidistant from both contacts (the paper's Figure 2(a)).
+double LiftPhase(const GaitDesign& g, const CrawlLeg& leg) { return 0.5 * g.cl + leg.a * std::cos(g.phi); }
+
+CrawlInstant InstantOf(const GaitDesignInput& input, const GaitDesign& g, const std::array<CrawlLeg, 4>& legs, double s) {
+  CrawlInstant instant;
+  std::array<Eigen::Vector2d, 4> feet;
+  int stance = 0;
+  for (std::size_t i = 0; i < legs.size(); ++i) {
+    const double z = s + legs[i].hip_offset - LiftPhase(g, legs[i]);
+    const double j = std::floor(z / g.cl);
+    if (z - j * g.cl < g.d_i) {
+      ++instant.legs_in_air;
+      instant.swing_leg = static_cast<int>(i);
+      continue;
+    }
+    feet[static_cast<std::size_t>(stance++)] = {(j + 1.0) * input.run + legs[i].a, legs[i].side * 0.5 * input.body_width};
+  }
+  const Eigen::Vector2d com((s + 0.5 * input.body_length) * std::cos(g.phi) - g.d * std::sin(g.phi), 0.0);
+  instant.margin = instant.legs_in_air > 1 ? -std::numeric_limits<double>::infinity() : HullMargin(feet, stance, com);
+  return instant;
+}
+
+}  // namespace
+
+CrawlInstant CrawlStabilityAt(const GaitDesignInput& input, const GaitDesign& design, CrawlCase arrangement,
+                              double hind_hip) {
+  return InstantOf(input, design, CrawlLegs(input, design, arrangement), hind_hip);
+}
+
+CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDesign& g, CrawlCase arrangement,
+                                      int samples) {
+  if (!(g.d_s > 0.0)) throw std::invalid_argument("EvaluateCrawlStability: design: needs D_s > 0 (condition (10))");
+  if (samples < 4) throw std::invalid_argument("EvaluateCrawlStability: samples must be >= 4");
+  const std::array<CrawlLeg, 4> legs = CrawlLegs(input, g, arrangement);
 
   CrawlStability result;
   result.arrangement = arrangement;
   // The order of swing starts within one cycle, measured on the hind hip, from the hind right.
   std::array<std::pair<double, const char*>, 4> starts;
   for (std::size_t i = 0; i < legs.size(); ++i) {
-    const double start = lift_phase(legs[i]) - legs[i].hip_offset - lift_phase(legs[0]);
+    const double start = LiftPhase(g, legs[i]) - legs[i].hip_offset - LiftPhase(g, legs[0]);
     starts[i] = {Remainder(start, g.cl), legs[i].name};
   }
   std::stable_sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -94,25 +122,12 @@ CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDe
   std::array<int, 4> by_leg{};
   for (int k = 0; k < samples; ++k) {
     const double s = g.cl * (static_cast<double>(k) + 0.5) / samples;  // hind hip along the slope
-    std::array<Eigen::Vector2d, 4> feet;
-    int stance = 0, swinging = 0, swing_leg = -1;
-    for (std::size_t i = 0; i < legs.size(); ++i) {
-      const double z = s + legs[i].hip_offset - lift_phase(legs[i]);
-      const double j = std::floor(z / g.cl);
-      if (z - j * g.cl < g.d_i) {
-        ++swinging;
-        swing_leg = static_cast<int>(i);
-        continue;
-      }
-      feet[static_cast<std::size_t>(stance++)] = {(j + 1.0) * input.run + legs[i].a, legs[i].side * 0.5 * input.body_width};
-    }
-    if (swinging > 0) ++airborne;
-    const Eigen::Vector2d com((s + 0.5 * input.body_length) * cos_phi - g.d * sin_phi, 0.0);
-    const double margin = swinging > 1 ? -std::numeric_limits<double>::infinity() : HullMargin(feet, stance, com);
-    result.min_margin = k == 0 ? margin : std::min(result.min_margin, margin);
-    if (margin < -1e-12) {
+    const CrawlInstant instant = InstantOf(input, g, legs, s);
+    if (instant.legs_in_air > 0) ++airborne;
+    result.min_margin = k == 0 ? instant.margin : std::min(result.min_margin, instant.margin);
+    if (instant.margin < -1e-12) {
       ++outside;
-      if (swing_leg >= 0) ++by_leg[static_cast<std::size_t>(swing_leg)];
+      if (instant.swing_leg >= 0) ++by_leg[static_cast<std::size_t>(instant.swing_leg)];
     }
   }
   result.fraction_outside = static_cast<double>(outside) / samples;

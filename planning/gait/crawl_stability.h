@@ -37,6 +37,24 @@ struct CrawlStability {
   double min_margin = 0.0;
 };
 
+/// The support at one instant of the crawl: which legs swing and where the COM stands in the
+/// polygon of the others.
+struct CrawlInstant {
+  int legs_in_air = 0;  ///< how many legs swing (the design keeps it at most 1; more is a fault)
+  /// The swinging leg, in the order RH, LH, RF, LF (0-3); -1 when all four stand. With several in
+  /// the air, the last of them in that order.
+  int swing_leg = -1;
+  /// The stability margin: the COM's distance to the nearest edge line of the stance feet's
+  /// polygon, negative when outside [m]; -infinity with two legs in the air.
+  double margin = 0.0;
+};
+
+/// The instant of the paper's crawl when the hind hips are `hind_hip` along the hip line from the
+/// point d above a nose [m] (the pattern repeats every CL): one sample of EvaluateCrawlStability,
+/// for checks of a single swing or of the margin's course through a cycle.
+CrawlInstant CrawlStabilityAt(const GaitDesignInput& input, const GaitDesign& design, CrawlCase arrangement,
+                              double hind_hip);
+
 /// Evaluates one arrangement by sampling `samples` hip positions evenly over one CL. Needs a
 /// design with D_s > 0 (condition (10)); throws std::invalid_argument otherwise.
 CrawlStability EvaluateCrawlStability(const GaitDesignInput& input, const GaitDesign& design, CrawlCase arrangement,

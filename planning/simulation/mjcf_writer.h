@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "geometry/stair_friction.h"
 #include "geometry/staircase.h"
 #include "kinematics/robot_model.h"
 
@@ -13,7 +14,7 @@ namespace stairplan {
 
 /// Contact and integration parameters of the simulated world.
 struct MjcfSettings {
-  double friction = 0.8;          ///< sliding friction of every geom
+  double friction = kStairFriction;  ///< sliding friction of every geom (geometry/stair_friction.h)
   /// Friction cones: elliptic (true) or MuJoCo's default pyramid. With either, MuJoCo's friction is
   /// a soft constraint that lets a loaded contact creep well below its friction limit unless
   /// `impratio` stiffens it; only the elliptic cone takes impratio in MuJoCo 2.2.

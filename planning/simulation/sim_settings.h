@@ -15,7 +15,7 @@ namespace stairplan {
 
 /// The simulated world, the controller, impact detection and judging of a MuJoCo run.
 struct SimSettings {
-  /// Contact and integration (friction 0.8, 1 kHz), with links reported within 1 cm of the stairs
+  /// Contact and integration (friction kStairFriction, 1 kHz), with links reported within 1 cm of the stairs
   /// so that clearances can be compared with the validator's margin.
   MjcfSettings world = [] {
     MjcfSettings w;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "geometry/stair_friction.h"
 #include "planning/optim/active_set_qp_solver.h"
 #include "planning/optim/program.h"
 
@@ -18,7 +19,7 @@ namespace stairplan {
 
 /// Friction, torque room and weights of the stance-force QP.
 struct StanceForceSettings {
-  double friction = 0.8;        ///< friction coefficient of the ground
+  double friction = kStairFriction;  ///< friction coefficient of the ground (the executor sets the world's)
   double friction_use = 0.7;    ///< share of the friction pyramid the forces may use
   double torque_use = 0.95;     ///< share of a motor's effort limit the forces may use
   double min_normal = 1.0;      ///< a stance foot pushes at least this much [N] (stays loaded)

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "geometry/stair_friction.h"
 #include "planning/optim/active_set_qp_solver.h"
 #include "planning/optim/program.h"
 #include "planning/validation/leg_id.h"
@@ -35,9 +36,9 @@ struct ContactWrenchSettings {
   /// residual 18 N), and judging it makes the pipeline fall back to a plan that fails reach. The
   /// default climb and descent-free plans pass; kJudge once the planner's shifts are dynamic.
   DynamicsCheckMode mode = DynamicsCheckMode::kReport;
-  /// Friction coefficient of the stairs. 0.8 is what the MuJoCo world uses (MjcfSettings::friction):
-  /// the two judges are meant to see the same ground.
-  double friction = 0.8;
+  /// Friction coefficient of the stairs: the MuJoCo world's too (geometry/stair_friction.h), so
+  /// that the two judges see the same ground.
+  double friction = kStairFriction;
   /// Faces of the friction pyramid (at least 4). The pyramid is inscribed in the cone (its faces'
   /// coefficient is friction * cos(pi / faces)), so a force it admits the true cone admits too.
   int friction_faces = 8;

@@ -3,7 +3,9 @@
 // "D_o around 25.4 %" against eq. (7) (third_party_notes/chen2012_stair_climbing.md).
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "planning/gait/crawl_stability.h"
@@ -61,6 +63,35 @@ TEST_CASE("stability: fractions are consistent and the COM only leaves during sw
   CHECK(s2.fraction_outside_by_leg[1] > 0.0);
   CHECK(s2.fraction_outside_by_leg[2] == 0.0);
   CHECK(s2.fraction_outside_by_leg[3] == 0.0);
+}
+
+TEST_CASE("stability at one instant: each leg swings D_i of every CL, the pattern repeats, the cycle's least margin", "[gait]") {
+  const GaitDesignInput in = Paper();
+  const GaitDesign g = DesignGait(in);
+  constexpr int kSamples = 7200;  // EvaluateCrawlStability's default: the same instants
+  const CrawlStability cycle = EvaluateCrawlStability(in, g, CrawlCase::kRightFirst, kSamples);
+  std::array<int, 4> swinging{};
+  int most_in_air = 0, unnamed_swings = 0;
+  double least = std::numeric_limits<double>::infinity();
+  double least_standing = std::numeric_limits<double>::infinity();
+  double most_aperiodic = 0.0;  // the largest change in margin one CL later
+  for (int k = 0; k < kSamples; ++k) {
+    const double s = g.cl * (k + 0.5) / kSamples;
+    const CrawlInstant at = CrawlStabilityAt(in, g, CrawlCase::kRightFirst, s);
+    most_in_air = std::max(most_in_air, at.legs_in_air);
+    unnamed_swings += (at.swing_leg >= 0) != (at.legs_in_air == 1);
+    if (at.swing_leg >= 0) ++swinging[static_cast<std::size_t>(at.swing_leg)];
+    if (at.legs_in_air == 0) least_standing = std::min(least_standing, at.margin);
+    least = std::min(least, at.margin);
+    const CrawlInstant next = CrawlStabilityAt(in, g, CrawlCase::kRightFirst, s + g.cl);
+    most_aperiodic = std::max(most_aperiodic, next.swing_leg == at.swing_leg ? std::abs(next.margin - at.margin) : 1.0);
+  }
+  CHECK(most_in_air == 1);
+  CHECK(unnamed_swings == 0);
+  CHECK(least_standing > 0.0);  // four feet down is stable here
+  CHECK(most_aperiodic < 1e-9);
+  for (int n : swinging) CHECK(n == Approx(kSamples * g.d_i / g.cl).margin(2));
+  CHECK(least == cycle.min_margin);
 }
 
 TEST_CASE("stability: the lateral scale does not change the verdict (COM on the mid-line)", "[gait]") {

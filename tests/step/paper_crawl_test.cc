@@ -3,13 +3,11 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
 
-#include "geometry/shapes.h"
 #include "kinematics/robot_kinematics.h"
 #include "planning/gait/crawl_stability.h"
 #include "planning/plan_pipeline.h"
@@ -73,31 +71,21 @@ int CheckClimbingSwings(const RobotModel& robot, const Staircase& stairs, const 
 }
 
 // The COM's largest margin (negative: outside) to the support triangle through a swing of hind
-// leg `r` (0 RH, 1 LH) in the paper's model (planning/gait/crawl_stability.h): hips on the line d
-// above the edges, the COM midway between them, feet at their contact offsets, BW apart.
-double PaperHindSwingBestMargin(const GaitDesignInput& in, const GaitDesign& g, CrawlCase arrangement, std::size_t r) {
-  const bool switched = arrangement == CrawlCase::kFrontSwitched;
-  struct Leg { double hip, side, a; };
-  const std::array<Leg, 4> legs = {{{0.0, -1.0, g.a_min}, {0.0, 1.0, g.a_max},
-                                    {in.body_length, -1.0, switched ? g.a_max : g.a_min},
-                                    {in.body_length, 1.0, switched ? g.a_min : g.a_max}}};
-  const double cos_phi = std::cos(g.phi), sin_phi = std::sin(g.phi);
-  const auto lift = [&](const Leg& l) { return 0.5 * g.cl + l.a * cos_phi; };
-  const double s0 = lift(legs[r]) + 4.0 * g.cl;  // the hind hip along the slope at lift-off
+// leg `r` (0 RH, 1 LH) in the paper's model (CrawlStabilityAt), over one cycle sampled as
+// EvaluateCrawlStability samples it.
+double PaperHindSwingBestMargin(const GaitDesignInput& in, const GaitDesign& g, CrawlCase arrangement, int r) {
+  constexpr int kSamples = 7200;
   double best = -std::numeric_limits<double>::infinity();
-  for (int k = 0; k <= 200; ++k) {
-    const double s = s0 + g.d_i * k / 200.0;
-    std::vector<Eigen::Vector2d> feet;
-    for (std::size_t i = 0; i < 4; ++i) {
-      if (i == r) continue;
-      const double z = s + legs[i].hip - lift(legs[i]);
-      const double j = std::floor(z / g.cl);
-      REQUIRE(z - j * g.cl >= g.d_i);  // one leg in the air at a time
-      feet.emplace_back((j + 1.0) * in.run + legs[i].a, legs[i].side * 0.5 * in.body_width);
-    }
-    const Eigen::Vector2d com((s + 0.5 * in.body_length) * cos_phi - g.d * sin_phi, 0.0);
-    best = std::max(best, -ConvexHull(feet).SignedDistance(com));
+  int in_swing = 0, most_in_air = 0;
+  for (int k = 0; k < kSamples; ++k) {
+    const CrawlInstant at = CrawlStabilityAt(in, g, arrangement, g.cl * (k + 0.5) / kSamples);
+    most_in_air = std::max(most_in_air, at.legs_in_air);
+    if (at.swing_leg != r) continue;
+    ++in_swing;
+    best = std::max(best, at.margin);
   }
+  REQUIRE(most_in_air == 1);  // one leg in the air at a time
+  REQUIRE(in_swing >= 200);  // the swing sampled at least as finely as a 200-step scan of it
   return best;
 }
 
@@ -228,6 +216,13 @@ TEST_CASE("paper crawl on the paper's three stairs: no d lets both feet pass the
     REQUIRE(stair == 1);
     CHECK_FALSE(map.InStepRegion(stair, right_foot));
   }
+}
+
+TEST_CASE("the paper crawl's footstep sources are its two cases only", "[step][paper][pipeline]") {
+  CHECK(IsPaperCrawl(FootstepSource::kPaperCrawl));
+  CHECK(IsPaperCrawl(FootstepSource::kPaperCrawlAlternate));
+  CHECK_FALSE(IsPaperCrawl(FootstepSource::kSelectedCrawl));
+  CHECK_FALSE(IsPaperCrawl(FootstepSource::kStepPlanner));
 }
 
 TEST_CASE("the pipeline runs the paper crawl at the paper's posture, validated, the alignment stance made for it", "[step][paper][pipeline]") {
