@@ -58,15 +58,11 @@ std::vector<RobotRegion> FindRobotCollisionRegions(const RobotKinematics& kinema
         // Hip straight above the foot's sphere at the planner's hip height.
         const Eigen::Vector3d hip_W = contact + Eigen::Vector3d(0, 0, model.foot_radius + settings.hip_height_fraction * model.max_reach);
         body.position_W = hip_W - body.ToIsometry().linear() * leg.hip_B();
-        // A mesh foot's contact point lies a wheel radius off the foot origin, in a direction that
-        // turns with the shank: placed with the body's orientation it would sit millimetres off
-        // the tread, so it is re-aimed as the stance check does. Sphere feet keep the single solve
-        // their regions were tuned on.
-        const IkResult ik =
-            model.foot_contact == FootContact::kMeshLowestPoint
-                ? SolveContactIk(leg, contact, body.ToIsometry(), leg.nominal(), ws.leg(l))
-                : leg.SolveFootIk(body.ToIsometry().inverse() * FootOriginForContact(model, contact, body.ToIsometry().linear()),
-                                  ws.leg(l));
+        // The contact point lies off the foot origin (a wheel radius for a mesh foot, the sphere's
+        // offset in the foot link for some URDFs) in a direction that turns with the shank: placed
+        // with the body's orientation it would sit millimetres under the tread (Go2: 2.4 mm, the
+        // whole landing a region), so it is re-aimed as the stance check does.
+        const IkResult ik = SolveContactIk(leg, contact, body.ToIsometry(), leg.nominal(), ws.leg(l));
         if (!ik.ok()) continue;
         const Clearance c = LegStairClearance(kinematics, robot, solids, l, ik.q, body, ws);
         if (!(c.distance > settings.min_clearance)) {

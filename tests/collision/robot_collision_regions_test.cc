@@ -130,3 +130,30 @@ TEST_CASE("ANYmal C ascending: its forward-bent hind knees reach the nosings", "
   }
   CHECK(treads == stairs.steps() - 1);
 }
+
+TEST_CASE("Unitree Go2 descending at the pipeline's posture: landings free, a strip of each tread left", "[robot_regions]") {
+  const std::string path = testing::SharedPath("data/robots/unitree_go2.urdf");
+  if (path.empty()) {
+    WARN("shared robots skipped: ../shared not found");
+    return;
+  }
+  const RobotKinematics kinematics(RobotModel::FromUrdfFile(path));
+  const RobotCollisionModel robot(kinematics);
+  StairSpec spec;
+  spec.direction = TravelDirection::kDown;
+  const Staircase stairs{spec};
+  RobotRegionSettings settings;
+  settings.hip_height_fraction = 0.6;  // PipelineOptions' crawl body
+  // Go2's foot sphere sits 2 mm off its link's origin: placed with the body's orientation instead
+  // of the foot's, the sphere went 2.4 mm into the tread and every landing was one region.
+  const auto regions = FindRobotCollisionRegions(kinematics, robot, stairs, Facing::kForward, settings);
+  for (const RobotRegion& r : regions) {
+    INFO("surface " << r.stair_index << " [" << r.x0 << ", " << r.x1 << "] " << ToString(r.part));
+    CHECK(r.stair_index != 0);  // the top landing: nothing behind it to meet
+    // The shins meet the step behind: regions start at the back of the tread (the bottom landing's
+    // too), and the front of it stays a place to step.
+    CHECK(r.x0 == Approx(stairs.surface(r.stair_index).x_begin));
+    CHECK(r.x1 < stairs.surface(r.stair_index).x_end - 0.05);
+  }
+  CHECK(regions.size() == static_cast<std::size_t>(stairs.steps()));  // one behind each riser
+}
