@@ -151,6 +151,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
   const double dt = settings_.knot_dt, pmax = settings_.max_pitch, smax = settings_.max_shift;
   const double ymax = settings_.max_lateral_shift;
   const double heading = schedule_.heading();
+  const bool leg_rows = qp.has_stance_rows();
   for (int k = 0; k <= n; ++k) {
     for (int l = 0; l < kBodyLegs; ++l) phases_[static_cast<std::size_t>(k * kBodyLegs + l)] = schedule_.Phase(l, now + k * dt);
   }
@@ -247,6 +248,10 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       const double inset = std::min(kReferenceInset, 0.5 * (hi - lo));
       double& ref = qp.height_ref[k * kBodyLegs + l];
       ref = std::clamp(ref, lo + inset, hi - inset);
+      // With leg rows each leg's reach, limits and clearance are exact rows of their own: the
+      // tabulated range only guides the height reference (and the shift, RestoreShift), it does
+      // not bound the plan, whose exact rows it would contradict where its grid is coarse.
+      if (leg_rows) continue;
       double row_lo = std::max(qp.hip_lo[row], lo), row_hi = std::min(qp.hip_hi[row], hi);
       if (has_previous_) {
         // Where the previous plan breaks the bound, the plan must come back by pull_in_ per
@@ -436,6 +441,7 @@ void BodyPlanner::CountConflicts() {
   output_.conflicts = 0;
   output_.conflict_knot = output_.conflict_leg = -1;
   output_.next_violation = 0.0;
+  if (qp_->has_stance_rows()) return;  // the tabulated ranges only guide: nothing to break
   for (int k = 1; k < settings_.knots; ++k) {
     for (int l = 0; l < kBodyLegs; ++l) {
       const double value = previous_z_[k] + qp_->row_coefficient(l) * previous_pitch_[k];
