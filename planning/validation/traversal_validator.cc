@@ -12,6 +12,33 @@ namespace stairplan {
 namespace {
 
 constexpr double kTouchTolerance = 1e-4;  // a foot sphere this deep in its tread still only touches [m]
+// A replay instant this close to a liftoff or touchdown is that event: footstep times are sums of
+// cadences (8.400000000000002), and a grid instant a rounding error before a touchdown would judge
+// the landing foot in the air and the COM, already shifting for the next swing, against the
+// triangle of the other three [s].
+constexpr double kEventTolerance = 1e-9;
+
+// The instants a plan is replayed at: every liftoff and touchdown, the end, and a grid of
+// `time_step` whose instants within kEventTolerance of an event are that event.
+std::set<double> ReplayInstants(const Plan& plan, double time_step) {
+  std::set<double> events;
+  for (const Footstep& f : plan.footsteps) {
+    events.insert(f.t_liftoff);
+    events.insert(f.t_touchdown);
+  }
+  std::set<double> times = events;
+  times.insert(plan.duration());
+  const auto near_event = [&events](double t) {
+    const auto after = events.lower_bound(t - kEventTolerance);
+    return after != events.end() && *after <= t + kEventTolerance;
+  };
+  const auto steps = static_cast<long>(std::ceil(plan.duration() / time_step));
+  for (long i = 0; i < steps; ++i) {
+    const double t = static_cast<double>(i) * time_step;
+    if (t < plan.duration() && !near_event(t)) times.insert(t);
+  }
+  return times;
+}
 
 bool QuasiStatic(const std::string& gait) { return gait.rfind("crawl", 0) == 0; }
 
@@ -141,13 +168,7 @@ ValidationReport TraversalValidator::Validate(const Plan& plan) {
   report.dynamics.tolerance_n = wrench_->tolerance();
   CheckTouchdowns(plan, report);
   if (QuasiStatic(plan.gait)) CheckBodyAcceleration(plan, report);
-  std::set<double> times;
-  for (double t = 0.0; t < plan.duration(); t += settings_.time_step) times.insert(t);
-  times.insert(plan.duration());
-  for (const Footstep& f : plan.footsteps) {
-    times.insert(f.t_liftoff);
-    times.insert(f.t_touchdown);
-  }
+  const std::set<double> times = ReplayInstants(plan, settings_.time_step);
   for (double t : times) CheckInstant(plan, t, report);
   std::stable_sort(report.violations.begin(), report.violations.end(),
                    [](const Violation& a, const Violation& b) { return a.t < b.t; });
