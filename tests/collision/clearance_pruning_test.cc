@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <random>
 
 #include "collision/clearance.h"
@@ -13,7 +14,7 @@
 #include "collision/stance_check.h"
 #include "kinematics/builtin_robot.h"
 #include "sanitized.h"
-#include "test_paths.h"
+#include "shared_solo12.h"
 
 using namespace stairplan;
 
@@ -114,14 +115,10 @@ TEST_CASE("pruned clearances equal every pair's: the built-in robot's primitives
 }
 
 TEST_CASE("pruned clearances equal every pair's: Solo 12's mesh hulls", "[clearance][pruning][solo12]") {
-  const std::string folder = testing::SharedPath("data/robots/solo12");
-  if (folder.empty()) {
+  const std::optional<RobotModel> solo = testing::SharedSolo12();
+  if (!solo) {
     WARN("Solo 12 skipped: ../shared not found");
     return;
   }
-  MeshSettings meshes;
-  meshes.package_path = PackagePath::FromString(folder);
-  meshes.use_ros_package_path = false;
-  CheckPrunedEqualsEveryPair(RobotModel::FromUrdfFile(folder + "/solo12.urdf", {}, meshes),
-                             testing::FullOrSanitized(200, 25));
+  CheckPrunedEqualsEveryPair(*solo, testing::FullOrSanitized(200, 25));
 }

@@ -14,6 +14,7 @@
 #include "kinematics/mesh_loader.h"
 #include "mesh_files.h"
 #include "sanitized.h"
+#include "shared_solo12.h"
 #include "test_paths.h"
 
 using namespace stairplan;
@@ -180,10 +181,7 @@ TEST_CASE("Solo 12's collision model: mesh shapes, mesh feet, a clear stance on 
   }
   for (const MeshCollision mode : {MeshCollision::kConvexHull, MeshCollision::kExactMesh}) {
     INFO(ToString(mode));
-    MeshSettings meshes;
-    meshes.package_path = PackagePath::FromString(folder);
-    meshes.collision = mode;
-    const RobotModel robot = RobotModel::FromUrdfFile(folder + "/solo12.urdf", {}, meshes);
+    const RobotModel robot = RobotModel::FromUrdfFile(folder + "/solo12.urdf", {}, testing::Solo12Meshes(folder, mode));
     StanceChecker checker(robot, Staircase(StairSpec{}));
     const RobotCollisionModel& model = checker.collision_model();
     REQUIRE(model.body_shapes().size() == 1);

@@ -4,27 +4,21 @@
 // time step, judged a foot landing 2e-15 s later in the air: 0.13 mm outside the triangle).
 #include <catch2/catch.hpp>
 
-#include <string>
+#include <optional>
 #include <vector>
 
-#include "kinematics/robot_meshes.h"
-#include "kinematics/robot_model.h"
 #include "planning/plan_pipeline.h"
 #include "sanitized.h"
-#include "test_paths.h"
+#include "shared_solo12.h"
 
 using namespace stairplan;
 
 TEST_CASE("Solo 12 plans and validates up and down the low stairs", "[planning][solo12]") {
-  const std::string folder = testing::SharedPath("data/robots/solo12");
-  if (folder.empty()) {
+  const std::optional<RobotModel> solo = testing::SharedSolo12();
+  if (!solo) {
     WARN("Solo 12 skipped: ../shared not found");
     return;
   }
-  MeshSettings meshes;
-  meshes.package_path = PackagePath::FromString(folder);
-  meshes.use_ros_package_path = false;
-  const RobotModel solo = RobotModel::FromUrdfFile(folder + "/solo12.urdf", {}, meshes);
   // Under the sanitizers the descent only: the case whose touchdown instant was misjudged.
   const std::vector<TravelDirection> directions =
       testing::FullOrSanitized<std::vector<TravelDirection>>({TravelDirection::kUp, TravelDirection::kDown}, {TravelDirection::kDown});
@@ -33,7 +27,7 @@ TEST_CASE("Solo 12 plans and validates up and down the low stairs", "[planning][
     spec.rise = 0.08;
     spec.run = 0.25;
     spec.direction = direction;
-    const PipelineResult r = RunPipeline(solo, Staircase(spec), PipelineOptions{});
+    const PipelineResult r = RunPipeline(*solo, Staircase(spec), PipelineOptions{});
     INFO((direction == TravelDirection::kUp ? "up" : "down") << ": " << r.plan.status_reason);
     REQUIRE(r.plan.status == PlanStatus::kOk);
     REQUIRE(r.validated);
