@@ -273,7 +273,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     StanceRows(k, at, v0);  // first: the support rows read the legs' joints it solved
     SupportRows(k, t, pm, at, v0);
   }
-  if (qp.has_stance_rows()) ProgressRows();
+  if (leg_rows) ProgressRows();
 }
 
 void BodyPlanner::ProgressRows() {

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <optional>
+#include <string>
 
 #include "collision/robot_collision_regions.h"
 #include "kinematics/builtin_robot.h"
@@ -21,6 +23,16 @@ bool CoversMiddle(const RobotRegion& r, const Staircase& stairs) {
   const StairSurface& s = stairs.surface(r.stair_index);
   const double middle = 0.5 * (s.x_begin + s.x_end);
   return r.x0 < middle && r.x1 > middle;
+}
+
+// A robot of ../shared/data/robots by name; nothing (with a WARN) when ../shared is absent.
+std::optional<RobotModel> RegionsRobot(const std::string& name) {
+  const std::string path = testing::SharedPath("data/robots/" + name + ".urdf");
+  if (path.empty()) {
+    WARN("shared robots skipped: ../shared not found");
+    return std::nullopt;
+  }
+  return RobotModel::FromUrdfFile(path);
 }
 
 }  // namespace
@@ -110,12 +122,9 @@ TEST_CASE("robot regions merge into the constrained map and trim its step region
 }
 
 TEST_CASE("ANYmal C ascending: its forward-bent hind knees reach the nosings", "[robot_regions]") {
-  const std::string path = testing::SharedPath("data/robots/anymal_c.urdf");
-  if (path.empty()) {
-    WARN("shared robots skipped: ../shared not found");
-    return;
-  }
-  const RobotKinematics kinematics(RobotModel::FromUrdfFile(path));
+  const std::optional<RobotModel> model = RegionsRobot("anymal_c");
+  if (!model) return;
+  const RobotKinematics kinematics(*model);
   const RobotCollisionModel robot(kinematics);
   const Staircase stairs{StairSpec{}};
   const auto regions = FindRobotCollisionRegions(kinematics, robot, stairs, Facing::kForward);
@@ -132,12 +141,9 @@ TEST_CASE("ANYmal C ascending: its forward-bent hind knees reach the nosings", "
 }
 
 TEST_CASE("Unitree Go2 descending at the pipeline's posture: landings free, a strip of each tread left", "[robot_regions]") {
-  const std::string path = testing::SharedPath("data/robots/unitree_go2.urdf");
-  if (path.empty()) {
-    WARN("shared robots skipped: ../shared not found");
-    return;
-  }
-  const RobotKinematics kinematics(RobotModel::FromUrdfFile(path));
+  const std::optional<RobotModel> model = RegionsRobot("unitree_go2");
+  if (!model) return;
+  const RobotKinematics kinematics(*model);
   const RobotCollisionModel robot(kinematics);
   StairSpec spec;
   spec.direction = TravelDirection::kDown;
