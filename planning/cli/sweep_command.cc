@@ -227,6 +227,7 @@ std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const Swe
   for (const SweepPoint& p : points) {
     if (shard.Holds(p.index) && (!files.plans || files.plans->lines().count(p.index) == 0)) todo.push_back(p.index);
   }
+  todo = SlowestFirst(std::move(todo), points);
   const int already = files.plans ? static_cast<int>(files.plans->lines().size()) : 0;
   SweepProgressReport progress(job.label.empty() ? "" : job.label + " ", already + static_cast<int>(todo.size()),
                                already, isatty(STDERR_FILENO) != 0);

@@ -1,7 +1,9 @@
 #include "planning/sweep/sweep_grid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "geometry/field_error.h"
 #include "geometry/stair_spec_yaml.h"
@@ -87,6 +89,15 @@ std::vector<SweepPoint> EnumeratePoints(const SweepGrid& grid) {
     }
   }
   return points;
+}
+
+std::vector<int> SlowestFirst(std::vector<int> indices, const std::vector<SweepPoint>& points) {
+  const auto cost = [&](int index) {
+    const SweepPoint& p = points[static_cast<std::size_t>(index)];
+    return std::make_tuple(p.steps, p.rise, p.run);
+  };
+  std::stable_sort(indices.begin(), indices.end(), [&](int a, int b) { return cost(a) > cost(b); });
+  return indices;
 }
 
 Shard Shard::Parse(const std::string& text, const std::string& flag) {

@@ -48,6 +48,13 @@ struct SweepPoint {
 /// Every point, in the fixed order direction > steps > nosing > rise > run.
 std::vector<SweepPoint> EnumeratePoints(const SweepGrid& grid);
 
+/// `indices` (into `points`) in the order to hand them to workers: the points expected to take
+/// longest first (more steps, then higher risers, then longer runs), so that no worker is left
+/// with a slow point while the others idle at the end. A plan's cost grows with its steps and
+/// with the rise (posture search and retries), and EnumeratePoints puts those points last.
+/// Only the order of computing changes: results are stored by index.
+std::vector<int> SlowestFirst(std::vector<int> indices, const std::vector<SweepPoint>& points);
+
 /// Which part of a sweep this process computes: points with index % count == index.
 struct Shard {
   int index = 0;  ///< this shard, 0 .. count - 1

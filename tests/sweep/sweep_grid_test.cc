@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <set>
+#include <tuple>
 
 #include "geometry/field_error.h"
 #include "planning/sweep/sweep_merge.h"
@@ -56,4 +57,27 @@ TEST_CASE("shards partition the points and a merge restores the order", "[sweep]
   parts.push_back(parts.front());
   CHECK_THROWS_WITH(MergeSweepCsv(parts), Catch::Contains("part0.csv: shard 0/3 given twice"));
   CHECK_THROWS_WITH(Shard::Parse("3/3", "--shard"), Catch::Contains("--shard"));
+}
+
+TEST_CASE("workers get the slowest points first: more steps, then higher risers, then longer runs", "[sweep]") {
+  SweepGrid grid;
+  grid.rise = {0.1, 0.2, 3};
+  grid.run = {0.2, 0.3, 2};
+  grid.steps = {2, 3, 2};
+  grid.directions = {TravelDirection::kUp, TravelDirection::kDown};
+  const auto points = EnumeratePoints(grid);
+  std::vector<int> all;
+  for (const auto& p : points) all.push_back(p.index);
+  const std::vector<int> order = SlowestFirst(all, points);
+  CHECK(std::multiset<int>(order.begin(), order.end()) == std::multiset<int>(all.begin(), all.end()));
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const SweepPoint& a = points[static_cast<std::size_t>(order[i - 1])];
+    const SweepPoint& b = points[static_cast<std::size_t>(order[i])];
+    INFO(i);
+    CHECK(std::make_tuple(a.steps, a.rise, a.run) >= std::make_tuple(b.steps, b.rise, b.run));
+    // Equal costs keep EnumeratePoints' order (up before down), so a resumed run hands out the same order.
+    if (std::make_tuple(a.steps, a.rise, a.run) == std::make_tuple(b.steps, b.rise, b.run)) CHECK(order[i - 1] < order[i]);
+  }
+  CHECK(points[static_cast<std::size_t>(order.front())].rise == Approx(0.2));
+  CHECK(points[static_cast<std::size_t>(order.front())].steps == 3);
 }
