@@ -32,7 +32,7 @@ TEST_CASE("footfalls --stairs-out, plan --stairs: plans that validate on the tru
   REQUIRE(found.code == 0);
   const char* found_files[4] = {"found.yaml", "found_1.yaml", "found_2.yaml", "found_3.yaml"};
   // Every flight's true stairs (the checks below read them all); planned and validated: all four,
-  // under the sanitizers the first (the direct plan below descends the third).
+  // under the sanitizers the first only.
   for (std::size_t i = 0; i < loop.size(); ++i) {
     std::ofstream(dir + "/true_" + std::to_string(i) + ".yaml") << StairSpecToYaml(loop[i].stairs.spec());
   }
@@ -48,29 +48,33 @@ TEST_CASE("footfalls --stairs-out, plan --stairs: plans that validate on the tru
     INFO(valid.out << valid.err);
     CHECK(valid.code == 0);
   }
-  // plan --footfalls plans on a staircase of the log directly: the third, walked down.
-  const StairplanRun direct =
-      RunStairplan(dir, "plan --footfalls " + dir + "/walk.csv --staircase 3 --nosing 0.02 --out " + dir + "/direct");
-  INFO(direct.out << direct.err);
-  REQUIRE(direct.code == 0);
-  CHECK(RunStairplan(dir, "validate " + dir + "/direct/plan.json --stairs " + dir + "/true_2.yaml").code == 0);
-  {
-    // Stair mode engaged where the log's track first came within range of that flight, and the
-    // alignment pose is, in the world, the patent's pose for the true flight (seed 001
-    // [0042]-[0043]) to within what the footfalls find of it.
-    const nlohmann::json plan = nlohmann::json::parse(ReadFile(dir + "/direct/plan.json"));
-    const nlohmann::json& mode = plan.at("stair_mode");
-    CHECK(mode.at("engaged") == true);
-    CHECK(mode.at("robot").at("source") == "footfall_track");
-    CHECK(mode.at("distance_m").get<double>() <= 1.0);
-    const StairModel truth = loop[2].Model();
-    const nlohmann::json& robot_W = mode.at("robot").at("world");
-    CHECK(DistanceToFlight(truth, {robot_W.at("x").get<double>(), robot_W.at("y").get<double>()}) < 1.05);
-    const nlohmann::json& a = plan.at("alignment");
-    const AlignmentPose exact = ComputeAlignmentPose(truth, TravelDirection::kDown, Facing::kForward, a.at("standoff_m").get<double>());
-    const nlohmann::json& w = a.at("world");
-    CHECK(std::hypot(w.at("x").get<double>() - exact.position.x(), w.at("y").get<double>() - exact.position.y()) < 0.05);
-    CHECK(std::abs(std::remainder(w.at("yaw_rad").get<double>() - exact.yaw, 2.0 * M_PI)) < 2.0 * M_PI / 180.0);
+  // plan --footfalls plans on a staircase of the log directly: the third, walked down. Not under the
+  // sanitizers (a 7-step descent planned and replayed there took most of this test's 68 s); the
+  // normal build runs it, and "the built-in robot's default descents validate" descends there.
+  if (!kSanitized) {
+    const StairplanRun direct =
+        RunStairplan(dir, "plan --footfalls " + dir + "/walk.csv --staircase 3 --nosing 0.02 --out " + dir + "/direct");
+    INFO(direct.out << direct.err);
+    REQUIRE(direct.code == 0);
+    CHECK(RunStairplan(dir, "validate " + dir + "/direct/plan.json --stairs " + dir + "/true_2.yaml").code == 0);
+    {
+      // Stair mode engaged where the log's track first came within range of that flight, and the
+      // alignment pose is, in the world, the patent's pose for the true flight (seed 001
+      // [0042]-[0043]) to within what the footfalls find of it.
+      const nlohmann::json plan = nlohmann::json::parse(ReadFile(dir + "/direct/plan.json"));
+      const nlohmann::json& mode = plan.at("stair_mode");
+      CHECK(mode.at("engaged") == true);
+      CHECK(mode.at("robot").at("source") == "footfall_track");
+      CHECK(mode.at("distance_m").get<double>() <= 1.0);
+      const StairModel truth = loop[2].Model();
+      const nlohmann::json& robot_W = mode.at("robot").at("world");
+      CHECK(DistanceToFlight(truth, {robot_W.at("x").get<double>(), robot_W.at("y").get<double>()}) < 1.05);
+      const nlohmann::json& a = plan.at("alignment");
+      const AlignmentPose exact = ComputeAlignmentPose(truth, TravelDirection::kDown, Facing::kForward, a.at("standoff_m").get<double>());
+      const nlohmann::json& w = a.at("world");
+      CHECK(std::hypot(w.at("x").get<double>() - exact.position.x(), w.at("y").get<double>() - exact.position.y()) < 0.05);
+      CHECK(std::abs(std::remainder(w.at("yaw_rad").get<double>() - exact.yaw, 2.0 * M_PI)) < 2.0 * M_PI / 180.0);
+    }
   }
   CHECK(RunStairplan(dir, "plan --footfalls " + dir + "/walk.csv --staircase 5 --out " + dir + "/none").code == 3);
   // The check has teeth: the first flight's plan (rise 0.17) on the second flight's stairs (0.15) is invalid.
