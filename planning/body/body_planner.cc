@@ -95,6 +95,11 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
     for (int k = 0; k < n; ++k) {
       for (int l = 0; l < kBodyLegs; ++l) stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)] = kinematics.leg(l).nominal();
     }
+    // Height has no trust region: its share is of the trust region's shift.
+    const double share = settings_.relinearise_share;
+    const Eigen::Vector4d max_move(share * settings_.trust_shift, share * settings_.trust_pitch,
+                                   share * settings_.trust_shift, share * settings_.trust_lateral);
+    if (share > 0.0) row_cache_ = std::make_unique<KnotRowCache>(n, settings_.knot_dt, max_move);
   }
   previous_z_.setZero(n);
   previous_pitch_.setZero(n);
@@ -270,8 +275,21 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     at.position_W = Eigen::Vector3d(xy.x() + heading * v0[2], xy.y() + heading * v0[3], v0[0]);
     at.pitch = v0[1];
     at.yaw = schedule_.yaw();
-    StanceRows(k, at, v0);  // first: the support rows read the legs' joints it solved
-    SupportRows(k, t, pm, at, v0);
+    // First the leg rows: the support rows read the legs' joints they solved.
+    bool restored = false;
+    if (row_cache_ != nullptr && k > 0) {
+      Eigen::Vector3d* q = &stance_q_[static_cast<std::size_t>(k * kBodyLegs)];
+      restored = row_cache_->Restore(t, v0, k, qp, q);
+      if (!restored) {
+        StanceRows(k, at, v0);
+        row_cache_->Store(t, v0, k, qp, q);
+      }
+      ++output_.linearised_knots;
+      output_.reused_knots += restored ? 1 : 0;
+    } else {
+      StanceRows(k, at, v0);
+    }
+    SupportRows(k, t, pm, at, v0, restored);
   }
   if (leg_rows) ProgressRows();
 }
@@ -307,20 +325,27 @@ void BodyPlanner::KeepAccelerationAcrossCycles(const BodyState& state, double no
          qp.lateral_hi[1]);
 }
 
-Eigen::Vector2d BodyPlanner::ComBase(int k, double pitch, const Eigen::Vector2d& feet_sum, const BodyPose& at,
-                                     const Eigen::Vector4d& v0) {
+Eigen::Vector2d BodyPlanner::ComBase(int k, double t, double pitch, const Eigen::Vector2d& feet_sum,
+                                     const BodyPose& at, const Eigen::Vector4d& v0, bool restored) {
   const Eigen::Vector2d shift = schedule_.heading() * v0.tail<2>();
   if (com_model_ == nullptr) return com_.At(Eigen::Vector2d(neutral_x_[k], neutral_y_[k]), feet_sum, pitch);
+  // Restored leg rows come with the COM computed at their own centre: the affine model below
+  // carries it to this one as it carries it over the trust region.
+  Eigen::Vector2d kept;
+  if (restored && row_cache_->ComBase(t, &kept)) return kept;
   // With the legs' joints at the linearisation point (the leg rows' IK, swing legs on their
   // trajectories) the COM there is exact; the affine estimate's gain carries it over the trust
   // region. The estimate alone misses the legs' own motion by centimetres on heavy-legged robots.
   std::array<Eigen::Vector3d, kBodyLegs> q;
   for (int l = 0; l < kBodyLegs; ++l) q[static_cast<std::size_t>(l)] = stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)];
   const Eigen::Vector2d exact = com_model_->Com(at, q, *stance_ws_).head<2>();
-  return exact - com_.gain.cwiseProduct(shift);
+  const Eigen::Vector2d base = exact - com_.gain.cwiseProduct(shift);
+  if (!restored && row_cache_ != nullptr) row_cache_->StoreComBase(t, base);
+  return base;
 }
 
-void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at, const Eigen::Vector4d& v0) {
+void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at, const Eigen::Vector4d& v0,
+                              bool restored) {
   BodyQp& qp = *qp_;
   constexpr int kRows = BodyQp::kSupportRows;
   for (int r = 0; r < kRows; ++r) {
@@ -346,7 +371,7 @@ void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at,
   }
   if (standing < 3) return;  // no polygon: the gait is not quasi-static here
   const double heading = schedule_.heading();
-  const Eigen::Vector2d com_base = ComBase(k, pitch, feet_sum, at, v0);
+  const Eigen::Vector2d com_base = ComBase(k, t, pitch, feet_sum, at, v0, restored);
   const double previous_x = has_previous_ ? PreviousAt(previous_shift_, t) : 0.0;
   const double previous_y = has_previous_ ? PreviousAt(previous_lateral_, t) : 0.0;
   const auto contact = [&](int l) -> Eigen::Vector2d {
@@ -517,6 +542,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
   CheckFinite(command.pitch_offset, "command.pitch_offset");
   output_.solves = 0;
   output_.iterations = 0;
+  output_.linearised_knots = output_.reused_knots = 0;
   output_.timings = {};
   bool solved = false;
   if (!has_previous_) {

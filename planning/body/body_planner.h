@@ -33,6 +33,7 @@
 #include "planning/body/com_estimate.h"
 #include "planning/body/foot_schedule.h"
 #include "planning/body/kinematic_body_bounds.h"
+#include "planning/body/knot_row_cache.h"
 #include "planning/body/stance_leg_rows.h"
 #include "planning/com_model.h"
 #include "planning/optim/solve_result.h"
@@ -81,6 +82,10 @@ struct BodyPlannerOutput {
   double next_violation = 0.0;   ///< how far the next knot breaks a stance leg's bound [m]
   int iterations = 0;            ///< active-set changes
   int solves = 0;                ///< QPs solved in this Update (> 1 only at warm-up)
+  /// With leg rows: knots linearised in this Update, and of those how many took their leg rows
+  /// over from the last linearisation at the same instant (KnotRowCache).
+  int linearised_knots = 0;
+  int reused_knots = 0;  ///< see linearised_knots
   BodyPlannerTimings timings;  ///< how long the cycle's parts took
 };
 
@@ -141,11 +146,12 @@ class BodyPlanner {
   void KeepAccelerationAcrossCycles(const BodyState& state, double now);
   // Knot k's support rows: the COM estimate inside the polygon of the legs standing through
   // knots k-1..k+1, shrunk by the stability margin (rows free where no polygon applies).
-  void SupportRows(int k, double t, double pitch, const BodyPose& at, const Eigen::Vector4d& v0);
+  // `restored`: knot k's leg rows came from row_cache_ (its exact COM may too).
+  void SupportRows(int k, double t, double pitch, const BodyPose& at, const Eigen::Vector4d& v0, bool restored);
   // The COM at knot k without the weight shifts: from the leg rows' joints at the linearisation
   // point `at` (v0) when there are leg rows, else from the affine estimate.
-  Eigen::Vector2d ComBase(int k, double pitch, const Eigen::Vector2d& feet_sum, const BodyPose& at,
-                          const Eigen::Vector4d& v0);
+  Eigen::Vector2d ComBase(int k, double t, double pitch, const Eigen::Vector2d& feet_sum, const BodyPose& at,
+                          const Eigen::Vector4d& v0, bool restored);
   // Knot k's leg rows: every leg's joints, extension and clearance linearised at the pose `at`
   // (the trust region's centre), a stance leg's foot on its contact, a swing leg's on its swing
   // trajectory (rows free at knot 0 and without kinematics).
@@ -182,6 +188,7 @@ class BodyPlanner {
   std::unique_ptr<RobotWorkspace> stance_ws_;
   std::vector<Eigen::Vector3d> stance_q_;  // k * 4 + leg
   std::unique_ptr<ComModel> com_model_;     // the exact COM (with leg rows only)
+  std::unique_ptr<KnotRowCache> row_cache_;  // the last cycle's leg rows (with leg rows only)
   std::array<Eigen::Vector3d, kBodyLegs> hips_B_{};
   std::array<double, kBodyLegs> c_{};
   double hip_height_ = 0.0;

@@ -39,6 +39,7 @@ void BodyPlannerSettings::Validate() const {
   CheckRange("max_lateral_shift", max_lateral_shift, 0.0, 1.0);
   CheckRange("max_lateral_accel", max_lateral_accel, 0.0, 1e3);
   CheckRange("trust_lateral", trust_lateral, 0.0, 1.0);
+  if (!(relinearise_share >= 0.0 && relinearise_share <= 1.0)) throw FieldError("relinearise_share", "must be in [0, 1]");
   if (!(reach_margin >= 0.0 && reach_margin <= 0.5)) throw FieldError("reach_margin", "must be in [0, 0.5] m");
   if (!(joint_margin >= 0.0 && joint_margin <= 0.5)) throw FieldError("joint_margin", "must be in [0, 0.5] rad");
   if (!(clearance_margin >= 0.0 && clearance_margin <= 0.5)) throw FieldError("clearance_margin", "must be in [0, 0.5] m");
@@ -77,7 +78,8 @@ void BodyPlannerSettings::Set(const std::string& name, double value) {
       {"joint_margin", &joint_margin},
       {"clearance_margin", &clearance_margin}, {"grid_dx", &grid_dx}, {"grid_pitch", &grid_pitch},
       {"grid_height", &grid_height}, {"trust_pitch", &trust_pitch}, {"trust_shift", &trust_shift},
-      {"trust_lateral", &trust_lateral}, {"cycle_budget_s", &cycle_budget_s}};
+      {"trust_lateral", &trust_lateral}, {"relinearise_share", &relinearise_share},
+      {"cycle_budget_s", &cycle_budget_s}};
   const auto it = fields.find(name);
   if (it == fields.end()) throw FieldError(name, "no such body planner setting");
   *it->second = value;

@@ -1,0 +1,65 @@
+// The leg rows' linearisations carried from one cycle to the next. The receding horizon advances
+// one knot per cycle: knot k + 1 of the last cycle is knot k of this one, the same instant with
+// the same footholds and swing positions, and its trust region's centre (the last plan there)
+// has usually moved far less than the trust region allows. Its leg rows (KDL joints and
+// extension, FCL clearances of the legs and the body) and its exact centre of mass are then
+// taken over instead of solved again: linearised at a centre this near they differ by
+// second-order terms, which the rows' clearance inset and joint margin cover. Where the centre
+// moved more, or the cycle's instants fall between the last cycle's (a control loop whose period
+// is not the knot spacing), the knot is linearised afresh.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planning/body/body_qp.h"
+
+namespace stairplan {
+
+/// One cycle's leg rows per knot instant, reused by the next cycle at the same instant.
+class KnotRowCache {
+ public:
+  /// Room for a horizon of `knots` knots `dt` apart; `max_move` is how far each of the centre's
+  /// (z, pitch, shift, lateral) may move before a knot is linearised again. Allocates here only.
+  KnotRowCache(int knots, double dt, const Eigen::Vector4d& max_move);
+
+  /// Copies the rows linearised for instant `t` at a centre within max_move of `v0` into knot
+  /// `k` of `qp` (their relaxation coefficients re-evaluated at `v0`) and the legs' joints into
+  /// `q` (kBodyLegs of them); false, with nothing written, when there are none.
+  bool Restore(double t, const Eigen::Vector4d& v0, int k, BodyQp& qp, Eigen::Vector3d* q) const;
+  /// Keeps knot `k`'s rows of `qp`, linearised for instant `t` at centre `v0`, and the legs'
+  /// joints `q` (kBodyLegs of them). Forgets that instant's centre of mass.
+  void Store(double t, const Eigen::Vector4d& v0, int k, const BodyQp& qp, const Eigen::Vector3d* q);
+  /// The centre of mass kept for instant `t` with its rows (ComBase's value), when there is one.
+  bool ComBase(double t, Eigen::Vector2d* com_base) const;
+  /// Keeps instant `t`'s centre of mass, computed at the centre its rows were stored with.
+  void StoreComBase(double t, const Eigen::Vector2d& com_base);
+
+ private:
+  static constexpr int kStance = kBodyLegs * BodyQp::kStanceRows;
+  static constexpr int kClearance = BodyQp::kClearanceRows;
+  struct Slot {
+    double t = 0.0;
+    bool used = false;
+    bool has_com = false;
+    Eigen::Vector4d v0 = Eigen::Vector4d::Zero();
+    Eigen::Matrix<double, kStance, 4> stance_a;
+    Eigen::Matrix<double, kStance, 1> stance_lo, stance_hi;
+    Eigen::Matrix<double, kClearance, 4> clearance_a;
+    Eigen::Matrix<double, kClearance, 1> clearance_lo, clearance_hi;
+    std::array<Eigen::Vector3d, kBodyLegs> q;
+    Eigen::Vector2d com_base = Eigen::Vector2d::Zero();
+  };
+  // The slot of instant t (by its knot number t / dt, modulo the slots), and that slot when it
+  // holds instant t.
+  std::size_t Index(double t) const;
+  const Slot* Find(double t) const;
+
+  double dt_;
+  Eigen::Vector4d max_move_;
+  std::vector<Slot> slots_;
+};
+
+}  // namespace stairplan
