@@ -20,6 +20,21 @@ double Sigma(const Eigen::Vector4d& a, double lo, double hi, const Eigen::Vector
 
 }  // namespace
 
+template <int N>
+void KnotRowCache::ReadRows(const BodyQp::KnotRows& rows, int first, Rows<N>& kept) {
+  kept.a = rows.a.middleRows(first, N);
+  kept.lo = rows.lo.segment(first, N);
+  kept.hi = rows.hi.segment(first, N);
+}
+
+template <int N>
+void KnotRowCache::WriteRows(const Rows<N>& kept, int first, const Eigen::Vector4d& v0, BodyQp::KnotRows& rows) {
+  rows.a.middleRows(first, N) = kept.a;
+  rows.lo.segment(first, N) = kept.lo;
+  rows.hi.segment(first, N) = kept.hi;
+  for (int r = 0; r < N; ++r) rows.sigma[first + r] = Sigma(kept.a.row(r).transpose(), kept.lo[r], kept.hi[r], v0);
+}
+
 KnotRowCache::KnotRowCache(int knots, double dt, const Eigen::Vector4d& max_move)
     : dt_(dt), max_move_(max_move), slots_(static_cast<std::size_t>(knots + 1)) {}
 
@@ -36,38 +51,20 @@ const KnotRowCache::Slot* KnotRowCache::Find(double t) const {
 bool KnotRowCache::Restore(double t, const Eigen::Vector4d& v0, int k, BodyQp& qp, Eigen::Vector3d* q) const {
   const Slot* slot = Find(t);
   if (slot == nullptr || ((slot->v0 - v0).cwiseAbs().array() > max_move_.array()).any()) return false;
-  const int stance = BodyQp::StanceRow(k, 0, 0), clearance = BodyQp::ClearanceRow(k, 0);
-  for (int r = 0; r < kStance; ++r) {
-    const Eigen::Vector4d a = slot->stance_a.row(r).transpose();
-    qp.stance.a.row(stance + r) = a.transpose();
-    qp.stance.lo[stance + r] = slot->stance_lo[r];
-    qp.stance.hi[stance + r] = slot->stance_hi[r];
-    qp.stance.sigma[stance + r] = Sigma(a, slot->stance_lo[r], slot->stance_hi[r], v0);
-  }
-  for (int r = 0; r < kClearance; ++r) {
-    const Eigen::Vector4d a = slot->clearance_a.row(r).transpose();
-    qp.clearance.a.row(clearance + r) = a.transpose();
-    qp.clearance.lo[clearance + r] = slot->clearance_lo[r];
-    qp.clearance.hi[clearance + r] = slot->clearance_hi[r];
-    qp.clearance.sigma[clearance + r] = Sigma(a, slot->clearance_lo[r], slot->clearance_hi[r], v0);
-  }
+  WriteRows(slot->stance, BodyQp::StanceRow(k, 0, 0), v0, qp.stance);
+  WriteRows(slot->clearance, BodyQp::ClearanceRow(k, 0), v0, qp.clearance);
   for (int l = 0; l < kBodyLegs; ++l) q[l] = slot->q[static_cast<std::size_t>(l)];
   return true;
 }
 
 void KnotRowCache::Store(double t, const Eigen::Vector4d& v0, int k, const BodyQp& qp, const Eigen::Vector3d* q) {
   Slot& slot = slots_[Index(t)];
-  const int stance = BodyQp::StanceRow(k, 0, 0), clearance = BodyQp::ClearanceRow(k, 0);
   slot.t = t;
   slot.used = true;
   slot.has_com = false;
   slot.v0 = v0;
-  slot.stance_a = qp.stance.a.middleRows(stance, kStance);
-  slot.stance_lo = qp.stance.lo.segment(stance, kStance);
-  slot.stance_hi = qp.stance.hi.segment(stance, kStance);
-  slot.clearance_a = qp.clearance.a.middleRows(clearance, kClearance);
-  slot.clearance_lo = qp.clearance.lo.segment(clearance, kClearance);
-  slot.clearance_hi = qp.clearance.hi.segment(clearance, kClearance);
+  ReadRows(qp.stance, BodyQp::StanceRow(k, 0, 0), slot.stance);
+  ReadRows(qp.clearance, BodyQp::ClearanceRow(k, 0), slot.clearance);
   for (int l = 0; l < kBodyLegs; ++l) slot.q[static_cast<std::size_t>(l)] = q[l];
 }
 

@@ -38,20 +38,27 @@ class KnotRowCache {
   void StoreComBase(double t, const Eigen::Vector2d& com_base);
 
  private:
-  static constexpr int kStance = kBodyLegs * BodyQp::kStanceRows;
-  static constexpr int kClearance = BodyQp::kClearanceRows;
+  // One knot's N rows of a BodyQp::KnotRows family.
+  template <int N>
+  struct Rows {
+    Eigen::Matrix<double, N, 4> a;
+    Eigen::Matrix<double, N, 1> lo, hi;
+  };
   struct Slot {
     double t = 0.0;
     bool used = false;
     bool has_com = false;
     Eigen::Vector4d v0 = Eigen::Vector4d::Zero();
-    Eigen::Matrix<double, kStance, 4> stance_a;
-    Eigen::Matrix<double, kStance, 1> stance_lo, stance_hi;
-    Eigen::Matrix<double, kClearance, 4> clearance_a;
-    Eigen::Matrix<double, kClearance, 1> clearance_lo, clearance_hi;
+    Rows<kBodyLegs * BodyQp::kStanceRows> stance;
+    Rows<BodyQp::kClearanceRows> clearance;
     std::array<Eigen::Vector3d, kBodyLegs> q;
     Eigen::Vector2d com_base = Eigen::Vector2d::Zero();
   };
+  // Rows first .. first + N - 1 of `rows` into `kept`, and back (with the relaxation at `v0`).
+  template <int N>
+  static void ReadRows(const BodyQp::KnotRows& rows, int first, Rows<N>& kept);
+  template <int N>
+  static void WriteRows(const Rows<N>& kept, int first, const Eigen::Vector4d& v0, BodyQp::KnotRows& rows);
   // The slot of instant t (by its knot number t / dt, modulo the slots), and that slot when it
   // holds instant t.
   std::size_t Index(double t) const;
