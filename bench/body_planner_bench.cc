@@ -1,4 +1,5 @@
-// The body planner's numbers: Update() latency percentiles over 10,000+ control cycles at 333 Hz,
+// The body planner's numbers: Update() latency percentiles over 10,000+ control cycles at 333 Hz
+// (and, with leg rows, over one traversal at 333 Hz and one at the knot spacing),
 // the per-cycle QP through our active-set solver, Ipopt and CLP on the same programs, cold and
 // warm sequence (never one regime against the other), and the exact
 // NLP's solve time cold (from the QP plan) and warm (each cycle from the previous cycle's
@@ -45,18 +46,22 @@ struct Fixture {
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
   Plan footsteps = PlanCrawl(BuiltinRobot(), stairs, map);
   std::unique_ptr<BodyPlanner> planner;
-  Fixture() {
-    BodyPlannerSettings settings;
+  double period = kPeriod;  // of the control loop [s]
+  explicit Fixture(BodyPlannerSettings settings = {}, double loop_period = kPeriod) : period(loop_period) {
     settings.cycle_budget_s = 1.0;  // measure every solve (the budget is the loop's business)
     planner = std::make_unique<BodyPlanner>(BuiltinRobot(), stairs, map, footsteps, settings);
-    Traverse(nullptr);  // fills the bound caches
+    if (!Smoke()) Traverse(nullptr);  // fills the bound caches
   }
+  static bool Smoke() { return std::getenv("STAIRPLAN_BENCH_SMOKE") != nullptr; }
   // One traversal at 333 Hz with the state advanced along the plan; latencies of the cycles
   // (wall-clock and thread CPU time).
   void Traverse(std::vector<double>* latency_us, std::vector<double>* cpu_us = nullptr) {
+    const std::size_t limit = Smoke() ? 1 : static_cast<std::size_t>(-1);  // the smoke run: one solved cycle
     planner->Reset();
     BodyState state = planner->StartState();
-    for (double now = 0.0; now <= planner->schedule().end_time(); now += kPeriod) {
+    const double end = planner->schedule().end_time();
+    for (int cycle = 0; cycle * period <= end && (latency_us == nullptr || latency_us->size() < limit); ++cycle) {
+      const double now = cycle * period;  // not a running sum: the knots' instants recur exactly
       const double c0 = ThreadCpuMicros();
       const auto t0 = std::chrono::steady_clock::now();
       const BodyPlannerOutput& out = planner->Update(state, BodyCommand{}, now);
@@ -64,7 +69,7 @@ struct Fixture {
       const double cpu = ThreadCpuMicros() - c0;
       if (latency_us != nullptr && out.solves == 1) latency_us->push_back(us);
       if (cpu_us != nullptr && out.solves == 1) cpu_us->push_back(cpu);
-      state = planner->Interpolate(now + kPeriod);
+      state = planner->Interpolate(now + period);
     }
   }
   // Moves the planner to time t on the flight (warm) and returns it.
@@ -91,13 +96,13 @@ double Percentile(std::vector<double> v, double q) {
   return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
 }
 
-void BM_UpdateLatency(benchmark::State& state) {
-  Fixture& f = Shared();
+// Update's latency percentiles over `wanted` cycles (at least one traversal) of `f`.
+void ReportLatency(benchmark::State& state, Fixture& f, std::size_t wanted) {
   std::vector<double> latency, cpu;
   for (auto _ : state) {
     latency.clear();
     cpu.clear();
-    const std::size_t wanted = std::getenv("STAIRPLAN_BENCH_SMOKE") != nullptr ? 1 : 10000;
+    if (Fixture::Smoke()) wanted = 1;
     while (latency.size() < wanted) f.Traverse(&latency, &cpu);
   }
   state.counters["cycles"] = static_cast<double>(latency.size());
@@ -108,7 +113,27 @@ void BM_UpdateLatency(benchmark::State& state) {
   state.counters["p99_cpu_us"] = Percentile(cpu, 0.99);
   state.counters["max_cpu_us"] = Percentile(cpu, 1.0);
 }
+
+void BM_UpdateLatency(benchmark::State& state) { ReportLatency(state, Shared(), 10000); }
 BENCHMARK(BM_UpdateLatency)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// With leg rows (KDL joint and extension rows, FCL clearances, the exact COM; stability margin
+// 0.03 m) over one traversal: Arg 0 at 333 Hz, where every cycle falls between the last one's
+// knots and linearises all of them; Arg 1 at the knot spacing (40 Hz), where the rows of a knot
+// the last cycle linearised near its centre are carried over (KnotRowCache). Warm sequences
+// both: each cycle from the last one's plan and active set.
+void BM_UpdateLatencyLegRows(benchmark::State& state) {
+  BodyPlannerSettings settings;
+  settings.stance_rows = true;
+  settings.stability_margin = 0.03;
+  const bool at_knots = state.range(0) == 1;
+  static std::map<bool, std::unique_ptr<Fixture>> fixtures;
+  auto& fixture = fixtures[at_knots];
+  if (!fixture) fixture = std::make_unique<Fixture>(settings, at_knots ? settings.knot_dt : kPeriod);
+  ReportLatency(state, *fixture, 1);
+  state.SetLabel(at_knots ? "leg rows, cycle = knot spacing (rows carried)" : "leg rows, 333 Hz (rows linearised every cycle)");
+}
+BENCHMARK(BM_UpdateLatencyLegRows)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 // The body QP of the planner's own cycles along the flight (the program Update() built, solved
 // again by each solver beside the planner), 200 consecutive cycles from t = 2 s, in two regimes:
