@@ -6,7 +6,7 @@
 // solution and multipliers, shifted a knot).
 //
 //   ./body_planner_bench                  (counters: p50_us, p99_us, max_us, mean_cpu_us, ...)
-//   STAIRPLAN_BENCH_SMOKE=1 ./body_planner_bench   (ctest's smoke run: a traversal, a few QPs)
+//   STAIRPLAN_BENCH_SMOKE=1 ./body_planner_bench   (ctest's smoke run: one solved cycle each, a few QPs)
 //
 // The latencies are wall-clock; *_cpu_us are the same cycles' thread CPU time, which leaves out
 // the time other processes held the core (on a shared 2-core machine the wall-clock tail is
