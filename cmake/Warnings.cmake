@@ -16,7 +16,6 @@ function(stairplan_add_module name)
     $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/stairplan>)
   stairplan_set_warnings(stairplan_${name})
-  stairplan_fuzz_coverage(stairplan_${name})
   stairplan_unity_sources(stairplan_${name})
   set_property(GLOBAL APPEND PROPERTY STAIRPLAN_MODULES stairplan_${name})
 endfunction()
