@@ -6,8 +6,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-# CI builds from scratch: the test programs as unity sources (about a minute less on two cores).
-STAIRPLAN_QUICK_TEST_BUILD=ON scripts/build.sh
+# CI builds from scratch: the test programs as unity sources (about a minute less on two cores), the
+# libraries and the CLI too (541 s instead of about 610 s).
+STAIRPLAN_QUICK_TEST_BUILD=ON STAIRPLAN_UNITY_BUILD=ON scripts/build.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 (cd build && ctest --output-on-failure -j "$jobs")
 if [ "${STAIRPLAN_SKIP_SANITIZE:-0}" = 1 ]; then
