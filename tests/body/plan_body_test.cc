@@ -164,8 +164,8 @@ TEST_CASE("with stance rows the body QP keeps every stance leg within its limits
   BodyPlannerSettings settings;
   settings.stance_rows = true;
   StairSpec spec;
-  // Under the sanitizers two steps (three took 67 s there): a riser up, its treads and the landing.
-  spec.steps = testing::FullOrSanitized(3, 2);
+  // Under the sanitizers one step (three took 67 s there, two 30 s): a riser up and the landing.
+  spec.steps = testing::FullOrSanitized(3, 1);
   const Staircase stairs(spec);
   const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
   const Plan footsteps = PlanCrawl(robot, stairs, map);
@@ -175,6 +175,6 @@ TEST_CASE("with stance rows the body QP keeps every stance leg within its limits
   CHECK(plan.status == PlanStatus::kOk);
   const Violations v = CheckEveryKnot(robot, stairs, plan, settings.clearance_margin);
   INFO("independent check: " << v.count << " of " << v.checked << " " << v.first);
-  CHECK(v.checked > 500);
+  CHECK(v.checked > testing::FullOrSanitized(500, 200));
   CHECK(v.count == 0);
 }

@@ -116,7 +116,7 @@ TEST_CASE("the default-pace crawl is dynamically infeasible as planned: it tips,
           "[simulation]") {
   const RobotModel& robot = BuiltinRobot();
   StairSpec spec;
-  spec.steps = testing::FullOrSanitized(spec.steps, 3);  // a shorter flight under the sanitizers
+  spec.steps = testing::FullOrSanitized(spec.steps, 2);  // a shorter flight under the sanitizers
   const Staircase stairs(spec);
   const PipelineResult planned = RunPipeline(robot, stairs, DynamicCrawl(0.25));
   REQUIRE(planned.validation.ok);  // the quasi-static validator does not look at accelerations
