@@ -48,6 +48,13 @@ if(NOT STAIRPLAN_PC_FCL_FOUND)
 endif()
 string(REPLACE ";" " " pc_dependency_libs "$<TARGET_LINKER_FILE:mujoco::mujoco>;${STAIRPLAN_PC_FCL_LDFLAGS};${IPOPT_LDFLAGS}")
 string(APPEND STAIRPLAN_PC_LIBS "${pc_dependency_libs}")
+# CLP is optional: required only when the planning archive holds the CLP back-end. In the separate
+# objects of a normal build a consumer that never names ClpSolver left clp_solver.o out of its link
+# and the missing entry went unseen; a unity build merges it with code every consumer needs.
+set(STAIRPLAN_PC_OPTIONAL_REQUIRES "")
+if(STAIRPLAN_HAS_CLP)
+  set(STAIRPLAN_PC_OPTIONAL_REQUIRES " clp")
+endif()
 file(RELATIVE_PATH STAIRPLAN_PC_PREFIX_FROM_PCDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 string(REGEX REPLACE "/$" "" STAIRPLAN_PC_PREFIX_FROM_PCDIR "${STAIRPLAN_PC_PREFIX_FROM_PCDIR}")
 configure_file(cmake/stairplan.pc.in ${PROJECT_BINARY_DIR}/stairplan.pc.in @ONLY)
