@@ -96,9 +96,9 @@ TEST_CASE("solver: a bound no value meets is invalid input, not solved", "[harde
 }
 
 TEST_CASE("solver: badly scaled QPs return a status and, when solved, a finite feasible point", "[hardening][api][optim]") {
-  // With a vanishing Hessian the QP is unbounded and Ipopt runs to its iteration limit: under the
-  // sanitizers, where its allocations per iteration made that most of a minute, a tenth of the
-  // default limit reaches the same status.
+  // At the extreme scales (1e-150, 1e150) Ipopt runs to its iteration limit (3000 by default):
+  // under the sanitizers, where its allocations per iteration made that most of a minute, a tenth
+  // of it reaches the same status.
   optim::IpoptSettings ipopt;
   ipopt.max_iterations = stairplan::testing::FullOrSanitized(ipopt.max_iterations, 300);
   for (const double scale : {1e-150, 1e-12, 1.0, 1e12, 1e150}) {
