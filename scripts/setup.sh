@@ -2,7 +2,7 @@
 # Installs what stairplan needs from Debian's packages, only what is missing; safe to run again.
 set -euo pipefail
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config ninja-build lld
   libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev liborocos-kdl-dev liburdfdom-dev
   libfcl-dev libccd-dev catch2 libbenchmark-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libmujoco-dev libqhull-dev
   chromium ffmpeg librsvg2-bin libegl-dev libosmesa6-dev
@@ -14,12 +14,12 @@ packages=(
   doxygen
 )
 # `setup.sh sanitize` (scripts/sanitize.sh, run by scripts/test.sh) also installs the sanitizer
-# toolchain: clang 14 with its ASan/UBSan/libFuzzer runtimes, lld and Ninja for a faster build.
+# toolchain: clang 14 with its ASan/UBSan/libFuzzer runtimes.
 # Node.js and npm for the viewer's bundle, from Debian unless the machine has them already (a
 # Node.js that ships its own npm conflicts with Debian's npm package).
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 if [ "${1:-}" = sanitize ]; then
-  packages+=(clang-14 libclang-rt-14-dev lld-14 ninja-build)
+  packages+=(clang-14 libclang-rt-14-dev)
 fi
 missing=()
 for p in "${packages[@]}"; do
