@@ -34,6 +34,9 @@ function(stairplan_add_test name)
   add_executable(${name} ${arg_UNPARSED_ARGUMENTS})
   target_link_libraries(${name} PRIVATE stairplan_test_main)
   stairplan_set_warnings(${name})
+  # A test program drives the optimised libraries and does little work of its own: -O1 compiles it
+  # in about two thirds of -O3's time, and CI builds every test program from scratch twice.
+  target_compile_options(${name} PRIVATE $<$<CONFIG:Release>:-O1>)
   target_compile_definitions(${name} PRIVATE
     STAIRPLAN_SHARED_DIR="${STAIRPLAN_SHARED_DIR}" STAIRPLAN_SOURCE_DIR="${STAIRPLAN_SOURCE_DIR}"
     STAIRPLAN_BIN_DIR="${PROJECT_BINARY_DIR}/bin")
