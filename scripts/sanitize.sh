@@ -26,24 +26,42 @@ t0=$(date +%s)
 ctest --test-dir "$build" --output-on-failure -j "$jobs" -E "$exclude"
 echo "sanitize: ctest took $(( $(date +%s) - t0 )) s"
 
-# Each fuzzer briefly on its seed corpus; new inputs go to a scratch folder, never into tests/.
+# Each fuzzer briefly on its seed corpus, as many at once as there are build jobs (a fuzzer uses one
+# core); new inputs go to a scratch folder, never into tests/.
 scratch=$(mktemp -d /tmp/stairplan-fuzz.XXXXXX)
 trap 'rm -rf "$scratch"' EXIT
+fuzz() {
+  local name=$1 corpus=$2
+  "$build/bin/fuzz_$name" -max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$scratch/$name-" "$scratch/$name" "$corpus" 2>"$scratch/$name.log"
+}
+names=()
+pids=()
+finish() {  # waits for the running fuzzers; the first that found something fails the run
+  local i
+  for i in "${!pids[@]}"; do
+    if ! wait "${pids[$i]}"; then
+      cat "$scratch/${names[$i]}.log" >&2
+      echo "sanitize: fuzz_${names[$i]} found a problem (reproducer above)" >&2
+      exit 1
+    fi
+    grep -E '^stat::number_of_executed_units' "$scratch/${names[$i]}.log" || true
+  done
+  names=()
+  pids=()
+}
 for corpus in tests/fuzz/corpus/*/; do
   name=$(basename "$corpus")
-  bin="$build/bin/fuzz_$name"
-  if [ ! -x "$bin" ]; then
+  if [ ! -x "$build/bin/fuzz_$name" ]; then
     echo "sanitize: fuzz_$name was not built" >&2
     exit 1
   fi
   mkdir -p "$scratch/$name"
   echo "sanitize: fuzz_$name for ${fuzz_seconds} s"
-  "$bin" -max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$scratch/$name-" "$scratch/$name" "$corpus" 2>"$scratch/$name.log" || {
-    cat "$scratch/$name.log" >&2
-    echo "sanitize: fuzz_$name found a problem (reproducer above)" >&2
-    exit 1
-  }
-  grep -E '^stat::number_of_executed_units' "$scratch/$name.log" || true
+  fuzz "$name" "$corpus" &
+  names+=("$name")
+  pids+=($!)
+  [ "${#pids[@]}" -lt "$jobs" ] || finish
 done
+finish
 echo "sanitize: all done in $(( $(date +%s) - start )) s"
