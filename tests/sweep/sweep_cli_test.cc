@@ -39,10 +39,10 @@ std::vector<std::vector<std::string>> Rows(const std::string& csv) {
 
 TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-validate", "[sweep][cli]") {
   const std::string dir = MakeTempDir("sweep-threads");
-  // A 4 x 4 grid of 4-step flights and 10 of its valid rows re-validated; under the sanitizers,
+  // A 3 x 3 grid of 4-step flights and 4 of its valid rows re-validated; under the sanitizers,
   // where every point plans ~20x slower, a 2 x 2 grid of 2-step flights and one re-validation.
-  const std::size_t n = FullOrSanitized<std::size_t>(4, 2);
-  const int wanted = FullOrSanitized(10, 1);
+  const std::size_t n = FullOrSanitized<std::size_t>(3, 2);
+  const int wanted = FullOrSanitized(4, 1);
   const std::string steps = FullOrSanitized<std::string>("4", "2");
   const std::string grid = "sweep --rise 0.12:0.20:" + std::to_string(n) + " --run 0.25:0.33:" + std::to_string(n) + " --steps " + steps;
   REQUIRE(Run(grid + " --threads 1 --csv " + dir + "/one.csv --svg " + dir + "/map.svg", dir) == 0);
@@ -78,10 +78,11 @@ TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-vali
 
 TEST_CASE("sweep shards merged equal the unsharded sweep", "[sweep][cli]") {
   const std::string dir = MakeTempDir("sweep-shards");
-  // A 4 x 4 grid over the whole range: two shards of several points each. Under the sanitizers
+  // A 3 x 3 grid over the whole range, steep points the validator rejects among them: shards of
+  // five and four points. Under the sanitizers
   // a 2 x 2 grid of moderate 2-step stairs: a point the validator rejects is planned again in up
   // to seven postures, each most of a minute there.
-  const std::size_t n = FullOrSanitized<std::size_t>(4, 2);
+  const std::size_t n = FullOrSanitized<std::size_t>(3, 2);
   const std::string rise = FullOrSanitized<std::string>("0.10:0.25:", "0.12:0.17:");
   const std::string run = FullOrSanitized<std::string>("0.20:0.35:", "0.26:0.32:");
   const std::string grid = "sweep --rise " + rise + std::to_string(n) + " --run " + run + std::to_string(n) +
