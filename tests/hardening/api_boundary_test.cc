@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -101,14 +102,19 @@ TEST_CASE("solver: badly scaled QPs return a status and, when solved, a finite f
   // of it reaches the same status.
   optim::IpoptSettings ipopt;
   ipopt.max_iterations = stairplan::testing::FullOrSanitized(ipopt.max_iterations, 300);
+  // A fresh solver for every problem: each solve is cold, as a user's first call would be.
+  struct Named {
+    const char* name;
+    std::function<std::unique_ptr<optim::Solver>()> make;
+  };
+  const Named solvers[] = {{"active-set", [] { return optim::MakeSolver("active-set"); }},
+                           {"ipopt", [&] { return std::make_unique<optim::IpoptSolver>(ipopt); }}};
   for (const double scale : {1e-150, 1e-12, 1.0, 1e12, 1e150}) {
     SmallQp qp;
     qp.program.MutableHessian() *= scale;
-    for (const char* name : {"active-set", "ipopt"}) {
-      INFO("Hessian scale " << scale << ", solver " << name);
-      const std::unique_ptr<optim::Solver> solver =
-          std::string(name) == "ipopt" ? std::make_unique<optim::IpoptSolver>(ipopt) : optim::MakeSolver(name);
-      const optim::SolveResult result = solver->Solve(qp.program);
+    for (const Named& solver : solvers) {
+      INFO("Hessian scale " << scale << ", solver " << solver.name);
+      const optim::SolveResult result = solver.make()->Solve(qp.program);
       if (result.status == optim::SolveStatus::kSolved) {
         REQUIRE(result.x.allFinite());
         const double sum = result.x.sum();
