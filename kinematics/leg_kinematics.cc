@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include <kdl/chainfksolverpos_recursive.hpp>
-#include <kdl/chainjnttojacsolver.hpp>
 #include <kdl/tree.hpp>
 
 namespace stairplan {
@@ -101,21 +100,45 @@ const std::vector<Eigen::Isometry3d>& LegKinematics::LinkFrames(const Eigen::Vec
 }
 
 Eigen::Matrix3d LegKinematics::FootJacobian(const Eigen::Vector3d& q, LegWorkspace& ws) const {
+  SegmentFrames(q, ws);
+  return JacobianFromFrames(ws);
+}
+
+Eigen::Vector3d LegKinematics::SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const {
   for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
-  ws.jac_->JntToJac(ws.q_, ws.jacobian_);
-  return ws.jacobian_.data.topRows<3>();
+  ws.fk_->JntToCart(ws.q_, ws.frames_);
+  const KDL::Vector& foot = ws.frames_.back().p;
+  return {foot.x(), foot.y(), foot.z()};
+}
+
+Eigen::Matrix3d LegKinematics::JacobianFromFrames(const LegWorkspace& ws) const {
+  const KDL::Vector foot = ws.frames_.back().p;
+  Eigen::Matrix3d J;
+  for (int j = 0; j < kDof; ++j) {
+    const auto segment = static_cast<std::size_t>(joint_segment_[static_cast<std::size_t>(j)]);
+    const KDL::Joint& joint = chain_->getSegment(static_cast<unsigned>(segment)).getJoint();
+    // A joint's origin and axis are given in its segment's base frame, the tip of the segment before.
+    const KDL::Frame base = segment == 0 ? KDL::Frame::Identity() : ws.frames_[segment - 1];
+    const KDL::Vector axis = base.M * joint.JointAxis();
+    const bool prismatic = joint.getType() >= KDL::Joint::TransAxis && joint.getType() <= KDL::Joint::TransZ;
+    const KDL::Vector column = prismatic ? axis : axis * (foot - base * joint.JointOrigin());
+    J.col(j) = Eigen::Vector3d(column.x(), column.y(), column.z());
+  }
+  return J;
 }
 
 double LegKinematics::Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q, bool clamp, const IkSettings& settings,
                               LegWorkspace& ws, int& iterations) const {
-  Eigen::Vector3d error = target - FootPosition(q, ws);
+  // Every evaluation leaves its segment frames in `ws`: an accepted step's Jacobian is built from
+  // them, without a second pass through the chain.
+  Eigen::Vector3d error = target - SegmentFrames(q, ws);
   double norm = error.norm();
   double lambda = 1e-6;
   bool need_jacobian = true;
   Eigen::Matrix3d J;
   for (int it = 0; it < settings.max_iterations && norm > settings.tolerance; ++it) {
     ++iterations;
-    if (need_jacobian) J = FootJacobian(q, ws);
+    if (need_jacobian) J = JacobianFromFrames(ws);
     // Joints resting on a limit that the unconstrained step would push further out are frozen
     // for this step (an active set), so the others still make full Gauss-Newton progress instead
     // of the whole step being clipped.
@@ -149,7 +172,7 @@ double LegKinematics::Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q,
     if (step_norm > settings.max_step) step *= settings.max_step / step_norm;
     Eigen::Vector3d trial = q + step;
     if (clamp) trial = Clamp(trial);
-    const Eigen::Vector3d trial_error = target - FootPosition(trial, ws);
+    const Eigen::Vector3d trial_error = target - SegmentFrames(trial, ws);
     const double trial_norm = trial_error.norm();
     if (trial_norm < norm) {
       q = trial;
@@ -355,9 +378,7 @@ void LegKinematics::ComputeNominal(LegWorkspace& ws) {
 LegWorkspace::LegWorkspace(const LegKinematics& leg)
     : chain_(leg.chain_ptr()),
       fk_(std::make_unique<KDL::ChainFkSolverPos_recursive>(*chain_)),
-      jac_(std::make_unique<KDL::ChainJntToJacSolver>(*chain_)),
       q_(chain_->getNrOfJoints()),
-      jacobian_(chain_->getNrOfJoints()),
       frames_(chain_->getNrOfSegments()),
       frames_B_(chain_->getNrOfSegments(), Eigen::Isometry3d::Identity()) {}
 

@@ -12,7 +12,6 @@
 #include <Eigen/Geometry>
 #include <kdl/chain.hpp>
 #include <kdl/frames.hpp>
-#include <kdl/jacobian.hpp>
 #include <kdl/jntarray.hpp>
 
 #include "kinematics/leg_ik.h"
@@ -21,7 +20,6 @@
 namespace KDL {
 class Tree;
 class ChainFkSolverPos_recursive;
-class ChainJntToJacSolver;
 }  // namespace KDL
 
 namespace stairplan {
@@ -103,6 +101,11 @@ class LegKinematics {
   double Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q, bool clamp, const IkSettings& settings,
                  LegWorkspace& ws, int& iterations) const;
   Eigen::Vector3d RestartSeed(int k) const;
+  // KDL's forward kinematics at q, every segment's frame left in `ws`; returns the foot.
+  Eigen::Vector3d SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+  // The foot Jacobian from the frames SegmentFrames left in `ws`: per joint, its axis crossed with
+  // the lever from its origin to the foot (its axis alone for a prismatic joint).
+  Eigen::Matrix3d JacobianFromFrames(const LegWorkspace& ws) const;
   // Moves `seed` into the basin of `target`: the knee angle whose hip-to-foot distance matches the
   // target's (from a table, the branch nearest the seed), then cyclic-coordinate-descent turns of
   // the flexion and abduction joints that point the foot at the target.
@@ -141,9 +144,7 @@ class LegWorkspace {
   friend class LegKinematics;
   std::shared_ptr<const KDL::Chain> chain_;  // keeps the chain alive for the solvers
   std::unique_ptr<KDL::ChainFkSolverPos_recursive> fk_;
-  std::unique_ptr<KDL::ChainJntToJacSolver> jac_;
   KDL::JntArray q_;
-  KDL::Jacobian jacobian_;
   KDL::Frame frame_;
   std::vector<KDL::Frame> frames_;
   std::vector<Eigen::Isometry3d> frames_B_;
