@@ -111,18 +111,26 @@ Eigen::Vector3d LegKinematics::SegmentFrames(const Eigen::Vector3d& q, LegWorksp
   return {foot.x(), foot.y(), foot.z()};
 }
 
+LegKinematics::JointLine LegKinematics::JointLineFromFrames(const LegWorkspace& ws, int j) const {
+  const auto segment = static_cast<std::size_t>(joint_segment_[static_cast<std::size_t>(j)]);
+  const KDL::Joint& joint = chain_->getSegment(static_cast<unsigned>(segment)).getJoint();
+  // A joint's origin and axis are given in its segment's base frame, the tip of the segment before.
+  const KDL::Frame base = segment == 0 ? KDL::Frame::Identity() : ws.frames_[segment - 1];
+  const KDL::Vector origin = base * joint.JointOrigin(), axis = base.M * joint.JointAxis();
+  JointLine line;
+  line.origin = Eigen::Vector3d(origin.x(), origin.y(), origin.z());
+  line.axis = Eigen::Vector3d(axis.x(), axis.y(), axis.z());
+  line.prismatic = joint.getType() >= KDL::Joint::TransAxis && joint.getType() <= KDL::Joint::TransZ;
+  return line;
+}
+
 Eigen::Matrix3d LegKinematics::JacobianFromFrames(const LegWorkspace& ws) const {
-  const KDL::Vector foot = ws.frames_.back().p;
+  const KDL::Vector& tip = ws.frames_.back().p;
+  const Eigen::Vector3d foot(tip.x(), tip.y(), tip.z());
   Eigen::Matrix3d J;
   for (int j = 0; j < kDof; ++j) {
-    const auto segment = static_cast<std::size_t>(joint_segment_[static_cast<std::size_t>(j)]);
-    const KDL::Joint& joint = chain_->getSegment(static_cast<unsigned>(segment)).getJoint();
-    // A joint's origin and axis are given in its segment's base frame, the tip of the segment before.
-    const KDL::Frame base = segment == 0 ? KDL::Frame::Identity() : ws.frames_[segment - 1];
-    const KDL::Vector axis = base.M * joint.JointAxis();
-    const bool prismatic = joint.getType() >= KDL::Joint::TransAxis && joint.getType() <= KDL::Joint::TransZ;
-    const KDL::Vector column = prismatic ? axis : axis * (foot - base * joint.JointOrigin());
-    J.col(j) = Eigen::Vector3d(column.x(), column.y(), column.z());
+    const JointLine line = JointLineFromFrames(ws, j);
+    J.col(j) = line.prismatic ? line.axis : line.axis.cross(foot - line.origin);
   }
   return J;
 }
@@ -272,8 +280,9 @@ Eigen::Vector3d LegKinematics::AimedSeed(const Eigen::Vector3d& target, const Ei
   // Knee: the flexion joint's origin does not move with flexion or knee, and for the usual leg
   // (parallel flexion and knee axes) the foot's distance from it depends on the knee alone.
   {
-    const std::vector<Eigen::Isometry3d>& frames = LinkFrames(q, ws);
-    const double want = (target - frames[static_cast<std::size_t>(joint_segment_[1])].translation()).norm();
+    SegmentFrames(q, ws);
+    const KDL::Vector& flexion = ws.frames_[static_cast<std::size_t>(joint_segment_[1])].p;
+    const double want = (target - Eigen::Vector3d(flexion.x(), flexion.y(), flexion.z())).norm();
     double best = q(2), best_gap = std::numeric_limits<double>::infinity();
     for (int i = 0; i + 1 < kKneeTable; ++i) {
       const double d0 = knee_distance_[static_cast<std::size_t>(i)] - want;
@@ -291,15 +300,11 @@ Eigen::Vector3d LegKinematics::AimedSeed(const Eigen::Vector3d& target, const Ei
   // Flexion then abduction, twice: turn each about its axis to point the foot at the target.
   for (int sweep = 0; sweep < 2; ++sweep) {
     for (int j : {1, 0}) {
-      const std::vector<Eigen::Isometry3d>& frames = LinkFrames(q, ws);
-      const int segment = joint_segment_[static_cast<std::size_t>(j)];
-      const KDL::Joint& kdl_joint = chain_->getSegment(static_cast<unsigned>(segment)).getJoint();
-      const Eigen::Isometry3d parent =
-          segment == 0 ? Eigen::Isometry3d::Identity() : frames[static_cast<std::size_t>(segment - 1)];
-      const KDL::Vector o = kdl_joint.JointOrigin(), ax = kdl_joint.JointAxis();
-      const Eigen::Vector3d origin = parent * Eigen::Vector3d(o.x(), o.y(), o.z());
-      const Eigen::Vector3d axis = (parent.linear() * Eigen::Vector3d(ax.x(), ax.y(), ax.z())).normalized();
-      Eigen::Vector3d u = frames.back().translation() - origin, v = target - origin;
+      const Eigen::Vector3d foot = SegmentFrames(q, ws);
+      const JointLine line = JointLineFromFrames(ws, j);
+      const Eigen::Vector3d& origin = line.origin;
+      const Eigen::Vector3d axis = line.axis.normalized();
+      Eigen::Vector3d u = foot - origin, v = target - origin;
       u -= u.dot(axis) * axis;
       v -= v.dot(axis) * axis;
       if (u.norm() < 1e-9 || v.norm() < 1e-9) continue;

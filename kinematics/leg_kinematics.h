@@ -103,6 +103,12 @@ class LegKinematics {
   Eigen::Vector3d RestartSeed(int k) const;
   // KDL's forward kinematics at q, every segment's frame left in `ws`; returns the foot.
   Eigen::Vector3d SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+  // Movable joint j's line in the base frame, from the frames SegmentFrames left in `ws`.
+  struct JointLine {
+    Eigen::Vector3d origin, axis;
+    bool prismatic = false;
+  };
+  JointLine JointLineFromFrames(const LegWorkspace& ws, int j) const;
   // The foot Jacobian from the frames SegmentFrames left in `ws`: per joint, its axis crossed with
   // the lever from its origin to the foot (its axis alone for a prismatic joint).
   Eigen::Matrix3d JacobianFromFrames(const LegWorkspace& ws) const;
