@@ -38,9 +38,9 @@ function(stairplan_fuzzed_sources module)
     COMPILE_OPTIONS -fsanitize=fuzzer-no-link SKIP_UNITY_BUILD_INCLUSION ON)
 endfunction()
 
-# Called by stairplan_add_module and for the CLI and the Python module: their sources compiled as a few unity sources, for
-# a build from scratch (CI turns it on: scripts/test.sh and scripts/sanitize_configure.sh). File-local
-# names must then be unique within a library, the CLI and the Python module.
+# Called by stairplan_add_module and for the CLI and the Python module: their sources compiled as a
+# few unity sources, for a build from scratch (CI turns it on: scripts/test.sh and
+# scripts/sanitize_configure.sh). File-local names must then be unique within each of them.
 option(STAIRPLAN_UNITY_BUILD "Compile the module libraries, the CLI and the Python module as a few unity sources" OFF)
 function(stairplan_unity_sources target)
   if(STAIRPLAN_UNITY_BUILD)
