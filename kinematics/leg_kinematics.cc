@@ -24,6 +24,8 @@ Eigen::Isometry3d ToEigen(const KDL::Frame& f) {
   return t;
 }
 
+Eigen::Vector3d ToEigen(const KDL::Vector& v) { return {v.x(), v.y(), v.z()}; }
+
 // How far outside the sampled reach a target must be to be called unreachable untried.
 constexpr double kReachSlack = 0.01;     // relative
 constexpr double kReachSlackAbs = 1e-3;  // [m]
@@ -83,13 +85,13 @@ Eigen::Isometry3d LegKinematics::FootPose(const Eigen::Vector3d& q, LegWorkspace
 Eigen::Vector3d LegKinematics::FootPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
   for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
   ws.fk_->JntToCart(ws.q_, ws.frame_);
-  return {ws.frame_.p.x(), ws.frame_.p.y(), ws.frame_.p.z()};
+  return ToEigen(ws.frame_.p);
 }
 
 Eigen::Vector3d LegKinematics::KneePosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
   for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
   ws.fk_->JntToCart(ws.q_, ws.frame_, knee_segment_ + 1);
-  return {ws.frame_.p.x(), ws.frame_.p.y(), ws.frame_.p.z()};
+  return ToEigen(ws.frame_.p);
 }
 
 const std::vector<Eigen::Isometry3d>& LegKinematics::LinkFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const {
@@ -107,8 +109,7 @@ Eigen::Matrix3d LegKinematics::FootJacobian(const Eigen::Vector3d& q, LegWorkspa
 Eigen::Vector3d LegKinematics::SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const {
   for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
   ws.fk_->JntToCart(ws.q_, ws.frames_);
-  const KDL::Vector& foot = ws.frames_.back().p;
-  return {foot.x(), foot.y(), foot.z()};
+  return ToEigen(ws.frames_.back().p);
 }
 
 LegKinematics::JointLine LegKinematics::JointLineFromFrames(const LegWorkspace& ws, int j) const {
@@ -116,17 +117,15 @@ LegKinematics::JointLine LegKinematics::JointLineFromFrames(const LegWorkspace& 
   const KDL::Joint& joint = chain_->getSegment(static_cast<unsigned>(segment)).getJoint();
   // A joint's origin and axis are given in its segment's base frame, the tip of the segment before.
   const KDL::Frame base = segment == 0 ? KDL::Frame::Identity() : ws.frames_[segment - 1];
-  const KDL::Vector origin = base * joint.JointOrigin(), axis = base.M * joint.JointAxis();
   JointLine line;
-  line.origin = Eigen::Vector3d(origin.x(), origin.y(), origin.z());
-  line.axis = Eigen::Vector3d(axis.x(), axis.y(), axis.z());
+  line.origin = ToEigen(base * joint.JointOrigin());
+  line.axis = ToEigen(base.M * joint.JointAxis());
   line.prismatic = joint.getType() >= KDL::Joint::TransAxis && joint.getType() <= KDL::Joint::TransZ;
   return line;
 }
 
 Eigen::Matrix3d LegKinematics::JacobianFromFrames(const LegWorkspace& ws) const {
-  const KDL::Vector& tip = ws.frames_.back().p;
-  const Eigen::Vector3d foot(tip.x(), tip.y(), tip.z());
+  const Eigen::Vector3d foot = ToEigen(ws.frames_.back().p);
   Eigen::Matrix3d J;
   for (int j = 0; j < kDof; ++j) {
     const JointLine line = JointLineFromFrames(ws, j);
@@ -272,7 +271,7 @@ void LegKinematics::BuildKneeTable(LegWorkspace& ws) {
 Eigen::Vector3d LegKinematics::FlexionPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
   for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
   ws.fk_->JntToCart(ws.q_, ws.frame_, joint_segment_[1] + 1);
-  return {ws.frame_.p.x(), ws.frame_.p.y(), ws.frame_.p.z()};
+  return ToEigen(ws.frame_.p);
 }
 
 Eigen::Vector3d LegKinematics::AimedSeed(const Eigen::Vector3d& target, const Eigen::Vector3d& seed, LegWorkspace& ws) const {
@@ -281,8 +280,7 @@ Eigen::Vector3d LegKinematics::AimedSeed(const Eigen::Vector3d& target, const Ei
   // (parallel flexion and knee axes) the foot's distance from it depends on the knee alone.
   {
     SegmentFrames(q, ws);
-    const KDL::Vector& flexion = ws.frames_[static_cast<std::size_t>(joint_segment_[1])].p;
-    const double want = (target - Eigen::Vector3d(flexion.x(), flexion.y(), flexion.z())).norm();
+    const double want = (target - ToEigen(ws.frames_[static_cast<std::size_t>(joint_segment_[1])].p)).norm();
     double best = q(2), best_gap = std::numeric_limits<double>::infinity();
     for (int i = 0; i + 1 < kKneeTable; ++i) {
       const double d0 = knee_distance_[static_cast<std::size_t>(i)] - want;
