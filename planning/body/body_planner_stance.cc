@@ -96,7 +96,10 @@ void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Ve
   const RobotKinematics& kinematics = robot_->kinematics();
   ClearanceOptions options;
   options.prune_above = kClearanceRange;
-  options.skip_foot_contact = swing;
+  // A stance leg whose IK could not put the foot on its contact has its foot where the IK gave
+  // up, often inside the tread: that miss is the reach rows' to resolve, and the foot's
+  // penetration, which the body barely moves, would only drag the plan along a useless gradient.
+  options.skip_foot_contact = swing || !rows.reached;
   const Clearance c =
       LegStairClearance(kinematics, robot_->collision_model(), robot_->stair_model(), l, rows.q, at, *stance_ws_, options);
   if (!(c.distance < kClearanceRange) || c.shape < 0 || c.leg != l) return;
