@@ -32,6 +32,8 @@ constexpr double kPullIn = 0.001;
 constexpr double kReferenceInset = 0.002;
 // A plan counts as breaking a leg's bound only beyond this [m] (solver tolerance).
 constexpr double kRowTolerance = 1e-6;
+// Instants closer than this are the same knot [s].
+constexpr double kTimeEpsilon = 1e-9;
 
 // sin and cos of one pitch, for the hip offsets of all four legs at it.
 struct PitchTurn {
@@ -271,27 +273,71 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.hip_hi[row] = row_hi;
     }
     if (k > 0 && narrowest < kRestoreWidth) RestoreShift(k, xy.x(), pl, ph, narrowest);
-    BodyPose at;
-    at.position_W = Eigen::Vector3d(xy.x() + heading * v0[2], xy.y() + heading * v0[3], v0[0]);
-    at.pitch = v0[1];
-    at.yaw = schedule_.yaw();
+    // A knot new to the horizon is linearised where the previous plan, extrapolated, puts it; where
+    // a leg or clearance row breaks there, at the height its feet want instead: on stairs the feet
+    // a horizon ahead stand a step higher or lower than the plan's last knot, and rows linearised
+    // where no leg reaches point nowhere useful (a stance leg short of its contact, a swing leg
+    // deep in a riser), yet the relaxation would let the plan chase them. The relaxation still
+    // answers to the previous plan (`anchor`), which the acceleration and progress rows accept,
+    // so the QP stays feasible.
+    const Eigen::Vector4d anchor = v0;
+    const bool new_knot = k > 0 && has_previous_ && t > previous_t0_ + (n - 1) * dt + kTimeEpsilon;
+    BodyPose at = CentrePose(xy, v0);
     // First the leg rows: the support rows read the legs' joints they solved.
-    bool restored = false;
+    bool restored = LegRows(k, t, at, v0);
+    const bool recentred = new_knot && leg_rows && KnotBreaksRows(k);
+    if (recentred) {
+      v0[0] = ReferenceHeight(k, v0[1]);
+      at = CentrePose(xy, v0);
+      restored = LegRows(k, t, at, v0);
+    }
     if (row_cache_ != nullptr && k > 0) {
-      Eigen::Vector3d* q = &stance_q_[static_cast<std::size_t>(k * kBodyLegs)];
-      restored = row_cache_->Restore(t, v0, k, qp, q);
-      if (!restored) {
-        StanceRows(k, at, v0);
-        row_cache_->Store(t, v0, k, qp, q);
-      }
       ++output_.linearised_knots;
       output_.reused_knots += restored ? 1 : 0;
-    } else {
-      StanceRows(k, at, v0);
     }
     SupportRows(k, t, pm, at, v0, restored);
+    if (recentred) {
+      qp.stance.RelaxAt(BodyQp::StanceRow(k, 0, 0), kBodyLegs * BodyQp::kStanceRows, anchor);
+      qp.clearance.RelaxAt(BodyQp::ClearanceRow(k, 0), BodyQp::kClearanceRows, anchor);
+    }
   }
   if (leg_rows) ProgressRows();
+}
+
+BodyPose BodyPlanner::CentrePose(const Eigen::Vector2d& neutral_xy, const Eigen::Vector4d& v0) const {
+  const double heading = schedule_.heading();
+  BodyPose at;
+  at.position_W = Eigen::Vector3d(neutral_xy.x() + heading * v0[2], neutral_xy.y() + heading * v0[3], v0[0]);
+  at.pitch = v0[1];
+  at.yaw = schedule_.yaw();
+  return at;
+}
+
+bool BodyPlanner::LegRows(int k, double t, const BodyPose& at, const Eigen::Vector4d& v0) {
+  if (row_cache_ == nullptr || k == 0) {
+    StanceRows(k, at, v0);
+    return false;
+  }
+  Eigen::Vector3d* q = &stance_q_[static_cast<std::size_t>(k * kBodyLegs)];
+  const bool restored = row_cache_->Restore(t, v0, k, *qp_, q);
+  if (!restored) {
+    StanceRows(k, at, v0);
+    row_cache_->Store(t, v0, k, *qp_, q);
+  }
+  return restored;
+}
+
+bool BodyPlanner::KnotBreaksRows(int k) const {
+  const BodyQp& qp = *qp_;
+  const int stance = BodyQp::StanceRow(k, 0, 0), clearance = BodyQp::ClearanceRow(k, 0);
+  return (qp.stance.sigma.segment(stance, kBodyLegs * BodyQp::kStanceRows).array() != 0.0).any() ||
+         (qp.clearance.sigma.segment(clearance, BodyQp::kClearanceRows).array() != 0.0).any();
+}
+
+double BodyPlanner::ReferenceHeight(int k, double pitch) const {
+  double sum = 0.0;
+  for (int l = 0; l < kBodyLegs; ++l) sum += qp_->height_ref[k * kBodyLegs + l] - qp_->row_coefficient(l) * pitch;
+  return sum / kBodyLegs;
 }
 
 void BodyPlanner::ProgressRows() {

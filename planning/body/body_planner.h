@@ -138,6 +138,15 @@ class BodyPlanner {
   void Initialise(const RobotModel& robot, const Staircase& stairs);
   // Fills the QP's inputs around the previous plan; returns the number of conflicting rows.
   void Linearise(const BodyState& state, const BodyCommand& command, double now);
+  // The body pose at the trust region's centre v0 of a knot whose neutral body is at `neutral_xy`.
+  BodyPose CentrePose(const Eigen::Vector2d& neutral_xy, const Eigen::Vector4d& v0) const;
+  // Knot k's leg rows at the centre `at` (v0): taken over from the row cache when it holds them
+  // (returns true), else linearised (StanceRows) and kept there.
+  bool LegRows(int k, double t, const BodyPose& at, const Eigen::Vector4d& v0);
+  // True when knot k's centre breaks one of its leg or clearance rows.
+  bool KnotBreaksRows(int k) const;
+  // The body height at knot k and `pitch` that meets the legs' height references on average.
+  double ReferenceHeight(int k, double pitch) const;
   // The progress rows (with leg rows): the body's advance along the heading, knot to knot, is
   // negative only by what the QP's retreat variables pay for.
   void ProgressRows();

@@ -217,6 +217,13 @@ void BodyQp::AddKnotRows(const char* name, int count, int per_knot, KnotRows* in
   inputs->sigma.setZero(count);
 }
 
+void BodyQp::KnotRows::RelaxAt(int first, int count, const Eigen::Vector4d& v) {
+  for (int r = first; r < first + count; ++r) {
+    const double value = a.row(r).dot(v);
+    sigma[r] = lo[r] - value > 0.0 ? lo[r] - value : hi[r] - value < 0.0 ? hi[r] - value : 0.0;
+  }
+}
+
 void BodyQp::SetCoefficient(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value) {
   coefficient_row_(0, k) = value;
   program_.SetConstraintCoefficients(row, block, coefficient_row_);

@@ -126,6 +126,9 @@ class BodyQp {
     /// Relaxation coefficients: the violated bound minus the row's value at the linearisation
     /// point (0 where it holds there).
     Eigen::VectorXd sigma;
+    /// Sets the relaxation coefficients of rows first .. first + count - 1 to what the point `v`
+    /// breaks: with relax 1 `v` satisfies them.
+    void RelaxAt(int first, int count, const Eigen::Vector4d& v);
   };
   /// The stance legs' joint and extension rows, StanceRow(k, leg, j).
   KnotRows stance;

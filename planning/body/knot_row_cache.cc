@@ -9,15 +9,6 @@ namespace {
 // agree exactly).
 constexpr double kSameInstant = 1e-9;
 
-// A row's relaxation coefficient at centre v0: the bound it breaks there minus its value, 0
-// where it holds (BodyQp::KnotRows::sigma).
-double Sigma(const Eigen::Vector4d& a, double lo, double hi, const Eigen::Vector4d& v0) {
-  const double value = a.dot(v0);
-  if (lo - value > 0.0) return lo - value;
-  if (hi - value < 0.0) return hi - value;
-  return 0.0;
-}
-
 }  // namespace
 
 template <int N>
@@ -32,7 +23,7 @@ void KnotRowCache::WriteRows(const Rows<N>& kept, int first, const Eigen::Vector
   rows.a.middleRows(first, N) = kept.a;
   rows.lo.segment(first, N) = kept.lo;
   rows.hi.segment(first, N) = kept.hi;
-  for (int r = 0; r < N; ++r) rows.sigma[first + r] = Sigma(kept.a.row(r).transpose(), kept.lo[r], kept.hi[r], v0);
+  rows.RelaxAt(first, N, v0);
 }
 
 KnotRowCache::KnotRowCache(int knots, double dt, const Eigen::Vector4d& max_move)

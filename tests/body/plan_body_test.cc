@@ -13,6 +13,7 @@
 #include "kinematics/builtin_robot.h"
 #include "planning/body/plan_body.h"
 #include "planning/crawl_planner.h"
+#include "planning/plan_pipeline.h"
 #include "planning/validation/traversal_validator.h"
 #include "sanitized.h"
 
@@ -183,4 +184,38 @@ TEST_CASE("with stance rows the body QP keeps every stance leg within its limits
   INFO("independent check: " << v.count << " of " << v.checked << " " << v.first);
   CHECK(v.checked > testing::FullOrSanitized(500, 200));
   CHECK(v.count == 0);
+}
+
+TEST_CASE("with leg rows a low body climbs the whole flight onto the landing and validates",
+          "[body][stance_rows]") {
+  // `stairplan plan --body qp` with the settings under which the leg rows plan most robots
+  // (README): a low body, the validator's stability margin with room, a wide forward shift. At
+  // the top of the seven steps the knots that entered the horizon were linearised at the plan's
+  // last height held, a step below their feet: the stance legs could not reach, their feet sank
+  // into the landing and a hind leg's swing went through the last riser, and chasing those rows
+  // the body pitched down and fell through the stairs (the plan failed its re-check with 219
+  // violations).
+  const RobotModel& robot = BuiltinRobot();
+  PipelineOptions options;
+  options.body = BodySource::kRecedingHorizonQp;
+  options.body_qp.stance_rows = true;
+  options.body_qp.stability_margin = 0.03;
+  options.body_qp.hip_height_fraction = 0.6;
+  options.body_qp.max_shift = 0.15;
+  StairSpec spec;
+  // Under the sanitizers one step and the landing (the seven take minutes there).
+  spec.steps = testing::FullOrSanitized(spec.steps, 1);
+  const Staircase stairs(spec);
+  const PipelineResult result = RunPipeline(robot, stairs, options);
+  INFO(ToString(result.plan.status) << " " << result.plan.status_reason);
+  REQUIRE(result.plan.status == PlanStatus::kOk);
+  REQUIRE(result.validated);
+  const ValidationReport& report = result.validation;
+  INFO((report.violations.empty() ? std::string("no violation")
+                                  : std::string(ToString(report.violations.front().kind)) + " of " +
+                                        report.violations.front().leg + " at t = " +
+                                        std::to_string(report.violations.front().t)));
+  CHECK(report.ok);
+  // The body ends standing over the landing (it starts on the ground at z = 0).
+  CHECK(result.plan.body.back().z - stairs.total_rise() > 0.5 * result.plan.body.front().z);
 }
