@@ -19,6 +19,11 @@ namespace {
 // A constraint whose normal has a component below this (relative) in the free space J2 is
 // linearly dependent on the active ones.
 constexpr double kDependencyTol = 1e-10;
+// A constraint that depends on the active ones, with no active multiplier to give way, is a
+// certificate of infeasibility only when its violation exceeds this (relative to 1 + |bound|):
+// below, the violation is the round-off of a degenerate vertex, where more constraints than
+// variables meet (an elastic variable at its bound that rows pin there too).
+constexpr double kDegenerateTol = 1e-6;
 // Multipliers below -kDualTol * scale make a warm start dual infeasible.
 constexpr double kDualTol = 1e-12;
 // Treat H as singular when its smallest Cholesky pivot squared is below this times max |H_ii|.
@@ -106,6 +111,7 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     hessian_reg_.resize(n, n);
     active_.assign(n, -1);
     state_.assign(n + m, 0);
+    set_aside_.assign(n + m, 0);
     u_.resize(n);
     for (Eigen::VectorXd* v : {&x_, &g_eff_, &x_prox_, &d_, &z_, &r_, &tmp_, &hx_, &dual_residual_,
                                &active_residual_, &saved_x_, &saved_u_}) {
@@ -333,13 +339,14 @@ int ActiveSetQpSolver::Restart() {
 
 SolveStatus ActiveSetQpSolver::Iterate() {
   const double tol = settings_.feasibility_tol;
+  std::fill(set_aside_.begin(), set_aside_.end(), 0);
   for (;;) {
     if (OverLimits()) return time_exceeded_ ? SolveStatus::kTimeLimit : SolveStatus::kIterationLimit;
     // Step 1: the most violated constraint (violation scaled by the normal's length).
     int p = -1, side = 0;
     double worst = 0.0;
     for (const int k : bounded_) {
-      if (state_[k] != 0) continue;
+      if (state_[k] != 0 || set_aside_[k] != 0) continue;
       const double v = Value(k), lo = Lower(k), hi = Upper(k);
       const double norm = k < m_ ? row_norm_[k] : 1.0;
       if (v < lo && lo - v > tol * (1.0 + std::abs(lo))) {
@@ -382,9 +389,18 @@ SolveStatus ActiveSetQpSolver::Iterate() {
         }
       }
       const double slack = sigma * (RowValue(p) - bound);  // negative while violated
+      if (!d_.allFinite()) return SolveStatus::kNumericalError;  // not a certificate of anything
       const bool dependent = !(free_norm2 > kDependencyTol * kDependencyTol * d_.squaredNorm());
       const double t2 = dependent ? kInf : std::max(0.0, -slack / free_norm2);
-      if (t1 == kInf && t2 == kInf) return SolveStatus::kInfeasible;
+      if (t1 == kInf && t2 == kInf) {
+        if (-slack > kDegenerateTol * (1.0 + std::abs(bound))) return SolveStatus::kInfeasible;
+        // Round-off at a degenerate vertex: p counts as met. The partial steps taken for it
+        // are undone by re-solving the active set in closed form (dropping what that leaves
+        // with a negative multiplier).
+        set_aside_[static_cast<std::size_t>(p)] = 1;
+        iterations_ += Restart();
+        break;
+      }
       ++iterations_;
       const double t = std::min(t1, t2);
       if (!dependent) x_.noalias() += t * z_;

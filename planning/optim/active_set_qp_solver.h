@@ -46,7 +46,9 @@ struct ActiveSetQpSettings {
   int max_outer_iterations = 2000;
   /// Wall-clock limit per solve [s]; checked inside the iteration loop. Infinity means none.
   double time_limit_s = kInf;
-  /// A constraint counts as violated beyond feasibility_tol * (1 + |bound|).
+  /// A constraint counts as violated beyond feasibility_tol * (1 + |bound|). One that the active
+  /// constraints pin beyond its bound by round-off alone, at a degenerate vertex (up to 1e-6
+  /// relative), counts as met: the result is kSolved with that residual, not kInfeasible.
   double feasibility_tol = 1e-9;
   /// Proximal weight relative to max(1, max |H_ii|), used when H is singular.
   double proximal_weight = 1e-7;
@@ -153,6 +155,9 @@ class ActiveSetQpSolver final : public Solver {
   Eigen::MatrixXd J_, R_;
   std::vector<int> active_;
   std::vector<ActiveSide> state_;  // per constraint: 0, -1 lower active, +1 upper active
+  // Per constraint: set aside for the rest of this Iterate() as met (a degenerate vertex's
+  // round-off, see Iterate()).
+  std::vector<char> set_aside_;
   int q_ = 0;
   Eigen::VectorXd u_;
 
