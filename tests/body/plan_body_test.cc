@@ -80,6 +80,18 @@ Violations CheckEveryKnot(const RobotModel& robot, const Staircase& stairs, cons
   return v;
 }
 
+// `stairplan plan --body qp` with the leg rows and the settings under which they plan most
+// robots (README): a low body, the validator's stability margin with room, a wide forward shift.
+PipelineOptions LegRowPipeline() {
+  PipelineOptions options;
+  options.body = BodySource::kRecedingHorizonQp;
+  options.body_qp.stance_rows = true;
+  options.body_qp.stability_margin = 0.03;
+  options.body_qp.hip_height_fraction = 0.6;
+  options.body_qp.max_shift = 0.15;
+  return options;
+}
+
 }  // namespace
 
 TEST_CASE("every knot of the body plan passes IK, joint limits and clearance, or the plan says infeasible",
@@ -189,20 +201,13 @@ TEST_CASE("with stance rows the body QP keeps every stance leg within its limits
 
 TEST_CASE("with leg rows a low body climbs the whole flight onto the landing and validates",
           "[body][stance_rows]") {
-  // `stairplan plan --body qp` with the settings under which the leg rows plan most robots
-  // (README): a low body, the validator's stability margin with room, a wide forward shift. At
-  // the top of the seven steps the knots that entered the horizon were linearised at the plan's
-  // last height held, a step below their feet: the stance legs could not reach, their feet sank
-  // into the landing and a hind leg's swing went through the last riser, and chasing those rows
-  // the body pitched down and fell through the stairs (the plan failed its re-check with 219
-  // violations).
+  // At the top of the seven steps the knots that entered the horizon were linearised at the
+  // plan's last height held, a step below their feet: the stance legs could not reach, their
+  // feet sank into the landing and a hind leg's swing went through the last riser, and chasing
+  // those rows the body pitched down and fell through the stairs (the plan failed its re-check
+  // with 219 violations).
   const RobotModel& robot = BuiltinRobot();
-  PipelineOptions options;
-  options.body = BodySource::kRecedingHorizonQp;
-  options.body_qp.stance_rows = true;
-  options.body_qp.stability_margin = 0.03;
-  options.body_qp.hip_height_fraction = 0.6;
-  options.body_qp.max_shift = 0.15;
+  const PipelineOptions options = LegRowPipeline();
   StairSpec spec;
   // Under the sanitizers one step and the landing (the seven take minutes there).
   spec.steps = testing::FullOrSanitized(spec.steps, 1);
@@ -233,12 +238,7 @@ TEST_CASE("with leg rows every cycle's QP solves on Unitree A1's descent", "[bod
     return;
   }
   const RobotModel robot = RobotModel::FromUrdfFile(path);
-  PipelineOptions options;
-  options.body = BodySource::kRecedingHorizonQp;
-  options.body_qp.stance_rows = true;
-  options.body_qp.stability_margin = 0.03;
-  options.body_qp.hip_height_fraction = 0.6;
-  options.body_qp.max_shift = 0.15;
+  PipelineOptions options = LegRowPipeline();
   options.validate = false;
   StairSpec spec;
   spec.direction = TravelDirection::kDown;
