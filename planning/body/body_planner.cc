@@ -328,15 +328,9 @@ bool BodyPlanner::LegRows(int k, double t, const BodyPose& at, const Eigen::Vect
 }
 
 bool BodyPlanner::KnotBreaksRows(int k) const {
-  // A free row (both bounds infinite) may keep the coefficient of an earlier linearisation.
-  const auto breaks = [](const BodyQp::KnotRows& rows, int first, int count) {
-    for (int r = first; r < first + count; ++r) {
-      if (rows.sigma[r] != 0.0 && (std::isfinite(rows.lo[r]) || std::isfinite(rows.hi[r]))) return true;
-    }
-    return false;
-  };
-  return breaks(qp_->stance, BodyQp::StanceRow(k, 0, 0), kBodyLegs * BodyQp::kStanceRows) ||
-         breaks(qp_->clearance, BodyQp::ClearanceRow(k, 0), BodyQp::kClearanceRows);
+  const BodyQp& qp = *qp_;
+  return (qp.stance.sigma.segment(BodyQp::StanceRow(k, 0, 0), kBodyLegs * BodyQp::kStanceRows).array() != 0.0).any() ||
+         (qp.clearance.sigma.segment(BodyQp::ClearanceRow(k, 0), BodyQp::kClearanceRows).array() != 0.0).any();
 }
 
 double BodyPlanner::ReferenceHeight(int k, double pitch) const {

@@ -46,8 +46,10 @@ void BodyPlanner::StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v
     for (int j = 0; j < BodyQp::kStanceRows; ++j) {
       qp.stance.lo[first + j] = -optim::kInf;
       qp.stance.hi[first + j] = optim::kInf;
+      qp.stance.sigma[first + j] = 0.0;
     }
     qp.clearance.lo[BodyQp::ClearanceRow(k, l)] = -optim::kInf;
+    qp.clearance.sigma[BodyQp::ClearanceRow(k, l)] = 0.0;
     if (k == 0) continue;  // knot 0 is the measured state
     const LegPhase& phase = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
     // A swing leg's foot is where its swing trajectory has it at the knot: its joints and links
@@ -79,6 +81,7 @@ void BodyPlanner::StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v
 void BodyPlanner::BodyClearanceRow(int k, const BodyPose& at, const Eigen::Vector4d& v0) {
   const int row = BodyQp::ClearanceRow(k, kBodyLegs);
   qp_->clearance.lo[row] = -optim::kInf;
+  qp_->clearance.sigma[row] = 0.0;
   if (k == 0) return;  // knot 0 is the measured state
   ClearanceOptions options;
   options.prune_above = kClearanceRange;

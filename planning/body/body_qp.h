@@ -124,7 +124,7 @@ class BodyQp {
     Eigen::VectorXd lo, hi;  ///< bounds (+-inf: none; the coefficients of a free row are ignored)
     ///@}
     /// Relaxation coefficients: the violated bound minus the row's value at the linearisation
-    /// point (0 where it holds there).
+    /// point (0 where it holds there, and for a free row).
     Eigen::VectorXd sigma;
     /// Sets the relaxation coefficients of rows first .. first + count - 1 to what the point `v`
     /// breaks: with relax 1 `v` satisfies them.

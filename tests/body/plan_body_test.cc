@@ -80,6 +80,13 @@ Violations CheckEveryKnot(const RobotModel& robot, const Staircase& stairs, cons
   return v;
 }
 
+// The report's first violation for a failure message.
+std::string FirstViolation(const ValidationReport& report) {
+  if (report.violations.empty()) return "no violation";
+  const Violation& v = report.violations.front();
+  return std::string(ToString(v.kind)) + " of " + v.leg + " at t = " + std::to_string(v.t);
+}
+
 // `stairplan plan --body qp` with the leg rows and the settings under which they plan most
 // robots (README): a low body, the validator's stability margin with room, a wide forward shift.
 PipelineOptions LegRowPipeline() {
@@ -165,10 +172,7 @@ TEST_CASE("the QP body keeps the centre of mass over the crawl's support polygon
     CHECK(report.min_stability_margin_m >= ValidationSettings{}.min_stability_margin);
     // And the whole plan passes: the swinging legs reach their feet along the swings too (before
     // they had rows of their own, LF was 6.6 mm beyond its joint limits at its liftoff at 7.95 s).
-    INFO((report.violations.empty() ? std::string("no violation")
-                                    : std::string(ToString(report.violations.front().kind)) + " of " +
-                                          report.violations.front().leg + " at t = " +
-                                          std::to_string(report.violations.front().t)));
+    INFO(FirstViolation(report));
     CHECK(report.ok);
     // The weight moves sideways over the triangles, both ways.
     double left = 0.0, right = 0.0;
@@ -217,10 +221,7 @@ TEST_CASE("with leg rows a low body climbs the whole flight onto the landing and
   REQUIRE(result.plan.status == PlanStatus::kOk);
   REQUIRE(result.validated);
   const ValidationReport& report = result.validation;
-  INFO((report.violations.empty() ? std::string("no violation")
-                                  : std::string(ToString(report.violations.front().kind)) + " of " +
-                                        report.violations.front().leg + " at t = " +
-                                        std::to_string(report.violations.front().t)));
+  INFO(FirstViolation(report));
   CHECK(report.ok);
   // The body ends standing over the landing (it starts on the ground at z = 0).
   CHECK(result.plan.body.back().z - stairs.total_rise() > 0.5 * result.plan.body.front().z);
