@@ -160,6 +160,7 @@ TEST_CASE("bad mesh files are refused naming the file", "[mesh_loader]") {
   WriteBytes(dir + "/header.stl", BinaryStl(tetra, 40));  // claims 40 triangles, holds 4
   WriteBytes(dir + "/empty.obj", "");
   WriteBytes(dir + "/comments.obj", "# exported with nothing in it\no empty\n");
+  WriteBytes(dir + "/face_only.obj", "f 1 2 3\n");  // one line: assimp's atoi would find no NUL after it
   WriteBytes(dir + "/no_geometry.dae", Dae({}, "Z_UP", 1.0));
   WriteBytes(dir + "/flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   WriteBytes(dir + "/t.stl", BinaryStl(tetra));
@@ -170,6 +171,7 @@ TEST_CASE("bad mesh files are refused naming the file", "[mesh_loader]") {
   CHECK_THAT(MeshError(dir + "/header.stl"), Catch::Contains(dir + "/header.stl: truncated"));
   CHECK_THAT(MeshError(dir + "/empty.obj"), Catch::StartsWith(dir + "/empty.obj"));
   CHECK_THAT(MeshError(dir + "/comments.obj"), Catch::StartsWith(dir + "/comments.obj"));
+  CHECK_THAT(MeshError(dir + "/face_only.obj"), Catch::Contains(dir + "/face_only.obj: the mesh has no triangles"));
   CHECK_THAT(MeshError(dir + "/no_geometry.dae"), Catch::Contains(dir + "/no_geometry.dae: the mesh has no triangles"));
   CHECK_THAT(MeshError(dir + "/t.ply"), Catch::Contains("unsupported mesh format"));
   CHECK_THAT(MeshError(dir + "/t.stl", Eigen::Vector3d(1000, 1000, 1000)), Catch::Contains("3000 m across"));
