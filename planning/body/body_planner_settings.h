@@ -45,6 +45,10 @@ struct BodyPlannerSettings {
   /// default for now: with 0.03 the default stairs up-forward pass the stability check (27 mm),
   /// but the sideways shift costs the swing legs joint range and descending plans their reach.
   double stability_margin = -1.0;
+  /// With stance rows, where the polygon leaves no room for stability_margin (a narrow support
+  /// triangle against the sideways-shift bound), the support rows give up margin down to this one,
+  /// each metre given up costing BodyQp::kMarginGivePenalty [m].
+  double min_stability_margin = 0.015;
   double lateral_weight = 1e3;     ///< per m^2 of sideways weight shift
   double max_lateral_shift = 0.1;  ///< |com_shift_y| bound [m]
   double max_lateral_accel = 6.0;  ///< |com_shift_y''| [m/s^2]

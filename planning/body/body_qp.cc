@@ -1,5 +1,6 @@
 #include "planning/body/body_qp.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -114,6 +115,10 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
     program_.SetVariableBounds(retreat_, Eigen::VectorXd::Zero(n - 1), Eigen::VectorXd::Constant(n - 1, optim::kInf));
     program_.AddQuadraticCost(retreat_, 2.0 * kRelaxCurvature * Eigen::MatrixXd::Identity(n - 1, n - 1),
                               Eigen::VectorXd::Constant(n - 1, kRetreatPenalty));
+    give_ = program_.AddVariables("margin_given", n);
+    const double most = std::max(settings_.stability_margin - settings_.min_stability_margin, 0.0);
+    program_.SetVariableBounds(give_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, most));
+    program_.AddQuadraticCost(give_, 2.0 * kRelaxCurvature * identity, Eigen::VectorXd::Constant(n, kMarginGivePenalty));
     const Eigen::VectorXd free = Eigen::VectorXd::Constant(n - 1, optim::kInf);
     progress_rows_ = program_.AddLinearConstraint({{shift_, d1}, {retreat_, Eigen::MatrixXd::Identity(n - 1, n - 1)}},
                                                   -free, free, "progress");
@@ -129,7 +134,10 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
     support_rows_ = {"support", program_.num_rows(), 0};
   } else {
     std::vector<optim::LinearTerm> terms{{shift_, no_coefficients}, {lateral_, no_coefficients}};
-    if (stance_rows) terms.push_back({relax_, no_coefficients});
+    if (stance_rows) {
+      terms.push_back({relax_, no_coefficients});
+      terms.push_back({give_, no_coefficients});
+    }
     support_rows_ = program_.AddLinearConstraint(terms, -support_free, support_free, "support");
   }
   support_cx.setZero(kSupportRows * n);
@@ -138,6 +146,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   pushed_cx_ = support_cx;
   pushed_cy_ = support_cy;
   pushed_sigma_ = support_sigma;
+  pushed_give_.setZero(kSupportRows * n);
   support_lo.setConstant(kSupportRows * n, -optim::kInf);
   support_hi.setConstant(kSupportRows * n, optim::kInf);
   coefficient_row_.setZero(1, n);
@@ -235,15 +244,20 @@ void BodyQp::PushSupportRows() {
   // they are inactive (the planner changes a pair's feet only while its row is free).
   for (int row = 0; row < static_cast<int>(support_cx.size()); ++row) {
     const bool sigma_changed = relax_.size > 0 && support_sigma[row] != pushed_sigma_[row];
-    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row] && !sigma_changed) continue;
+    // The margin given up widens the row on its bounded side (a free row keeps what it had).
+    const double give = support_hi[row] < optim::kInf ? -1.0 : support_lo[row] > -optim::kInf ? 1.0 : pushed_give_[row];
+    const bool give_changed = give_.size > 0 && give != pushed_give_[row];
+    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row] && !sigma_changed && !give_changed) continue;
     const int k = row / kSupportRows;
     single_row_.start = support_rows_.start + row;
     SetCoefficient(single_row_, shift_, k, support_cx[row]);
     SetCoefficient(single_row_, lateral_, k, support_cy[row]);
     if (sigma_changed) SetCoefficient(single_row_, relax_, k, support_sigma[row]);
+    if (give_changed) SetCoefficient(single_row_, give_, k, give);
     pushed_cx_[row] = support_cx[row];
     pushed_cy_[row] = support_cy[row];
     pushed_sigma_[row] = support_sigma[row];
+    pushed_give_[row] = give;
   }
   program_.SetConstraintBounds(support_rows_, support_lo, support_hi);
 }

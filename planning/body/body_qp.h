@@ -15,9 +15,12 @@
 //        cycle can always stop), and progress rows (the body moves against the travel only as
 //        far as the penalised retreat_k lets it: shift_{k+1} - shift_k + retreat_k >= minus the
 //        neutral body's advance)
-//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k (+ e_kr relax_k) <= support_hi_kr
+//        support_lo_kr <= cx_kr shift_k + cy_kr lateral_k (+ e_kr relax_k -+ give_k) <= support_hi_kr
 //                                 one row per knot and pair r of legs (6): the COM on the inner
-//                                 side of the support polygon's edge between the two feet
+//                                 side of the support polygon's edge between the two feet, by the
+//                                 stability margin less give_k (with stance rows: the margin the
+//                                 knot gives up, at most stability_margin - min_stability_margin,
+//                                 at kMarginGivePenalty per metre)
 //        stance_lo_klj <= a_klj . (z_k, pitch_k, shift_k, lateral_k) + e_klj relax_k <= stance_hi_klj
 //                                 per knot, stance leg l and row j (4): its three joints within
 //                                 their limits and its extension within the knee's range,
@@ -94,6 +97,9 @@ class BodyQp {
   static constexpr double kRelaxPenalty = 1e6;
   /// Cost of one metre of the body's motion against the travel (with stance rows).
   static constexpr double kRetreatPenalty = 1e4;
+  /// Cost of one metre of stability margin given up (with stance rows): as the retreat, far above
+  /// what the other costs could gain by it and far below the relaxation.
+  static constexpr double kMarginGivePenalty = 1e4;
 
   // ---- per-cycle inputs, filled in place by the planner (sizes fixed at construction) ----
   ///@{
@@ -174,6 +180,8 @@ class BodyQp {
   bool has_stance_rows() const { return stance_.rows.size > 0; }
   /// The relaxation variables, one per knot, in program() (empty without stance rows).
   const optim::VariableBlock& relax() const { return relax_; }
+  /// The stability margin each knot gives up, in program() (empty without stance rows).
+  const optim::VariableBlock& give() const { return give_; }
   /// Writes the linear cost of the current inputs into the program (done by Solve too); lets
   /// other solvers (Ipopt, for comparison) solve the same QP.
   void PushInputs();
@@ -190,7 +198,7 @@ class BodyQp {
   optim::Program lateral_program_;  // the sideways shift when apart (else empty)
   optim::ActiveSetQpSolver lateral_solver_;
   optim::SolveResult lateral_result_;
-  optim::VariableBlock z_, pitch_, shift_, lateral_, relax_, retreat_;
+  optim::VariableBlock z_, pitch_, shift_, lateral_, relax_, retreat_, give_;
   optim::ConstraintRows hip_rows_, accel_rows_, support_rows_;
   // A KnotRows family's rows in the program and the coefficients pushed into them.
   struct PushedRows {
@@ -201,7 +209,7 @@ class BodyQp {
   PushedRows stance_, clearance_;
   optim::ActiveSetQpSolver solver_;
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
-  Eigen::VectorXd pushed_cx_, pushed_cy_, pushed_sigma_;  // support coefficients in the program
+  Eigen::VectorXd pushed_cx_, pushed_cy_, pushed_sigma_, pushed_give_;  // support coefficients in the program
   optim::ConstraintRows progress_rows_;
   Eigen::VectorXd progress_hi_;  // +inf
   Eigen::MatrixXd coefficient_row_;        // 1 x knots, zero but for one entry

@@ -112,3 +112,41 @@ TEST_CASE("a row the knot cannot hold is relaxed at the exact penalty, and rows 
   REQUIRE(r.solved());
   CHECK(r.x[qp.shift().start + 20] > 0.002);
 }
+
+TEST_CASE("a support row the sideways bound keeps from its full margin gives up only the shortfall, down to the floor",
+          "[body][qp]") {
+  const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
+  BodyPlannerSettings settings;
+  settings.stability_margin = 0.03;
+  settings.min_stability_margin = 0.015;  // at most 15 mm to give
+  BodyQp qp(settings, c, /*stance_rows=*/true);
+  const int n = qp.knots();
+  FillInputs(&qp);  // |lateral| <= 6 mm past knot 0
+  const auto row = [&](int k, double lo, double hi, double sigma) {
+    const int r = k * BodyQp::kSupportRows;
+    qp.support_cx[r] = 0.0;
+    qp.support_cy[r] = 1.0;
+    qp.support_lo[r] = lo;
+    qp.support_hi[r] = hi;
+    qp.support_sigma[r] = sigma;
+  };
+  row(10, 0.016, optim::kInf, 0.0);    // lateral >= 16 mm: 10 mm short
+  row(20, -optim::kInf, -0.012, 0.0);  // lateral <= -12 mm: 6 mm short
+  row(30, 0.025, optim::kInf, 0.025);  // 19 mm short: the floor holds 4 mm, which the relaxation keeps
+  optim::SolveResult r;
+  qp.Solve(optim::kInf, &r);
+  REQUIRE(r.solved());
+  const auto give = r.x.segment(qp.give().start, n);
+  const auto relax = r.x.segment(qp.relax().start, n);
+  const auto lateral = qp.LateralOf(r);
+  CHECK(give[10] == Approx(0.010).margin(1e-7));
+  CHECK(lateral[10] == Approx(0.006).margin(1e-9));
+  CHECK(give[20] == Approx(0.006).margin(1e-7));
+  CHECK(lateral[20] == Approx(-0.006).margin(1e-9));
+  CHECK(give[30] == Approx(0.015).margin(1e-9));
+  CHECK(relax[30] * 0.025 == Approx(0.025 - 0.015 - 0.006).margin(1e-7));
+  for (int k = 0; k < n; ++k) {
+    if (k != 10 && k != 20 && k != 30) CHECK(give[k] < 1e-7);
+    if (k != 30) CHECK(relax[k] < 1e-7);
+  }
+}
