@@ -87,7 +87,9 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
     c_[static_cast<std::size_t>(l)] = -std::cos(nominal_pitch) * leg.hip_B.x() - std::sin(nominal_pitch) * leg.hip_B.z();
   }
   hip_height_ = bounds_->NominalHipHeight();
-  qp_ = std::make_unique<BodyQp>(settings_, c_, robot_ != nullptr);
+  // With leg rows the ZMP has support rows too, the pendulum as high as the hips (the COM rides
+  // within centimetres of them).
+  qp_ = std::make_unique<BodyQp>(settings_, c_, robot_ != nullptr, robot_ != nullptr ? hip_height_ : 0.0);
   const int n = settings_.knots;
   if (robot_ != nullptr) {
     const RobotKinematics& kinematics = robot_->kinematics();
@@ -113,6 +115,10 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
   com_ = CalibrateComEstimate(robot, contacts, StartState());
   neutral_x_.setZero(n);
   neutral_y_.setZero(n);
+  com_base_.setZero(2, n);
+  support_normal_.setZero(2, BodyQp::kSupportRows * n);
+  support_edge_.setZero(BodyQp::kSupportRows * n);
+  support_side_.assign(static_cast<std::size_t>(BodyQp::kSupportRows * n), 0);
   leg_lo_.setConstant(n * kBodyLegs, -optim::kInf);
   leg_hi_.setConstant(n * kBodyLegs, optim::kInf);
   output_.knots.resize(static_cast<std::size_t>(n));
@@ -301,7 +307,51 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       qp.clearance.RelaxAt(BodyQp::ClearanceRow(k, 0), BodyQp::kClearanceRows, anchor);
     }
   }
-  if (leg_rows) ProgressRows();
+  if (leg_rows) {
+    ZmpSupportRows(now);
+    ProgressRows();
+  }
+}
+
+void BodyPlanner::ZmpSupportRows(double now) {
+  BodyQp& qp = *qp_;
+  if (qp.zmp_rows().size == 0) return;
+  const int n = settings_.knots;
+  constexpr int kRows = BodyQp::kSupportRows;
+  const double lag = qp.zmp_weight(), dt = settings_.knot_dt;
+  // Knot 0's ZMP involves the body executed a cycle ago (a constant; the previous plan's) and
+  // knot 1: without its row each cycle could change the executed acceleration at will.
+  const double executed_shift = PreviousAt(previous_shift_, now - dt);
+  const double executed_lateral = PreviousAt(previous_lateral_, now - dt);
+  const auto neutral = [&](int k) -> Eigen::Vector2d {
+    if (k < 0) return schedule_.NeutralBodyXY(now - dt);
+    if (k >= n) {
+      return Eigen::Vector2d(2.0 * neutral_x_[n - 1] - neutral_x_[n - 2], 2.0 * neutral_y_[n - 1] - neutral_y_[n - 2]);
+    }
+    return Eigen::Vector2d(neutral_x_[k], neutral_y_[k]);
+  };
+  for (int k = 0; k < n; ++k) {
+    // The COM without the weight shifts moves with the neutral stance (it advances during swings
+    // only, at constant velocity beyond the horizon): its acceleration moves the ZMP too. The
+    // stance's own, not the differences of the exact COMs, whose millimetres of IK noise the
+    // pendulum would make decimetres.
+    const Eigen::Vector2d zmp_base = com_base_.col(k) - lag * (neutral(k + 1) - 2.0 * neutral(k) + neutral(k - 1));
+    const std::array<double, 3> w = qp.ZmpStencil(k);
+    for (int r = 0; r < kRows; ++r) {
+      const int row = k * kRows + r;
+      const int side = support_side_[static_cast<std::size_t>(row)];
+      if (side == 0) continue;
+      // Knot 0's row holds knot 1 against the body executed a cycle ago, a constant here.
+      const double executed =
+          k == 0 ? w[0] * (qp.support_cx[row] * executed_shift + qp.support_cy[row] * executed_lateral) : 0.0;
+      const double edge = support_edge_[row] - support_normal_.col(row).dot(zmp_base) - executed;
+      if (side > 0) {
+        qp.zmp_hi[row] = edge;
+      } else {
+        qp.zmp_lo[row] = edge;
+      }
+    }
+  }
 }
 
 BodyPose BodyPlanner::CentrePose(const Eigen::Vector2d& neutral_xy, const Eigen::Vector4d& v0) const {
@@ -396,17 +446,23 @@ void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at,
   for (int r = 0; r < kRows; ++r) {
     qp.support_lo[k * kRows + r] = -optim::kInf;
     qp.support_hi[k * kRows + r] = optim::kInf;
+    qp.zmp_lo[k * kRows + r] = -optim::kInf;
+    qp.zmp_hi[k * kRows + r] = optim::kInf;
+    support_side_[static_cast<std::size_t>(k * kRows + r)] = 0;
   }
-  if (k == 0 || settings_.stability_margin < 0.0) return;  // knot 0 is the measured state
+  // Knot 0 is the measured state: only its ZMP has a row, which the next knot moves.
+  const bool zmp_only = k == 0;
+  if (settings_.stability_margin < 0.0 || (zmp_only && qp.zmp_rows().size == 0)) return;
   // The legs standing on the same foothold at knots k-1, k and k+1: the body moves linearly
   // between knots, so a COM inside their polygon at every knot stays inside the polygon of
   // whatever legs stand in between (a swing starting or ending between two knots included).
+  // Knot 0 has no knot before it in the horizon: its own and knot 1's.
   std::array<int, kBodyLegs> foothold{};
   int standing = 0;
   Eigen::Vector2d feet_sum = Eigen::Vector2d::Zero();
   for (int l = 0; l < kBodyLegs; ++l) {
     const LegPhase& now = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
-    const LegPhase& before = phases_[static_cast<std::size_t>((k - 1) * kBodyLegs + l)];
+    const LegPhase& before = phases_[static_cast<std::size_t>((zmp_only ? k : k - 1) * kBodyLegs + l)];
     const LegPhase& after = phases_[static_cast<std::size_t>((k + 1) * kBodyLegs + l)];
     feet_sum += now.foot_W.head<2>();
     const bool stands = now.stance && before.stance && after.stance && before.foothold == now.foothold &&
@@ -414,9 +470,10 @@ void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at,
     foothold[static_cast<std::size_t>(l)] = stands ? now.foothold : -1;
     standing += stands ? 1 : 0;
   }
+  const Eigen::Vector2d com_base = ComBase(k, t, pitch, feet_sum, at, v0, restored);
+  com_base_.col(k) = com_base;  // every knot's, for the ZMP rows
   if (standing < 3) return;  // no polygon: the gait is not quasi-static here
   const double heading = schedule_.heading();
-  const Eigen::Vector2d com_base = ComBase(k, t, pitch, feet_sum, at, v0, restored);
   const double previous_x = has_previous_ ? PreviousAt(previous_shift_, t) : 0.0;
   const double previous_y = has_previous_ ? PreviousAt(previous_lateral_, t) : 0.0;
   const auto contact = [&](int l) -> Eigen::Vector2d {
@@ -448,6 +505,11 @@ void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at,
       // horizon) keeps the share the relaxation pays for, and the penalty brings it in as fast as
       // the acceleration limits let it. Rows that only give way (below) cannot be pulled in at
       // knots the pinned state and the acceleration limits hold, and then hold the plan still.
+      // The ZMP's row too, once every knot's COM is known (ZmpSupportRows).
+      support_normal_.col(row) = normal;
+      support_edge_[row] = normal.dot(pi);
+      support_side_[static_cast<std::size_t>(row)] = below > 0 ? 1 : -1;
+      if (zmp_only) continue;
       const double value = qp.support_cx[row] * v0[2] + qp.support_cy[row] * v0[3];
       if (below > 0) {
         qp.support_hi[row] = edge - settings_.stability_margin;

@@ -157,6 +157,9 @@ class BodyPlanner {
   // knots k-1..k+1, shrunk by the stability margin (rows free where no polygon applies).
   // `restored`: knot k's leg rows came from row_cache_ (its exact COM may too).
   void SupportRows(int k, double t, double pitch, const BodyPose& at, const Eigen::Vector4d& v0, bool restored);
+  // With leg rows, after every knot's SupportRows: the rows hold the ZMP (COM - h/g COM'', the
+  // pendulum as high as the hips) inside the polygon, BodyQp::ZmpStencil over knots k-1..k+1.
+  void ZmpSupportRows(double now);
   // The COM at knot k without the weight shifts: from the leg rows' joints at the linearisation
   // point `at` (v0) when there are leg rows, else from the affine estimate.
   Eigen::Vector2d ComBase(int k, double t, double pitch, const Eigen::Vector2d& feet_sum, const BodyPose& at,
@@ -209,6 +212,13 @@ class BodyPlanner {
   ComEstimate com_;
   std::vector<LegPhase> phases_;  // (knots + 1) * 4: each leg at now + k * knot_dt, this cycle
   Eigen::VectorXd neutral_x_, neutral_y_;  // this cycle's neutral body xy per knot
+  // SupportRows' record for ZmpSupportRows: each knot's COM without the weight shifts, and per
+  // row its edge's normal, normal . first foot, and side (+1: the COM below the edge, -1: above,
+  // 0: free).
+  Eigen::Matrix2Xd com_base_;
+  Eigen::Matrix2Xd support_normal_;
+  Eigen::VectorXd support_edge_;
+  std::vector<int> support_side_;
   Eigen::VectorXd leg_lo_, leg_hi_;        // each stance leg's own row bounds, k * 4 + leg
   optim::SolveResult result_;
   BodyPlannerOutput output_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "planning/body/difference_matrices.h"
 
@@ -13,16 +14,20 @@ namespace {
 // Curvature of the relaxation's cost: the dual active-set solver needs a positive definite
 // Hessian; against kRelaxPenalty it changes nothing.
 constexpr double kRelaxCurvature = 1.0;
+// Gravity for the support rows' pendulum [m/s^2].
+constexpr double kZmpGravity = 9.81;
 
 }  // namespace
 
 BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients,
-               bool stance_rows)
+               bool stance_rows, double zmp_height)
     : knots_(settings.knots),
       settings_(settings),
       c_(row_coefficients),
       lateral_apart_(settings.stability_margin < 0.0 && !stance_rows) {
   settings_.Validate();
+  if (!(zmp_height >= 0.0 && zmp_height < 10.0)) throw std::invalid_argument("BodyQp: zmp_height must be in [0, 10) m");
+  zmp_weight_ = zmp_height / (kZmpGravity * settings_.knot_dt * settings_.knot_dt);
   const int n = knots_;
   for (int l = 0; l < kBodyLegs; ++l) {
     int g = 0;
@@ -119,6 +124,12 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
     const double most = std::max(settings_.stability_margin - settings_.min_stability_margin, 0.0);
     program_.SetVariableBounds(give_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, most));
     program_.AddQuadraticCost(give_, 2.0 * kRelaxCurvature * identity, Eigen::VectorXd::Constant(n, kMarginGivePenalty));
+    if (zmp_weight_ > 0.0) {
+      excursion_ = program_.AddVariables("zmp_excursion", n);
+      program_.SetVariableBounds(excursion_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, optim::kInf));
+      program_.AddQuadraticCost(excursion_, 2.0 * kRelaxCurvature * identity,
+                                Eigen::VectorXd::Constant(n, kZmpExcursionPenalty));
+    }
     const Eigen::VectorXd free = Eigen::VectorXd::Constant(n - 1, optim::kInf);
     progress_rows_ = program_.AddLinearConstraint({{shift_, d1}, {retreat_, Eigen::MatrixXd::Identity(n - 1, n - 1)}},
                                                   -free, free, "progress");
@@ -130,27 +141,37 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   const int support_count = lateral_apart_ ? 0 : kSupportRows * n;
   const Eigen::MatrixXd no_coefficients = Eigen::MatrixXd::Zero(support_count, n);
   const Eigen::VectorXd support_free = Eigen::VectorXd::Constant(support_count, optim::kInf);
-  if (lateral_apart_) {
-    support_rows_ = {"support", program_.num_rows(), 0};
-  } else {
-    std::vector<optim::LinearTerm> terms{{shift_, no_coefficients}, {lateral_, no_coefficients}};
-    if (stance_rows) {
-      terms.push_back({relax_, no_coefficients});
-      terms.push_back({give_, no_coefficients});
+  // The ZMP's rows (with leg rows and a pendulum height) neither give margin nor relax: the ZMP
+  // leaves the polygon by the excursion, and the margin is the COM's.
+  const bool zmp = stance_rows && zmp_weight_ > 0.0 && !lateral_apart_;
+  for (SupportFamily* family : {&com_support_, &zmp_support_}) {
+    const bool is_zmp = family == &zmp_support_;
+    family->zmp = is_zmp;
+    const char* name = is_zmp ? "zmp_support" : "support";
+    if (lateral_apart_ || (is_zmp && !zmp)) {
+      family->rows = {name, program_.num_rows(), 0};
+    } else {
+      std::vector<optim::LinearTerm> terms{{shift_, no_coefficients}, {lateral_, no_coefficients}};
+      if (stance_rows && !is_zmp) {
+        terms.push_back({relax_, no_coefficients});
+        terms.push_back({give_, no_coefficients});
+      }
+      if (is_zmp) terms.push_back({excursion_, no_coefficients});
+      family->rows = program_.AddLinearConstraint(terms, -support_free, support_free, name);
     }
-    support_rows_ = program_.AddLinearConstraint(terms, -support_free, support_free, "support");
+    for (Eigen::VectorXd* v : {&family->pushed_cx, &family->pushed_cy, &family->pushed_sigma, &family->pushed_give}) {
+      v->setZero(kSupportRows * n);
+    }
   }
   support_cx.setZero(kSupportRows * n);
   support_cy.setZero(kSupportRows * n);
   support_sigma.setZero(kSupportRows * n);
-  pushed_cx_ = support_cx;
-  pushed_cy_ = support_cy;
-  pushed_sigma_ = support_sigma;
-  pushed_give_.setZero(kSupportRows * n);
   support_lo.setConstant(kSupportRows * n, -optim::kInf);
   support_hi.setConstant(kSupportRows * n, optim::kInf);
+  zmp_lo = support_lo;
+  zmp_hi = support_hi;
   coefficient_row_.setZero(1, n);
-  single_row_ = {support_rows_.name, support_rows_.start, 1};
+  single_row_ = {com_support_.rows.name, com_support_.rows.start, 1};
   one_row_ = {"stance or clearance", 0, 1};
 
   // Stance and clearance rows: free until the planner linearises a stance leg into them.
@@ -170,6 +191,12 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   g_pitch_.setZero(n);
   g_shift_.setZero(n);
   g_lateral_.setZero(n);
+}
+
+std::array<double, 3> BodyQp::ZmpStencil(int k) const {
+  const double a = zmp_weight_;
+  if (k == knots_ - 1) return {-a, 1.0 + a, 0.0};
+  return {-a, 1.0 + 2.0 * a, -a};
 }
 
 std::array<int, 2> BodyQp::SupportPair(int r) {
@@ -239,27 +266,57 @@ void BodyQp::SetCoefficient(const optim::ConstraintRows& row, const optim::Varia
   coefficient_row_(0, k) = 0.0;
 }
 
+void BodyQp::SetStencil(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value) {
+  const std::array<double, 3> w = ZmpStencil(k);
+  for (int j = 0; j < 3; ++j) {
+    if (k - 1 + j >= 0 && k - 1 + j < knots_) coefficient_row_(0, k - 1 + j) = w[static_cast<std::size_t>(j)] * value;
+  }
+  program_.SetConstraintCoefficients(row, block, coefficient_row_);
+  for (int j = -1; j <= 1; ++j) {
+    if (k + j >= 0 && k + j < knots_) coefficient_row_(0, k + j) = 0.0;
+  }
+}
+
 void BodyQp::PushSupportRows() {
+  PushSupportFamily(support_lo, support_hi, &support_sigma, &com_support_);
+  PushSupportFamily(zmp_lo, zmp_hi, nullptr, &zmp_support_);
+}
+
+void BodyQp::PushSupportFamily(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd* sigma,
+                               SupportFamily* family) {
+  if (family->rows.size == 0) return;
   // Only rows whose feet changed get new coefficients: the solver keeps its factorisation when
   // they are inactive (the planner changes a pair's feet only while its row is free).
+  // The COM's rows give margin (give_) and relax; the ZMP's leave the polygon by the excursion.
+  const optim::VariableBlock& widen = family->zmp ? excursion_ : give_;
+  const bool gives = widen.size > 0;
+  const bool relaxes = relax_.size > 0 && sigma != nullptr;
   for (int row = 0; row < static_cast<int>(support_cx.size()); ++row) {
-    const bool sigma_changed = relax_.size > 0 && support_sigma[row] != pushed_sigma_[row];
+    const bool sigma_changed = relaxes && (*sigma)[row] != family->pushed_sigma[row];
     // The margin given up widens the row on its bounded side (a free row keeps what it had).
-    const double give = support_hi[row] < optim::kInf ? -1.0 : support_lo[row] > -optim::kInf ? 1.0 : pushed_give_[row];
-    const bool give_changed = give_.size > 0 && give != pushed_give_[row];
-    if (support_cx[row] == pushed_cx_[row] && support_cy[row] == pushed_cy_[row] && !sigma_changed && !give_changed) continue;
+    const double give = hi[row] < optim::kInf ? -1.0 : lo[row] > -optim::kInf ? 1.0 : family->pushed_give[row];
+    const bool give_changed = gives && give != family->pushed_give[row];
+    if (support_cx[row] == family->pushed_cx[row] && support_cy[row] == family->pushed_cy[row] && !sigma_changed &&
+        !give_changed) {
+      continue;
+    }
     const int k = row / kSupportRows;
-    single_row_.start = support_rows_.start + row;
-    SetCoefficient(single_row_, shift_, k, support_cx[row]);
-    SetCoefficient(single_row_, lateral_, k, support_cy[row]);
-    if (sigma_changed) SetCoefficient(single_row_, relax_, k, support_sigma[row]);
-    if (give_changed) SetCoefficient(single_row_, give_, k, give);
-    pushed_cx_[row] = support_cx[row];
-    pushed_cy_[row] = support_cy[row];
-    pushed_sigma_[row] = support_sigma[row];
-    pushed_give_[row] = give;
+    single_row_.start = family->rows.start + row;
+    if (family->zmp) {
+      SetStencil(single_row_, shift_, k, support_cx[row]);
+      SetStencil(single_row_, lateral_, k, support_cy[row]);
+    } else {
+      SetCoefficient(single_row_, shift_, k, support_cx[row]);
+      SetCoefficient(single_row_, lateral_, k, support_cy[row]);
+    }
+    if (sigma_changed) SetCoefficient(single_row_, relax_, k, (*sigma)[row]);
+    if (give_changed) SetCoefficient(single_row_, widen, k, give);
+    family->pushed_cx[row] = support_cx[row];
+    family->pushed_cy[row] = support_cy[row];
+    if (sigma_changed) family->pushed_sigma[row] = (*sigma)[row];
+    family->pushed_give[row] = give;
   }
-  program_.SetConstraintBounds(support_rows_, support_lo, support_hi);
+  program_.SetConstraintBounds(family->rows, lo, hi);
 }
 
 void BodyQp::PushProgressRows() {

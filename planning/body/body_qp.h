@@ -21,6 +21,13 @@
 //                                 stability margin less give_k (with stance rows: the margin the
 //                                 knot gives up, at most stability_margin - min_stability_margin,
 //                                 at kMarginGivePenalty per metre)
+//        zmp_lo_kr <= sum_j w_kj (cx_kr shift_j + cy_kr lateral_j) -+ excursion_k <= zmp_hi_kr
+//                                 with stance rows and a pendulum height h: the same edges for
+//                                 the linear inverted pendulum's ZMP, COM - h/g COM'', over knots
+//                                 k-1, k, k+1 (w = ZmpStencil(k)); knot 0's row too, which bounds
+//                                 knot 1 against the body executed a cycle ago. No margin; the
+//                                 ZMP leaves the polygon by excursion_k at kZmpExcursionPenalty
+//                                 per metre, so that a crawl's quasi-static plan stays feasible
 //        stance_lo_klj <= a_klj . (z_k, pitch_k, shift_k, lateral_k) + e_klj relax_k <= stance_hi_klj
 //                                 per knot, stance leg l and row j (4): its three joints within
 //                                 their limits and its extension within the knee's range,
@@ -64,8 +71,9 @@ class BodyQp {
   /// `row_coefficients`: c_l per leg; legs within kRowMergeTolerance share a row (and the mean
   /// coefficient). Throws std::invalid_argument naming the field for bad settings.
   /// `stance_rows`: with the stance legs' kinematic rows (the planner has the robot's kinematics).
+  /// `zmp_height` > 0 (with stance rows): ZMP rows beside the COM's, for a pendulum that high [m].
   BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients,
-         bool stance_rows = false);
+         bool stance_rows = false, double zmp_height = 0.0);
 
   /// Coefficients closer than this share one row [m/rad].
   static constexpr double kRowMergeTolerance = 1e-3;
@@ -84,6 +92,12 @@ class BodyQp {
   static constexpr int kSupportRows = 6;
   /// The legs (i < j) of support row `r` (0 .. kSupportRows - 1).
   static std::array<int, 2> SupportPair(int r);
+  /// Weights of knots k-1, k and k+1 in knot k's ZMP rows (see the top comment): the ZMP's
+  /// second difference, the last knot's at rest beyond the horizon (its shift at rest too).
+  /// Knot 0's row has the first two (knot -1, executed a cycle ago, is the planner's constant).
+  std::array<double, 3> ZmpStencil(int k) const;
+  /// h / (g dt^2): the weight of a knot's neighbours in the ZMP (0: no ZMP rows).
+  double zmp_weight() const { return zmp_weight_; }
   /// Stance rows per leg and knot: three joints and the extension (StanceLegRows::kRows).
   static constexpr int kStanceRows = 4;
   /// Index of stance row `j` of leg `leg` at knot `k`.
@@ -100,6 +114,9 @@ class BodyQp {
   /// Cost of one metre of stability margin given up (with stance rows): as the retreat, far above
   /// what the other costs could gain by it and far below the relaxation.
   static constexpr double kMarginGivePenalty = 1e4;
+  /// Cost of one metre of the ZMP outside the support polygon (with stance rows and a pendulum
+  /// height): the pendulum shapes the motion, the relaxation answers to the COM's rows.
+  static constexpr double kZmpExcursionPenalty = 1e4;
 
   // ---- per-cycle inputs, filled in place by the planner (sizes fixed at construction) ----
   ///@{
@@ -119,6 +136,12 @@ class BodyQp {
   ///@}
   /// With stance rows, the support rows' relaxation coefficients (as KnotRows::sigma); unused without.
   Eigen::VectorXd support_sigma;
+  ///@{
+  /// With stance rows and a pendulum height, the bounds of the ZMP's support rows: the COM's
+  /// coefficients over ZmpStencil(), no margin; the ZMP leaves the polygon only by the excursion
+  /// (kZmpExcursionPenalty per metre). Unused without.
+  Eigen::VectorXd zmp_lo, zmp_hi;
+  ///@}
   /// With stance rows, progress row k: shift_{k+1} - shift_k + retreat_k >= progress_lo_k (knots - 1
   /// rows; the planner puts minus the neutral body's advance there, so that the body moves
   /// against the travel only by the retreat, which costs kRetreatPenalty per metre). Unused without.
@@ -169,7 +192,9 @@ class BodyQp {
   /// In lateral_program().
   const optim::VariableBlock& lateral() const { return lateral_; }
   /// The support rows (the COM inside the support polygon), in program().
-  const optim::ConstraintRows& support_rows() const { return support_rows_; }
+  const optim::ConstraintRows& support_rows() const { return com_support_.rows; }
+  /// The ZMP's support rows, in program() (empty without stance rows or a pendulum height).
+  const optim::ConstraintRows& zmp_rows() const { return zmp_support_.rows; }
   /// The hip-height rows, in program().
   const optim::ConstraintRows& hip_rows() const { return hip_rows_; }
   /// The stance legs' joint and extension rows, in program() (empty without stance rows).
@@ -182,6 +207,8 @@ class BodyQp {
   const optim::VariableBlock& relax() const { return relax_; }
   /// The stability margin each knot gives up, in program() (empty without stance rows).
   const optim::VariableBlock& give() const { return give_; }
+  /// How far each knot's ZMP leaves the polygon, in program() (empty without ZMP rows).
+  const optim::VariableBlock& excursion() const { return excursion_; }
   /// Writes the linear cost of the current inputs into the program (done by Solve too); lets
   /// other solvers (Ipopt, for comparison) solve the same QP.
   void PushInputs();
@@ -194,12 +221,21 @@ class BodyQp {
   std::array<int, kBodyLegs> group_of_{};
   std::array<double, kBodyLegs> group_c_{};
   bool lateral_apart_ = false;
+  double zmp_weight_ = 0.0;  // h / (g dt^2): the ZMP's weight on a knot's neighbours
   optim::Program program_;
   optim::Program lateral_program_;  // the sideways shift when apart (else empty)
   optim::ActiveSetQpSolver lateral_solver_;
   optim::SolveResult lateral_result_;
-  optim::VariableBlock z_, pitch_, shift_, lateral_, relax_, retreat_, give_;
-  optim::ConstraintRows hip_rows_, accel_rows_, support_rows_;
+  optim::VariableBlock z_, pitch_, shift_, lateral_, relax_, retreat_, give_, excursion_;
+  optim::ConstraintRows hip_rows_, accel_rows_;
+  // One family of support rows in the program: the COM's (one knot each) or the ZMP's (over
+  // ZmpStencil), and the coefficients pushed into them.
+  struct SupportFamily {
+    optim::ConstraintRows rows;
+    bool zmp = false;
+    Eigen::VectorXd pushed_cx, pushed_cy, pushed_sigma, pushed_give;
+  };
+  SupportFamily com_support_, zmp_support_;
   // A KnotRows family's rows in the program and the coefficients pushed into them.
   struct PushedRows {
     optim::ConstraintRows rows;
@@ -209,19 +245,23 @@ class BodyQp {
   PushedRows stance_, clearance_;
   optim::ActiveSetQpSolver solver_;
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
-  Eigen::VectorXd pushed_cx_, pushed_cy_, pushed_sigma_, pushed_give_;  // support coefficients in the program
   optim::ConstraintRows progress_rows_;
   Eigen::VectorXd progress_hi_;  // +inf
   Eigen::MatrixXd coefficient_row_;        // 1 x knots, zero but for one entry
   optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
   optim::ConstraintRows one_row_;          // one row of a KnotRows family (likewise)
   void PushSupportRows();
+  // `sigma`: the relaxation coefficients (null: the family does not relax).
+  void PushSupportFamily(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd* sigma,
+                         SupportFamily* family);
   void PushProgressRows();
   // Adds `count` free rows over one knot's variables each; the inputs sized to match.
   void AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows);
   void PushKnotRows(const KnotRows& inputs, PushedRows* rows);
   // Writes `value` as knot k's coefficient of `block` into `row` (one row).
   void SetCoefficient(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value);
+  // Sets `row`'s coefficients of `block` at knots k-1..k+1 to ZmpStencil(k) times `value`.
+  void SetStencil(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value);
 };
 
 }  // namespace stairplan

@@ -150,3 +150,45 @@ TEST_CASE("a support row the sideways bound keeps from its full margin gives up 
     if (k != 30) CHECK(relax[k] < 1e-7);
   }
 }
+
+TEST_CASE("a ZMP row holds the pendulum's ZMP over three knots, and what the limits cannot reach is the excursion",
+          "[body][qp]") {
+  const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
+  BodyPlannerSettings settings;
+  settings.stability_margin = 0.03;
+  const double h = 0.5;
+  BodyQp qp(settings, c, /*stance_rows=*/true, h);
+  const int n = qp.knots();
+  REQUIRE(qp.zmp_rows().size == BodyQp::kSupportRows * n);
+  const double alpha = h / (9.81 * settings.knot_dt * settings.knot_dt);
+  CHECK(qp.zmp_weight() == Approx(alpha));
+  const auto stencil = qp.ZmpStencil(10);
+  CHECK(stencil[0] == Approx(-alpha));
+  CHECK(stencil[1] == Approx(1.0 + 2.0 * alpha));
+  CHECK(stencil[2] == Approx(-alpha));
+  FillInputs(&qp);  // |lateral| <= 6 mm past knot 0
+  // The sideways ZMP at knot 10 at least `lo`: the shift cannot get there (6 mm), the sideways
+  // acceleration can, up to max_lateral_accel.
+  const int row = 10 * BodyQp::kSupportRows;
+  qp.support_cy[row] = 1.0;
+  const auto zmp_of = [&](const optim::SolveResult& r) {
+    const auto y = qp.LateralOf(r);
+    return stencil[0] * y[9] + stencil[1] * y[10] + stencil[2] * y[11];
+  };
+  optim::SolveResult r;
+  const double reachable = 0.006 + alpha * settings.max_lateral_accel * settings.knot_dt * settings.knot_dt;
+  for (const double lo : {0.05, reachable + 0.1}) {
+    qp.zmp_lo[row] = lo;
+    qp.Solve(optim::kInf, &r);
+    REQUIRE(r.solved());
+    const auto excursion = r.x.segment(qp.excursion().start, n);
+    const auto relax = r.x.segment(qp.relax().start, n);
+    CHECK(zmp_of(r) + excursion[10] >= lo - 1e-9);
+    // The excursion pays only for what the limits leave: nothing when the ZMP can get there.
+    CHECK(excursion[10] == Approx(std::max(lo - reachable, 0.0)).margin(1e-6));
+    CHECK(relax.cwiseAbs().maxCoeff() < 1e-7);  // the ZMP rows never take the relaxation
+    for (int k = 0; k < n; ++k) {
+      if (k != 10) CHECK(excursion[k] < 1e-7);
+    }
+  }
+}
