@@ -16,6 +16,7 @@
 #include "planning/crawl_planner.h"
 #include "planning/plan_pipeline.h"
 #include "planning/validation/traversal_validator.h"
+#include "leg_row_pipeline.h"
 #include "sanitized.h"
 
 using namespace stairplan;
@@ -85,18 +86,6 @@ std::string FirstViolation(const ValidationReport& report) {
   if (report.violations.empty()) return "no violation";
   const Violation& v = report.violations.front();
   return std::string(ToString(v.kind)) + " of " + v.leg + " at t = " + std::to_string(v.t);
-}
-
-// `stairplan plan --body qp` with the leg rows and the settings under which they plan most
-// robots (README): a low body, the validator's stability margin with room, a wide forward shift.
-PipelineOptions LegRowPipeline() {
-  PipelineOptions options;
-  options.body = BodySource::kRecedingHorizonQp;
-  options.body_qp.stance_rows = true;
-  options.body_qp.stability_margin = 0.03;
-  options.body_qp.hip_height_fraction = 0.6;
-  options.body_qp.max_shift = 0.15;
-  return options;
 }
 
 }  // namespace
@@ -211,7 +200,7 @@ TEST_CASE("with leg rows a low body climbs the whole flight onto the landing and
   // those rows the body pitched down and fell through the stairs (the plan failed its re-check
   // with 219 violations).
   const RobotModel& robot = BuiltinRobot();
-  const PipelineOptions options = LegRowPipeline();
+  const PipelineOptions options = testing::LegRowPipeline();
   StairSpec spec;
   // Under the sanitizers one step and the landing (the seven take minutes there).
   spec.steps = testing::FullOrSanitized(spec.steps, 1);
@@ -239,7 +228,7 @@ TEST_CASE("with leg rows every cycle's QP solves on Unitree A1's descent", "[bod
     return;
   }
   const RobotModel robot = RobotModel::FromUrdfFile(path);
-  PipelineOptions options = LegRowPipeline();
+  PipelineOptions options = testing::LegRowPipeline();
   options.validate = false;
   StairSpec spec;
   spec.direction = TravelDirection::kDown;
