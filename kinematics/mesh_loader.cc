@@ -143,8 +143,8 @@ void CheckObjHasFaces(const std::string& path) {
     faces += keyword == "f";
   }
   if (vertices < 3 || faces == 0) {
-    throw std::invalid_argument(path + ": the mesh has no triangles (an OBJ needs three 'v' lines and an 'f' line; it has " +
-                                std::to_string(vertices) + " and " + std::to_string(faces) + ")");
+    throw std::invalid_argument(path + ": the mesh has no triangles (an OBJ needs three 'v' lines and an 'f' line; " +
+                                "it has " + std::to_string(vertices) + " and " + std::to_string(faces) + ")");
   }
 }
 

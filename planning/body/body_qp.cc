@@ -123,7 +123,8 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
     give_ = program_.AddVariables("margin_given", n);
     const double most = std::max(settings_.stability_margin - settings_.min_stability_margin, 0.0);
     program_.SetVariableBounds(give_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, most));
-    program_.AddQuadraticCost(give_, 2.0 * kRelaxCurvature * identity, Eigen::VectorXd::Constant(n, kMarginGivePenalty));
+    program_.AddQuadraticCost(give_, 2.0 * kRelaxCurvature * identity,
+                              Eigen::VectorXd::Constant(n, kMarginGivePenalty));
     if (zmp_weight_ > 0.0) {
       excursion_ = program_.AddVariables("zmp_excursion", n);
       program_.SetVariableBounds(excursion_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, optim::kInf));
