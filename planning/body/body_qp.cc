@@ -269,26 +269,25 @@ void BodyQp::SetCoefficient(const optim::ConstraintRows& row, const optim::Varia
 
 void BodyQp::SetStencil(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value) {
   const std::array<double, 3> w = ZmpStencil(k);
-  for (int j = 0; j < 3; ++j) {
-    if (k - 1 + j >= 0 && k - 1 + j < knots_) coefficient_row_(0, k - 1 + j) = w[static_cast<std::size_t>(j)] * value;
-  }
+  const int first = std::max(k - 1, 0), last = std::min(k + 1, knots_ - 1);
+  for (int j = first; j <= last; ++j) coefficient_row_(0, j) = w[static_cast<std::size_t>(j - k + 1)] * value;
   program_.SetConstraintCoefficients(row, block, coefficient_row_);
-  for (int j = -1; j <= 1; ++j) {
-    if (k + j >= 0 && k + j < knots_) coefficient_row_(0, k + j) = 0.0;
-  }
+  for (int j = first; j <= last; ++j) coefficient_row_(0, j) = 0.0;
 }
 
 void BodyQp::PushSupportRows() {
-  PushSupportFamily(support_lo, support_hi, &support_sigma, &com_support_);
-  PushSupportFamily(zmp_lo, zmp_hi, nullptr, &zmp_support_);
+  PushSupportFamily(&com_support_);
+  PushSupportFamily(&zmp_support_);
 }
 
-void BodyQp::PushSupportFamily(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd* sigma,
-                               SupportFamily* family) {
+void BodyQp::PushSupportFamily(SupportFamily* family) {
   if (family->rows.size == 0) return;
   // Only rows whose feet changed get new coefficients: the solver keeps its factorisation when
   // they are inactive (the planner changes a pair's feet only while its row is free).
   // The COM's rows give margin (give_) and relax; the ZMP's leave the polygon by the excursion.
+  const Eigen::VectorXd& lo = family->zmp ? zmp_lo : support_lo;
+  const Eigen::VectorXd& hi = family->zmp ? zmp_hi : support_hi;
+  const Eigen::VectorXd* sigma = family->zmp ? nullptr : &support_sigma;
   const optim::VariableBlock& widen = family->zmp ? excursion_ : give_;
   const bool gives = widen.size > 0;
   const bool relaxes = relax_.size > 0 && sigma != nullptr;

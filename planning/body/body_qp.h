@@ -251,9 +251,8 @@ class BodyQp {
   optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
   optim::ConstraintRows one_row_;          // one row of a KnotRows family (likewise)
   void PushSupportRows();
-  // `sigma`: the relaxation coefficients (null: the family does not relax).
-  void PushSupportFamily(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd* sigma,
-                         SupportFamily* family);
+  // Pushes the COM's family (support_lo/hi/sigma) or the ZMP's (zmp_lo/hi, no relaxation).
+  void PushSupportFamily(SupportFamily* family);
   void PushProgressRows();
   // Adds `count` free rows over one knot's variables each; the inputs sized to match.
   void AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows);
