@@ -4,9 +4,12 @@
 // Why: the programs the solver sees every cycle are structurally sparse (the body QP's 472 x 160
 // matrix has about 1,100 nonzeros: two per hip and support row, three per acceleration row), and
 // dense products over all of A were most of a warm solve's time. The copy follows the Program's
-// row revisions: a changed row whose nonzeros fit in the row's slots is rewritten in place (a
-// slot may then hold a zero); one that does not fit rebuilds the copy. Storage for a dense
-// matrix is reserved when the size is set, so neither allocates.
+// row revisions: a changed row whose nonzeros fit in the row's slots is rewritten in place; one
+// that does not fit rebuilds the copy. Each row keeps spare slots (as many again as its nonzeros,
+// and four): the body planner's rows gain nonzeros when a leg's Jacobian or a support pair's
+// edge changes, and rebuilding the whole copy for one such row was a seventh of a leg-row
+// plan's time. Storage for a dense matrix is reserved when the size is set, so neither
+// allocates.
 #pragma once
 
 #include <vector>
@@ -22,22 +25,25 @@ class SparseRows {
   void Resize(int m, int n);
   /// Copies the nonzeros of `a` (m x n as sized).
   void Assign(const Eigen::MatrixXd& a);
-  /// Takes row k of `a` again; rebuilds from `a` when its nonzeros do not fit the row's slots.
+  /// Takes row k of `a` again, in place when its nonzeros fit the row's slots; rebuilds the copy
+  /// from `a` when they do not.
   void UpdateRow(const Eigen::MatrixXd& a, int k);
 
+  /// Times the copy was built (Assign, and rows that outgrew their slots).
+  int builds() const { return builds_; }
   /// Number of rows m.
   int rows() const { return m_; }
   /// Row k times x.
   double RowDot(int k, const Eigen::VectorXd& x) const {
     double sum = 0.0;
-    for (int e = start_[static_cast<std::size_t>(k)]; e < start_[static_cast<std::size_t>(k) + 1]; ++e) {
+    for (int e = start_[static_cast<std::size_t>(k)]; e < end_[static_cast<std::size_t>(k)]; ++e) {
       sum += value_[static_cast<std::size_t>(e)] * x[column_[static_cast<std::size_t>(e)]];
     }
     return sum;
   }
   /// y += alpha a_k (row k of A, as a column).
   void AddRow(int k, double alpha, Eigen::VectorXd* y) const {
-    for (int e = start_[static_cast<std::size_t>(k)]; e < start_[static_cast<std::size_t>(k) + 1]; ++e) {
+    for (int e = start_[static_cast<std::size_t>(k)]; e < end_[static_cast<std::size_t>(k)]; ++e) {
       (*y)[column_[static_cast<std::size_t>(e)]] += alpha * value_[static_cast<std::size_t>(e)];
     }
   }
@@ -50,8 +56,13 @@ class SparseRows {
   void TransposedTimesRow(const Eigen::MatrixXd& j, int k, double sigma, Eigen::VectorXd* d) const;
 
  private:
+  // Writes row k's nonzeros from its first slot on; returns the end.
+  int FillRow(const Eigen::MatrixXd& a, int k);
+
   int m_ = 0, n_ = 0;
-  std::vector<int> start_;   // m + 1 offsets into column_ and value_
+  int builds_ = 0;
+  std::vector<int> start_;   // m + 1 offsets into column_ and value_: row k's slots
+  std::vector<int> end_;     // m: the end of row k's nonzeros (start_[k + 1] at most)
   std::vector<int> column_;  // capacity m * n
   std::vector<double> value_;
 };

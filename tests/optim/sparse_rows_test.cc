@@ -1,6 +1,6 @@
 // SparseRows, the active-set solver's copy of A's nonzeros: its products equal the dense ones,
-// and it follows row updates, in place when the new nonzeros fit the row's slots and by a
-// rebuild when they do not.
+// and it follows row updates, in place when the new nonzeros fit the row's slots (its nonzeros
+// again and four spare) and by a rebuild when they do not.
 #include <catch2/catch.hpp>
 
 #include <Eigen/Core>
@@ -60,20 +60,48 @@ TEST_CASE("a changed row is taken in place when it fits and rebuilt when it does
   SparseRows rows;
   rows.Resize(7, 5);
   rows.Assign(a);
-  // Fits: row 2 loses one nonzero and changes another (its slots keep a zero).
+  REQUIRE(rows.builds() == 1);
+  // Fits: row 2 loses one nonzero and changes another.
   a(2, 2) = 0.0;
   a(2, 4) = 7.0;
   rows.UpdateRow(a, 2);
   CheckAgainstDense(rows, a);
-  // Does not fit: the free row 3 and row 1 gain nonzeros where they had no slot.
+  // Fits the spare slots: the free row 3 and row 1 gain nonzeros.
   a(3, 1) = 2.5;
   a(3, 4) = -1.5;
   rows.UpdateRow(a, 3);
   a(1, 0) = -6.0;
   rows.UpdateRow(a, 1);
   CheckAgainstDense(rows, a);
-  // The zeroed slot of row 2 takes a value again.
+  CHECK(rows.builds() == 1);
+  // Row 2 takes back the zeroed entry and fills the row: its slots (min(n, 2 * 3 + 4) = 5) hold
+  // all five.
   a(2, 2) = 9.0;
+  a(2, 0) = 1.0;
+  a(2, 1) = -4.0;
   rows.UpdateRow(a, 2);
   CheckAgainstDense(rows, a);
+  CHECK(rows.builds() == 1);
+}
+
+TEST_CASE("a row that outgrows its slots rebuilds the copy", "[sparse_rows]") {
+  // 12 columns: a row of one nonzero has 2 + 4 = 6 slots, so a seventh nonzero does not fit.
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(3, 12);
+  a(0, 0) = 1.0;
+  a(1, 5) = 2.0;
+  a(2, 11) = -1.0;
+  SparseRows rows;
+  rows.Resize(3, 12);
+  rows.Assign(a);
+  for (int i = 1; i < 6; ++i) a(1, i) = 0.5 * i;  // row 1: columns 1..5, five nonzeros
+  rows.UpdateRow(a, 1);
+  CHECK(rows.builds() == 1);
+  a(1, 7) = 3.0;
+  a(1, 8) = 3.5;  // seven nonzeros
+  rows.UpdateRow(a, 1);
+  CHECK(rows.builds() == 2);
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(12, -1.0, 2.0);
+  Eigen::VectorXd ax(3);
+  rows.Multiply(x, &ax);
+  CHECK((ax - a * x).lpNorm<Eigen::Infinity>() < 1e-14);
 }
