@@ -171,7 +171,6 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   support_hi.setConstant(kSupportRows * n, optim::kInf);
   zmp_lo = support_lo;
   zmp_hi = support_hi;
-  coefficient_row_.setZero(1, n);
   single_row_ = {com_support_.rows.name, com_support_.rows.start, 1};
   one_row_ = {"stance or clearance", 0, 1};
 
@@ -262,17 +261,15 @@ void BodyQp::KnotRows::RelaxAt(int first, int count, const Eigen::Vector4d& v) {
 }
 
 void BodyQp::SetCoefficient(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value) {
-  coefficient_row_(0, k) = value;
-  program_.SetConstraintCoefficients(row, block, coefficient_row_);
-  coefficient_row_(0, k) = 0.0;
+  program_.SetConstraintCoefficient(row, 0, block, k, value);
 }
 
 void BodyQp::SetStencil(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value) {
   const std::array<double, 3> w = ZmpStencil(k);
   const int first = std::max(k - 1, 0), last = std::min(k + 1, knots_ - 1);
-  for (int j = first; j <= last; ++j) coefficient_row_(0, j) = w[static_cast<std::size_t>(j - k + 1)] * value;
-  program_.SetConstraintCoefficients(row, block, coefficient_row_);
-  for (int j = first; j <= last; ++j) coefficient_row_(0, j) = 0.0;
+  for (int j = first; j <= last; ++j) {
+    program_.SetConstraintCoefficient(row, 0, block, j, w[static_cast<std::size_t>(j - k + 1)] * value);
+  }
 }
 
 void BodyQp::PushSupportRows() {

@@ -247,7 +247,6 @@ class BodyQp {
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
   optim::ConstraintRows progress_rows_;
   Eigen::VectorXd progress_hi_;  // +inf
-  Eigen::MatrixXd coefficient_row_;        // 1 x knots, zero but for one entry
   optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
   optim::ConstraintRows one_row_;          // one row of a KnotRows family (likewise)
   void PushSupportRows();

@@ -143,8 +143,8 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
       int changed_active = 0;
       for (int k = 0; k < m; ++k) {
         if (program.row_revision(k) <= matrix_revision_) continue;
-        row_norm_[k] = std::max(program.constraint_matrix().row(k).norm(), 1e-300);
         rows_.UpdateRow(program.constraint_matrix(), k);
+        row_norm_[k] = std::max(rows_.RowNorm(k), 1e-300);
         if (state_[k] != 0) ++changed_active;
       }
       if (changed_active > 0 && (!factorization_valid_ || 4 * changed_active > q_)) {

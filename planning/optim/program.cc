@@ -254,6 +254,22 @@ void Program::SetConstraintCoefficients(const ConstraintRows& rows, const Variab
   for (int k = rows.start; k < rows.start + rows.size; ++k) row_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
 }
 
+void Program::SetConstraintCoefficient(const ConstraintRows& rows, int row, const VariableBlock& block, int index,
+                                       double value) {
+  CheckRows(rows, "SetConstraintCoefficient");
+  CheckBlock(block, "SetConstraintCoefficient");
+  if (row < 0 || row >= rows.size || index < 0 || index >= block.size || !std::isfinite(value)) {
+    throw std::invalid_argument("SetConstraintCoefficient: row " + std::to_string(row) + " of '" + rows.name +
+                                "' or variable " + std::to_string(index) + " of '" + block.name +
+                                "' is outside them, or the value is not finite");
+  }
+  const int k = rows.start + row;
+  A_(k, block.start + index) = value;
+  if (row_revision_.size() != static_cast<std::size_t>(A_.rows())) return TouchMatrix();  // resized behind our back
+  matrix_revision_ = NextRevision();
+  row_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
+}
+
 void Program::SetInitialGuess(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& x0) {
   CheckBlock(block, "SetInitialGuess");
   if (x0.size() != block.size || !x0.allFinite()) {

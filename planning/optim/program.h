@@ -146,6 +146,10 @@ class Program {
   /// Replaces the coefficients of `block` in `rows`.
   void SetConstraintCoefficients(const ConstraintRows& rows, const VariableBlock& block,
                                  const Eigen::Ref<const Eigen::MatrixXd>& coefficients);
+  /// Replaces one coefficient: of variable `index` of `block` in row `row` of `rows` (for the
+  /// per-cycle updates of a few entries, where a row block would write every column).
+  void SetConstraintCoefficient(const ConstraintRows& rows, int row, const VariableBlock& block, int index,
+                                double value);
   /// Replaces the initial guess of `block`'s variables.
   void SetInitialGuess(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& x0);
 

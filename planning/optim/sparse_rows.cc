@@ -1,6 +1,7 @@
 #include "planning/optim/sparse_rows.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace stairplan::optim {
 
@@ -23,38 +24,41 @@ int RowCapacity(int nonzeros, int n) { return std::min(n, 2 * nonzeros + 4); }
 
 void SparseRows::Assign(const Eigen::MatrixXd& a) {
   // Row by row over a column-major matrix: strided reads, but only when a row outgrows its slots.
+  // Rows before k hold at most n slots each, so row k's n columns always fit the m x n storage.
   ++builds_;
   int e = 0;
   for (int k = 0; k < m_; ++k) {
     start_[static_cast<std::size_t>(k)] = e;
-    e = FillRow(a, k);
-    const int used = e - start_[static_cast<std::size_t>(k)];
-    e = start_[static_cast<std::size_t>(k)] + RowCapacity(used, n_);
+    FillRow(a, k, e + n_);
+    e += RowCapacity(end_[static_cast<std::size_t>(k)] - e, n_);
   }
   start_[static_cast<std::size_t>(m_)] = e;
 }
 
-int SparseRows::FillRow(const Eigen::MatrixXd& a, int k) {
+bool SparseRows::FillRow(const Eigen::MatrixXd& a, int k, int limit) {
   int e = start_[static_cast<std::size_t>(k)];
   for (int i = 0; i < n_; ++i) {
     const double v = a(k, i);
     if (v == 0.0) continue;
+    if (e == limit) return false;
     column_[static_cast<std::size_t>(e)] = i;
     value_[static_cast<std::size_t>(e)] = v;
     ++e;
   }
   end_[static_cast<std::size_t>(k)] = e;
-  return e;
+  return true;
 }
 
 void SparseRows::UpdateRow(const Eigen::MatrixXd& a, int k) {
-  int nonzeros = 0;
-  for (int i = 0; i < n_; ++i) nonzeros += a(k, i) != 0.0 ? 1 : 0;
-  if (nonzeros > start_[static_cast<std::size_t>(k) + 1] - start_[static_cast<std::size_t>(k)]) {
-    Assign(a);
-    return;
+  if (!FillRow(a, k, start_[static_cast<std::size_t>(k) + 1])) Assign(a);
+}
+
+double SparseRows::RowNorm(int k) const {
+  double sum = 0.0;
+  for (int e = start_[static_cast<std::size_t>(k)]; e < end_[static_cast<std::size_t>(k)]; ++e) {
+    sum += value_[static_cast<std::size_t>(e)] * value_[static_cast<std::size_t>(e)];
   }
-  FillRow(a, k);
+  return std::sqrt(sum);
 }
 
 void SparseRows::Multiply(const Eigen::VectorXd& x, Eigen::VectorXd* y) const {

@@ -31,6 +31,8 @@ class SparseRows {
 
   /// Times the copy was built (Assign, and rows that outgrew their slots).
   int builds() const { return builds_; }
+  /// The Euclidean norm of row k.
+  double RowNorm(int k) const;
   /// Number of rows m.
   int rows() const { return m_; }
   /// Row k times x.
@@ -56,8 +58,9 @@ class SparseRows {
   void TransposedTimesRow(const Eigen::MatrixXd& j, int k, double sigma, Eigen::VectorXd* d) const;
 
  private:
-  // Writes row k's nonzeros from its first slot on; returns the end.
-  int FillRow(const Eigen::MatrixXd& a, int k);
+  // Writes row k's nonzeros from its first slot on, before slot `limit`; false when they do not
+  // fit (the row is then partly written).
+  bool FillRow(const Eigen::MatrixXd& a, int k, int limit);
 
   int m_ = 0, n_ = 0;
   int builds_ = 0;

@@ -82,6 +82,25 @@ TEST_CASE("in-place updates change the data and keep the matrices' revisions", "
   CHECK(p.constraint_matrix()(0, 0) == 2);
 }
 
+TEST_CASE("one coefficient changes its row alone", "[program]") {
+  Program p;
+  const VariableBlock x = p.AddVariables("x", 3);
+  const Eigen::Matrix3d a = Eigen::Matrix3d::Identity();
+  const ConstraintRows r = p.AddLinearConstraint({{x, a}}, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Ones(3), "r");
+  const auto whole = p.whole_matrix_revision();
+  const auto before = p.matrix_revision();
+  p.SetConstraintCoefficient(r, 1, x, 2, -4.0);
+  CHECK(p.constraint_matrix()(1, 2) == -4.0);
+  CHECK(p.constraint_matrix().row(1).sum() == -3.0);  // the row's other entries kept
+  CHECK(p.whole_matrix_revision() == whole);
+  CHECK(p.row_revision(1) > before);
+  CHECK(p.row_revision(0) <= before);
+  CHECK(p.row_revision(2) <= before);
+  CHECK_THAT(ThrownMessage([&] { p.SetConstraintCoefficient(r, 3, x, 0, 1.0); }), Catch::Contains("'r'"));
+  CHECK_THAT(ThrownMessage([&] { p.SetConstraintCoefficient(r, 0, x, -1, 1.0); }), Catch::Contains("'x'"));
+  CHECK_THAT(ThrownMessage([&] { p.SetConstraintCoefficient(r, 0, x, 0, std::nan("")); }), Catch::Contains("finite"));
+}
+
 TEST_CASE("misuse throws invalid_argument naming the block or rows", "[program]") {
   Program p;
   const VariableBlock x = p.AddVariables("feet", 2);
