@@ -109,10 +109,12 @@ class BodyQp {
   /// Cost of keeping all of one knot's violations (relax 1): far above what any row is worth to
   /// the other costs, so the penalty is exact.
   static constexpr double kRelaxPenalty = 1e6;
-  /// Cost of one metre of the body's motion against the travel (with stance rows).
-  static constexpr double kRetreatPenalty = 1e4;
-  /// Cost of one metre of stability margin given up (with stance rows): as the retreat, far above
-  /// what the other costs could gain by it and far below the relaxation.
+  /// Cost of one metre of the body's motion against the travel (with stance rows): ten times the
+  /// margin's and the ZMP's, so that crossing a support diagonal sideways, with margin given up
+  /// or the ZMP out for a moment, beats crossing it backwards; a tenth of the relaxation's.
+  static constexpr double kRetreatPenalty = 1e5;
+  /// Cost of one metre of stability margin given up (with stance rows): far above what the other
+  /// costs could gain by it and far below the relaxation.
   static constexpr double kMarginGivePenalty = 1e4;
   /// Cost of one metre of the ZMP outside the support polygon (with stance rows and a pendulum
   /// height): the pendulum shapes the motion, the relaxation answers to the COM's rows.
