@@ -92,6 +92,7 @@ void CrawlSettings::Validate() const {
   RequireInRange("lead_offset", lead_offset, -0.5, 0.5);
   RequireInRange("trail_offset", trail_offset, -0.5, 0.5);
   RequireInRange("refit_body_acceleration", refit_body_acceleration, 0.0, 1e4);
+  RequireInRange("min_support_inradius", min_support_inradius, 0.0, 0.2);
   body.Validate();
   swing.Validate();
 }
@@ -292,26 +293,59 @@ std::vector<FootholdLayout> CandidateLayouts(const RobotModel& robot, const Stai
   return layouts;
 }
 
-// Touchdown stances of crawl plans through the stance check.
+// The radius of the largest circle inside the triangle a, b, c seen from above (0 when they
+// are in line): how far inside its support the centre of mass can stand.
+double Inradius(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector2d ab = (b - a).head<2>(), ac = (c - a).head<2>();
+  const double area = 0.5 * std::abs(ab.x() * ac.y() - ab.y() * ac.x());
+  const double perimeter = ab.norm() + ac.norm() + (c - b).head<2>().norm();
+  return perimeter > 0.0 ? 2.0 * area / perimeter : 0.0;
+}
+
+// Touchdown stances of crawl plans through the stance check, and the support of every swing.
 class TouchdownChecker {
  public:
-  TouchdownChecker(const RobotModel& robot, const Staircase& stairs, const BodyPathSettings& body)
-      : checker_(robot, stairs), body_(body) {}
+  TouchdownChecker(const RobotModel& robot, const Staircase& stairs, const CrawlSettings& settings)
+      : checker_(robot, stairs), body_(settings.body), min_inradius_(settings.min_support_inradius) {}
 
-  // Touchdowns whose stance, with the plan's own body pose, fails the stance check, plus one when
-  // the body jumps (accelerates faster than `max_acceleration` between samples; 0: not checked).
+  // Touchdowns whose stance, with the plan's own body pose, fails the stance check, swings whose
+  // support triangle is too thin to stand over, plus one when the body jumps (accelerates faster
+  // than `max_acceleration` between samples; 0: not checked).
   int Failed(const Plan& plan, double max_acceleration) {
     const int all = static_cast<int>(plan.footsteps.size());
     const int failed = Count(plan, all, [this](const BodyPose& pose, const Contacts& feet) { return checker_.Check(pose, feet).ok(); });
-    return failed + (max_acceleration > 0.0 && PeakBodyAcceleration(plan.body) > max_acceleration ? 1 : 0);
+    return failed + ThinSupports(plan) +
+           (max_acceleration > 0.0 && PeakBodyAcceleration(plan.body) > max_acceleration ? 1 : 0);
+  }
+
+  // Swings whose three stance feet hold no circle of min_support_inradius: no body motion keeps
+  // the centre of mass over them with a margin.
+  int ThinSupports(const Plan& plan) const {
+    std::vector<Eigen::Vector3d> feet = plan.initial_feet_W;
+    int thin = 0;
+    for (const Footstep& step : plan.footsteps) {
+      const auto leg = std::find(plan.legs.begin(), plan.legs.end(), step.leg);
+      if (leg == plan.legs.end() || feet.size() != 4) continue;
+      const std::size_t swinging = static_cast<std::size_t>(leg - plan.legs.begin());
+      std::array<Eigen::Vector3d, 3> stance;
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < feet.size(); ++i) {
+        if (i != swinging) stance[n++] = feet[i];
+      }
+      if (Inradius(stance[0], stance[1], stance[2]) < min_inradius_) ++thin;
+      feet[swinging] = step.position_W;
+    }
+    return thin;
   }
 
   // Touchdowns at which no body pose passes among the plan's own shifted along x by up to the
   // posture fit's max_shift, at any height from 0.2 m below to 0.1 m above it: footholds that no
-  // posture fit can stand on. Cheap enough to screen layouts on sketches (no posture fit). Counts
-  // up to `limit` (a layout that bad is of no interest).
+  // posture fit can stand on, and swings too thin to stand over. Cheap enough to screen layouts
+  // on sketches (no posture fit). Counts up to `limit` (a layout that bad is of no interest).
   int Unstandable(const Plan& plan, int limit) {
-    return Count(plan, limit, [this](const BodyPose& pose, const Contacts& feet) {
+    const int thin = ThinSupports(plan);
+    if (thin >= limit) return thin;
+    return thin + Count(plan, limit - thin, [this](const BodyPose& pose, const Contacts& feet) {
       const int shifts = static_cast<int>(std::floor(body_.max_shift / body_.shift_step + 1e-9));
       for (int k = 0; k <= 2 * shifts; ++k) {
         BodyPose shifted = pose;
@@ -342,6 +376,7 @@ class TouchdownChecker {
 
   StanceChecker checker_;
   BodyPathSettings body_;
+  double min_inradius_ = 0.0;
 };
 
 }  // namespace
@@ -350,7 +385,7 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   settings.Validate();
   Plan best = PlanCrawlLayout(robot, stairs, map, settings, &stairs);
   if (settings.fit_footholds <= 0 || best.status != PlanStatus::kOk) return best;
-  TouchdownChecker checker(robot, stairs, settings.body);
+  TouchdownChecker checker(robot, stairs, settings);
   const double jump = settings.refit_body_acceleration;
   int failed = checker.Failed(best, jump);
   if (failed == 0) return best;

@@ -45,6 +45,11 @@ struct CrawlSettings {
   /// (stance checks at their touchdowns) and up to this many of them planned in full; the first
   /// whose every touchdown passes is returned, else the layout given. 0: no search.
   int fit_footholds = 1;
+  /// Every swing's support triangle (the other three feet, seen from above) holds a circle this
+  /// large, so that the centre of mass can stand inside it with the validator's stability margin
+  /// (1 cm) to spare. A layout that breaks it (a trailing foot landing on or just beside a leading
+  /// foot that has not lifted yet) fails as a touchdown the stance check refuses [m].
+  double min_support_inradius = 0.02;
   /// When positive, a plan whose body accelerates faster than this between its samples [m/s^2]
   /// also fails (the posture fit found no smooth correction for some swing: it jumps there), so
   /// the layout search runs for it and a layout replacing it must not jump either. 0: off.
