@@ -143,6 +143,7 @@ BodyState BodyPlanner::StartState() const {
   double z = 0.0;
   for (int l = 0; l < kBodyLegs; ++l) z += (schedule_.Phase(l, 0.0).foot_W.z() + hip_height_ - HipDz(l, s.pitch)) / kBodyLegs;
   s.z = z;
+  if (robot_ != nullptr) s.z = StandingHeight(s);
   return s;
 }
 

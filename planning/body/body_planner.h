@@ -106,7 +106,9 @@ class BodyPlanner {
   /// Forgets the previous plan.
   void Reset() { has_previous_ = false; }
 
-  /// A state to start from: the neutral body over the initial feet at the desired hip height.
+  /// A state to start from: the neutral body over the initial feet at the desired hip height
+  /// (with leg rows, the nearest height at which every leg stands within its limits and clear of
+  /// the stairs).
   BodyState StartState() const;
   /// The body reference at time t from the latest plan (interpolated between knots).
   BodyState Interpolate(double t) const;
@@ -183,6 +185,8 @@ class BodyPlanner {
   void RestoreShift(int k, double neutral_x, double pitch_lo, double pitch_hi, double width);
   // Previous plan's pitch and shift at time t (held beyond its ends).
   double PreviousAt(const Eigen::VectorXd& values, double t) const;
+  // With leg rows: the height nearest `start`'s at which every leg stands (see StartState()).
+  double StandingHeight(const BodyState& start) const;
   void StoreSolution(const optim::SolveResult& result, double now);
   // Counts the stance legs whose bounds the stored plan breaks (knots 1..), into output_.
   void CountConflicts();
