@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -107,22 +108,47 @@ TEST_CASE("CLI plan stances are reachable and clear: shared robots", "[plan_stan
   }
 }
 
+namespace {
+
+// A shared robot's crawl with the pipeline's settings (`searched`) and with `change` applied to
+// them (`changed`), both planned; found is false (and nothing planned) without ../shared.
+struct CrawlPair {
+  bool found = false;
+  RobotModel robot;
+  Plan changed, searched;
+};
+
+CrawlPair CrawlWithAndWithout(const std::string& label, const Staircase& stairs,
+                              const std::function<void(CrawlSettings&)>& change) {
+  CrawlPair pair;
+  const auto robots = testing::TestRobots(false);
+  const auto file = std::find_if(robots.begin(), robots.end(), [&](const testing::RobotFile& f) { return f.label == label; });
+  if (file == robots.end()) return pair;
+  pair.found = true;
+  pair.robot = RobotModel::FromUrdfFile(file->path);
+  const PipelineOptions options;
+  const ConstrainedMap map = BuildPipelineMap(pair.robot, stairs, options);
+  CrawlSettings changed = options.crawl;
+  change(changed);
+  pair.changed = PlanCrawl(pair.robot, stairs, map, changed);
+  pair.searched = PlanCrawl(pair.robot, stairs, map, options.crawl);
+  REQUIRE(pair.changed.status == PlanStatus::kOk);
+  REQUIRE(pair.searched.status == PlanStatus::kOk);
+  return pair;
+}
+
+}  // namespace
+
 // The crawl's foothold search (CrawlSettings::fit_footholds) is what gives the small robots
 // standable touchdowns: without it, A1's front legs end beyond their knee limits.
 TEST_CASE("without the crawl's foothold search A1's touchdowns fail, with it they pass", "[plan_stance]") {
-  const auto robots = testing::TestRobots(false);
-  const auto a1 = std::find_if(robots.begin(), robots.end(), [](const testing::RobotFile& f) { return f.label == "unitree_a1"; });
-  if (a1 == robots.end() || testing::kSanitized) return;
-  const RobotModel robot = RobotModel::FromUrdfFile(a1->path);
+  if (testing::kSanitized) return;
   const Staircase stairs{StairSpec{}};
-  const PipelineOptions options;
-  const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
-  CrawlSettings fixed = options.crawl;
-  fixed.fit_footholds = 0;
-  const Plan first = PlanCrawl(robot, stairs, map, fixed);
-  const Plan searched = PlanCrawl(robot, stairs, map, options.crawl);
-  REQUIRE(first.status == PlanStatus::kOk);
-  REQUIRE(searched.status == PlanStatus::kOk);
+  const CrawlPair plans = CrawlWithAndWithout("unitree_a1", stairs, [](CrawlSettings& s) { s.fit_footholds = 0; });
+  if (!plans.found) return;
+  const RobotModel& robot = plans.robot;
+  const Plan& first = plans.changed;
+  const Plan& searched = plans.searched;
   CHECK(CheckTouchdowns(robot, stairs, first).failed > 0);
   const Failure f = CheckTouchdowns(robot, stairs, searched);
   INFO(f.first);
@@ -158,25 +184,15 @@ double SmallestSupportInradius(const Plan& plan) {
 // layout lands each hind foot on the spot its front foot still stands on, and no body motion
 // keeps the centre of mass over the line that leaves. The crawl's search takes another layout.
 TEST_CASE("no crawl swing stands on a support triangle too thin for the centre of mass", "[plan_stance]") {
-  const auto robots = testing::TestRobots(false);
-  const auto go2 = std::find_if(robots.begin(), robots.end(), [](const testing::RobotFile& f) { return f.label == "unitree_go2"; });
-  if (go2 == robots.end()) return;
-  const RobotModel robot = RobotModel::FromUrdfFile(go2->path);
   StairSpec low;
   low.rise = 0.10;
   low.run = 0.28;
-  const Staircase stairs{low};
-  const PipelineOptions options;
-  const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
-  CrawlSettings unchecked = options.crawl;
-  unchecked.min_support_inradius = 0.0;
-  const Plan first = PlanCrawl(robot, stairs, map, unchecked);
-  const Plan searched = PlanCrawl(robot, stairs, map, options.crawl);
-  REQUIRE(first.status == PlanStatus::kOk);
-  REQUIRE(searched.status == PlanStatus::kOk);
-  CHECK(SmallestSupportInradius(first) < 1e-3);
-  CHECK(SmallestSupportInradius(searched) >= options.crawl.min_support_inradius);
-  for (const Footstep& step : searched.footsteps) CHECK(step.in_step_region);
+  const CrawlPair plans =
+      CrawlWithAndWithout("unitree_go2", Staircase{low}, [](CrawlSettings& s) { s.min_support_inradius = 0.0; });
+  if (!plans.found) return;
+  CHECK(SmallestSupportInradius(plans.changed) < 1e-3);
+  CHECK(SmallestSupportInradius(plans.searched) >= CrawlSettings{}.min_support_inradius);
+  for (const Footstep& step : plans.searched.footsteps) CHECK(step.in_step_region);
 }
 
 TEST_CASE("crawl settings name the bad field", "[plan_stance]") {
