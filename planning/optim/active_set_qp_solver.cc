@@ -544,8 +544,20 @@ SolveStatus ActiveSetQpSolver::Run(bool regularized, int* outer_iterations) {
     if (outer + 1 == settings_.max_outer_iterations) status = SolveStatus::kIterationLimit;
   }
   if (status == SolveStatus::kSolved && settings_.refinement_steps > 0) Refine();
+  // Solved means feasible. On a nearly dependent active set the multipliers can be wrong enough
+  // that a re-solve in closed form drops scores of constraints and lands far outside bounds the
+  // iteration had met, and the polish may run out on such a point: an error, not an optimum.
+  if (status == SolveStatus::kSolved && !MeetsBounds(kDegenerateTol)) status = SolveStatus::kNumericalError;
   *outer_iterations = outer;
   return status;
+}
+
+bool ActiveSetQpSolver::MeetsBounds(double relative_tol) const {
+  for (const int k : bounded_) {
+    const double v = Value(k), lo = Lower(k), hi = Upper(k);
+    if (!(v >= lo - relative_tol * (1.0 + std::abs(lo)) && v <= hi + relative_tol * (1.0 + std::abs(hi)))) return false;
+  }
+  return true;
 }
 
 double ActiveSetQpSolver::ActiveResiduals() {

@@ -4,9 +4,13 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <random>
+#include <string>
 
 #include "planning/optim/active_set_qp_solver.h"
+#include "test_paths.h"
 
 using namespace stairplan::optim;
 
@@ -218,4 +222,68 @@ TEST_CASE("a warm Infeasible is re-checked from cold before it is reported", "[a
   solver.Solve(p, &r);
   CheckSame(r, ColdSolve(p), p);
   CHECK(r.info.cold_restarts == 0);
+}
+
+namespace {
+
+double ReadNumber(std::istream& in) {  // strtod, which reads "inf" and "-inf" as well
+  std::string text;
+  in >> text;
+  return std::strtod(text.c_str(), nullptr);
+}
+
+// A QP with a warm start, as tests/optim/data/*.txt keep them: "n m", then lines "H i j v",
+// "A i j v" (nonzeros), "g i v", "x i lower upper guess", "r i lower upper" and the warm start's
+// active sides "wr row side", "wb variable side".
+Program ReadQpWithWarmStart(const std::string& path, ActiveSet* warm) {
+  std::ifstream in(path);
+  REQUIRE(in.good());
+  int n = 0, m = 0;
+  in >> n >> m;
+  Program p;
+  p.ResizeDense(n, m);
+  warm->rows.assign(static_cast<std::size_t>(m), 0);
+  warm->bounds.assign(static_cast<std::size_t>(n), 0);
+  std::string tag;
+  int i = 0, j = 0;
+  while (in >> tag >> i) {
+    if (tag == "H" || tag == "A") {
+      in >> j;
+      (tag == "H" ? p.MutableHessian() : p.MutableConstraintMatrix())(i, j) = ReadNumber(in);
+    } else if (tag == "g") {
+      p.MutableLinearCost()[i] = ReadNumber(in);
+    } else if (tag == "x") {
+      p.MutableVariableLower()[i] = ReadNumber(in);
+      p.MutableVariableUpper()[i] = ReadNumber(in);
+      p.MutableInitialGuess()[i] = ReadNumber(in);
+    } else if (tag == "r") {
+      p.MutableRowLower()[i] = ReadNumber(in);
+      p.MutableRowUpper()[i] = ReadNumber(in);
+    } else {
+      in >> j;
+      (tag == "wr" ? warm->rows : warm->bounds)[static_cast<std::size_t>(i)] = static_cast<ActiveSide>(j);
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("a warm solve that ends outside its bounds is not Solved: it is re-solved from cold", "[active_set][degenerate]") {
+  // A cycle of the leg-row body QP (ANYmal B descending, acceleration_weight 1: 319 variables,
+  // 1,594 rows) with the working set of the cycle before. From it the closed-form re-solves hit a
+  // nearly dependent set, dropped over a hundred constraints at once and ended "solved" 4.9e4
+  // outside the bounds, below the true optimum.
+  ActiveSet warm;
+  const Program p = ReadQpWithWarmStart(stairplan::testing::SourceDir() + "/tests/optim/data/body_qp_warm_breakdown.txt", &warm);
+  const SolveResult cold = ColdSolve(p);
+  REQUIRE(cold.status == SolveStatus::kSolved);
+  ActiveSetQpSolver solver;
+  solver.SetWarmStart(warm);
+  SolveResult r;
+  solver.Solve(p, &r);
+  REQUIRE(r.status == SolveStatus::kSolved);
+  CHECK(p.MaxViolation(r.x) < 1e-6);
+  CHECK(r.objective == Approx(cold.objective).epsilon(1e-9));
+  CHECK(r.info.cold_restarts == 1);
 }
