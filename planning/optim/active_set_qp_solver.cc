@@ -507,17 +507,7 @@ SolveStatus ActiveSetQpSolver::Run(bool regularized, int* outer_iterations) {
       // Polish: recompute x and u in closed form on the final active set; done when that point
       // needs no change (no negative multiplier, nothing violated).
       const int q_before = q_;
-      if (Restart() == 0 && q_ == q_before) {
-        bool violated = false;
-        for (std::size_t b = 0; b < bounded_.size() && !violated; ++b) {
-          const int k = bounded_[b];
-          if (state_[k] != 0) continue;
-          const double v = Value(k), lo = Lower(k), hi = Upper(k);
-          violated = (lo - v > settings_.feasibility_tol * (1.0 + std::abs(lo))) ||
-                     (v - hi > settings_.feasibility_tol * (1.0 + std::abs(hi)));
-        }
-        if (!violated) break;
-      }
+      if (Restart() == 0 && q_ == q_before && MeetsBounds(settings_.feasibility_tol, /*inactive_only=*/true)) break;
     }
     if (status != SolveStatus::kSolved || !regularized) break;
     const double step = (x_ - x_prox_).lpNorm<Eigen::Infinity>();
@@ -547,15 +537,18 @@ SolveStatus ActiveSetQpSolver::Run(bool regularized, int* outer_iterations) {
   // Solved means feasible. On a nearly dependent active set the multipliers can be wrong enough
   // that a re-solve in closed form drops scores of constraints and lands far outside bounds the
   // iteration had met, and the polish may run out on such a point: an error, not an optimum.
-  if (status == SolveStatus::kSolved && !MeetsBounds(kDegenerateTol)) status = SolveStatus::kNumericalError;
+  if (status == SolveStatus::kSolved && !(x_.allFinite() && MeetsBounds(kDegenerateTol, /*inactive_only=*/false))) {
+    status = SolveStatus::kNumericalError;
+  }
   *outer_iterations = outer;
   return status;
 }
 
-bool ActiveSetQpSolver::MeetsBounds(double relative_tol) const {
+bool ActiveSetQpSolver::MeetsBounds(double relative_tol, bool inactive_only) const {
   for (const int k : bounded_) {
+    if (inactive_only && state_[k] != 0) continue;
     const double v = Value(k), lo = Lower(k), hi = Upper(k);
-    if (!(v >= lo - relative_tol * (1.0 + std::abs(lo)) && v <= hi + relative_tol * (1.0 + std::abs(hi)))) return false;
+    if (lo - v > relative_tol * (1.0 + std::abs(lo)) || v - hi > relative_tol * (1.0 + std::abs(hi))) return false;
   }
   return true;
 }

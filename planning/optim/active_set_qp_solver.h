@@ -132,8 +132,9 @@ class ActiveSetQpSolver final : public Solver {
   bool OverLimits();
   // After a proximal step: does the step direction prove the problem unbounded?
   bool IsUnboundedRay();
-  // Whether x_ (with ax_ = A x_) keeps every bound to within relative_tol * (1 + |bound|).
-  bool MeetsBounds(double relative_tol) const;
+  // Whether x_ (with ax_ = A x_) keeps every bound (of the inactive constraints only, or of all)
+  // to within relative_tol * (1 + |bound|); a NaN value counts as within.
+  bool MeetsBounds(double relative_tol, bool inactive_only) const;
   void FillResult(const Program& program, SolveStatus status, SolveResult* result);
 
   ActiveSetQpSettings settings_;
