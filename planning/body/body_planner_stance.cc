@@ -22,6 +22,12 @@ constexpr double kClearanceInset = 0.006;
 constexpr double kSwingClearanceInset = 0.006;
 // Step of the finite differences of the closest point's motion [m or rad].
 constexpr double kPointStep = 1e-5;
+// A clearance the body moves less than this per unit of its own motion gets no row: a swing
+// leg's shank near its foot follows the swing trajectory whatever the body does. Normalised,
+// such a row would ask the body to move the clearance's deficit divided by this gradient (3 mm
+// at 0.01: 0.3 m), which only the knot's relaxation can pay, and that relaxation frees every
+// row of the knot, the support rows with it. Such a clearance is the swing trajectory's to keep.
+constexpr double kMinClearanceGradient = 0.1;
 
 // `at` moved by `step` along body variable v (z, pitch, along, sideways of the heading).
 BodyPose Moved(const BodyPose& at, int v, double step) {
@@ -156,7 +162,7 @@ void BodyPlanner::SetClearanceRow(int row, const Clearance& c, const Eigen::Vect
   Eigen::Vector4d grad;
   for (int v = 0; v < 4; ++v) grad[v] = normal.dot(moved.col(v) - c.point_robot_W) / kPointStep;
   const double norm = grad.norm();
-  if (!(norm > 1e-9)) return;
+  if (!(norm >= kMinClearanceGradient)) return;
   qp_->clearance.a.row(row) = (grad / norm).transpose();
   const double lo = (settings_.clearance_margin + inset - c.distance) / norm;
   qp_->clearance.lo[row] = lo + grad.dot(v0) / norm;
