@@ -366,13 +366,13 @@ BodyPose BodyPlanner::CentrePose(const Eigen::Vector2d& neutral_xy, const Eigen:
 
 bool BodyPlanner::LegRows(int k, double t, const BodyPose& at, const Eigen::Vector4d& v0) {
   if (row_cache_ == nullptr || k == 0) {
-    StanceRows(k, at, v0);
+    StanceRows(k, t, at, v0);
     return false;
   }
   Eigen::Vector3d* q = &stance_q_[static_cast<std::size_t>(k * kBodyLegs)];
   const bool restored = row_cache_->Restore(t, v0, k, *qp_, q);
   if (!restored) {
-    StanceRows(k, at, v0);
+    StanceRows(k, t, at, v0);
     row_cache_->Store(t, v0, k, *qp_, q);
   }
   return restored;

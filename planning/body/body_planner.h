@@ -168,8 +168,11 @@ class BodyPlanner {
                           const Eigen::Vector4d& v0, bool restored);
   // Knot k's leg rows: every leg's joints, extension and clearance linearised at the pose `at`
   // (the trust region's centre), a stance leg's foot on its contact, a swing leg's on its swing
-  // trajectory (rows free at knot 0 and without kinematics).
-  void StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v0);
+  // trajectory (rows free at knot 0 and without kinematics). t is the knot's instant.
+  void StanceRows(int k, double t, const BodyPose& at, const Eigen::Vector4d& v0);
+  // How far leg l's foot strays at the middles of the knot intervals before and after instant t
+  // from the chords between the knots (StanceLegMargins::foot_bends_W).
+  std::array<Eigen::Vector3d, 2> FootBends(int l, double t) const;
   // Leg l's clearance row at knot k: its closest link point's distance to the stairs (FCL),
   // linearised through `rows`' joint derivative; free when the leg is far from them. A swing
   // leg's foot contact shape is left out (its path is the swing trajectory's).

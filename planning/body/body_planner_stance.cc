@@ -65,10 +65,17 @@ double BodyPlanner::StandingHeight(const BodyState& start) const {
   return start.z;
 }
 
-void BodyPlanner::StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v0) {
+std::array<Eigen::Vector3d, 2> BodyPlanner::FootBends(int l, double t) const {
+  const double dt = settings_.knot_dt;
+  const auto foot = [&](double at_t) { return schedule_.SwingFoot(l, schedule_.Phase(l, at_t)); };
+  const Eigen::Vector3d here = foot(t);
+  return {foot(t - 0.5 * dt) - 0.5 * (foot(t - dt) + here), foot(t + 0.5 * dt) - 0.5 * (here + foot(t + dt))};
+}
+
+void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::Vector4d& v0) {
   BodyQp& qp = *qp_;
   if (!qp.has_stance_rows()) return;
-  const StanceLegMargins margins{settings_.joint_margin, settings_.reach_margin};
+  StanceLegMargins margins{settings_.joint_margin, settings_.reach_margin};
   const Eigen::Matrix3d body_rotation = at.ToIsometry().linear();
   for (int l = 0; l < kBodyLegs; ++l) {
     const int first = BodyQp::StanceRow(k, l, 0);
@@ -90,6 +97,7 @@ void BodyPlanner::StanceRows(int k, const BodyPose& at, const Eigen::Vector4d& v
     // The foot's sphere rests on the contact; its offset from the foot origin turns with the foot.
     const Eigen::Matrix3d foot_rotation = body_rotation * kin.FootPose(q, ws).linear();
     const Eigen::Vector3d origin = FootOriginForContact(kin.model(), contact, foot_rotation);
+    margins.foot_bends_W = FootBends(l, t);
     const StanceLegRows rows = LinearizeStanceLeg(kin, ws, origin, at, q, margins);
     q = rows.q;
     for (int j = 0; j < BodyQp::kStanceRows; ++j) {

@@ -1,5 +1,7 @@
 #include "planning/body/stance_leg_rows.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +17,15 @@ namespace {
 constexpr double kSingularDet = 0.02;
 // Step of the first joint for the flexion joint's derivative (forward difference) [rad].
 constexpr double kTurnStep = 1e-6;
+
+// How far a quantity strays between knots beyond the knots' average, up and down, from its
+// departures at the middles of the intervals before and after the knot.
+struct Bulge {
+  double up = 0.0, down = 0.0;
+};
+Bulge BulgeOf(double before, double after) {
+  return {std::max({0.0, before, after}), std::max({0.0, -before, -after})};
+}
 
 // Normalises row r (its coefficients to unit length); an all-zero row is left free.
 void SetRow(StanceLegRows* rows, int r, const Eigen::Vector4d& a, double lo, double hi) {
@@ -44,6 +55,10 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   Eigen::Matrix3d dry_t;  // d Ry(pitch)^T / d pitch
   dry_t << -sp, 0.0, -cp, 0.0, 0.0, 0.0, cp, 0.0, -sp;
   const Eigen::Vector3d foot_B = ry_t * rel_H;
+  const auto to_base = [&](const Eigen::Vector3d& v_W) {
+    return Eigen::Vector3d(ry_t * Eigen::Vector3d(cy * v_W.x() + sy * v_W.y(), -sy * v_W.x() + cy * v_W.y(), v_W.z()));
+  };
+  const std::array<Eigen::Vector3d, 2> bends_B{to_base(margins.foot_bends_W[0]), to_base(margins.foot_bends_W[1])};
   // D: d foot_B / d (z, pitch, along, sideways); moving the body moves the foot the other way.
   Eigen::Matrix<double, 3, 4> d;
   d.col(kBodyZ) = -ry_t.col(2);
@@ -65,8 +80,11 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
     const Eigen::Matrix3d jac_inv = jac.inverse();
     const Eigen::Vector3d q_at = ik.q + jac_inv * (foot_B - kin.FootPosition(ik.q, ws));
     dq = jac_inv * d;
+    const std::array<Eigen::Vector3d, 2> bent{jac_inv * bends_B[0], jac_inv * bends_B[1]};
     for (int j = 0; j < 3; ++j) {
-      SetRow(&rows, j, dq.row(j).transpose(), kin.lower()[j] + margins.joint - q_at[j], kin.upper()[j] - margins.joint - q_at[j]);
+      const Bulge bulge = BulgeOf(bent[0][j], bent[1][j]);
+      SetRow(&rows, j, dq.row(j).transpose(), kin.lower()[j] + margins.joint + bulge.down - q_at[j],
+             kin.upper()[j] - margins.joint - bulge.up - q_at[j]);
     }
   } else {
     for (int j = 0; j < 3; ++j) SetRow(&rows, j, Eigen::Vector4d::Zero(), 0.0, 0.0);
@@ -80,15 +98,18 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   const Eigen::Vector3d span = foot_B - flexion;
   const double length = span.norm();
   Eigen::Vector4d grad = Eigen::Vector4d::Zero();
+  Bulge bulge;
   if (length > 1e-9) {
     const Eigen::Vector3d u = span / length;
+    bulge = BulgeOf(u.dot(bends_B[0]), u.dot(bends_B[1]));
     grad = (u.transpose() * d).transpose();
     if (regular) {
       const Eigen::Vector3d turned = kin.FlexionPosition(ik.q + Eigen::Vector3d(kTurnStep, 0.0, 0.0), ws);
       grad -= u.dot((turned - flexion) / kTurnStep) * dq.row(0).transpose();
     }
   }
-  SetRow(&rows, 3, grad, kin.extension().lo + margins.reach - length, kin.extension().hi - margins.reach - length);
+  SetRow(&rows, 3, grad, kin.extension().lo + margins.reach + bulge.down - length,
+         kin.extension().hi - margins.reach - bulge.up - length);
   return rows;
 }
 

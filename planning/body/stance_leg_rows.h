@@ -37,6 +37,12 @@ struct StanceLegRows {
 struct StanceLegMargins {
   double joint = 0.0;  ///< [rad]
   double reach = 0.0;  ///< extension (flexion joint to foot distance) [m]
+  /// How far a moving foot's path strays from its chords to the knots before and after, at their
+  /// middles (world frame; zero for a foot that stays put) [m]. Between knots the body moves
+  /// linearly while a swing foot follows its curve (it slows to touch down), so the joints and
+  /// the extension there differ from the knots' average by what this departure causes; the rows
+  /// keep that much more inside the limits, on the side the departure moves them towards.
+  std::array<Eigen::Vector3d, 2> foot_bends_W{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
 };
 
 /// Rows of leg `kin` whose foot origin stays at `foot_W` with the body at `pose` (its yaw a

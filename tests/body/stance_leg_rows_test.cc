@@ -80,3 +80,50 @@ TEST_CASE("a foot beyond the leg's reach gives a reach row the pose breaks, poin
   CHECK(rows.hi[3] < -0.04);  // the body must come down at least 5 cm
   CHECK(rows.a[3][kBodyZ] > 0.9);  // and lowering it is what shortens the leg most (pitch turns the hip too)
 }
+
+TEST_CASE("a moving foot's bend tightens each row by what it moves the joint or the extension between knots",
+          "[body][rows]") {
+  // Between two knots the body moves linearly and the foot along a curve: at the interval's middle
+  // the joints differ from the knots' average by about J^-1 times the curve's departure from its
+  // chord. The row keeps that much more room on the side it moves towards, nothing on the other.
+  const RobotModel& robot = BuiltinRobot();
+  const RobotKinematics kinematics(robot);
+  RobotWorkspace ws(kinematics);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int leg = trial % 4;
+    const LegKinematics& kin = kinematics.leg(leg);
+    BodyPose pose;
+    pose.yaw = trial % 2 == 0 ? 0.0 : M_PI;
+    pose.pitch = 0.3 * unit(rng);
+    pose.position_W = Eigen::Vector3d(0.1 * unit(rng), 0.05 * unit(rng), 0.05 * unit(rng));
+    const Eigen::Vector3d foot_W = pose.ToIsometry() * (kin.FootPosition(kin.nominal(), ws.leg(leg)) +
+                                                        Eigen::Vector3d(0.05 * unit(rng), 0.03 * unit(rng), 0.03 * unit(rng)));
+    // The foot's path to the next knot: a 2 cm chord and a parabola bulging up to 1 cm from it.
+    const Eigen::Vector3d chord = 0.02 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    const Eigen::Vector3d bend = 0.01 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    StanceLegMargins bent;
+    bent.foot_bends_W[1] = bend;
+    const StanceLegRows plain = LinearizeStanceLeg(kin, ws.leg(leg), foot_W, pose, kin.nominal(), {});
+    const StanceLegRows rows = LinearizeStanceLeg(kin, ws.leg(leg), foot_W, pose, kin.nominal(), bent);
+    if (!plain.reached) continue;
+    const Eigen::Isometry3d to_base = pose.ToIsometry().inverse();
+    const IkResult end = kin.SolveFootIk(to_base * (foot_W + chord), plain.q, ws.leg(leg));
+    const IkResult middle = kin.SolveFootIk(to_base * (foot_W + 0.5 * chord + bend), plain.q, ws.leg(leg));
+    if (!end.ok() || !middle.ok()) continue;
+    for (int j = 0; j < 3; ++j) {
+      const double norm = plain.dq.row(j).norm();
+      if (!(norm > 1e-9)) continue;
+      const double strays = middle.q[j] - 0.5 * (plain.q[j] + end.q[j]);
+      // The joints curve over the chord too (second order in it).
+      const double tolerance = 0.15 * std::abs(strays) + 3e-3;
+      CHECK(std::abs((plain.hi[j] - rows.hi[j]) * norm - std::max(0.0, strays)) < tolerance);
+      CHECK(std::abs((rows.lo[j] - plain.lo[j]) * norm - std::max(0.0, -strays)) < tolerance);
+      CHECK(rows.a[j].isApprox(plain.a[j]));
+    }
+    ++checked;
+  }
+  CHECK(checked > 100);
+}
