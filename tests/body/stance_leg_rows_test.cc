@@ -24,6 +24,26 @@ BodyPose MovedPose(const BodyPose& pose, const Eigen::Vector4d& dv) {
   return moved;
 }
 
+// A body pose and a foot for leg `trial % 4` near its nominal stance, facing either way.
+struct LegCase {
+  int leg = 0;
+  BodyPose pose;
+  Eigen::Vector3d foot_W = Eigen::Vector3d::Zero();
+};
+LegCase RandomLegCase(const RobotKinematics& kinematics, RobotWorkspace& ws, int trial, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  LegCase c;
+  c.leg = trial % 4;
+  const LegKinematics& kin = kinematics.leg(c.leg);
+  c.pose.yaw = trial % 2 == 0 ? 0.0 : M_PI;
+  c.pose.pitch = 0.3 * unit(rng);
+  // A foot reachable from the nominal stance, moved a little.
+  c.pose.position_W = Eigen::Vector3d(0.1 * unit(rng), 0.05 * unit(rng), 0.05 * unit(rng));
+  c.foot_W = c.pose.ToIsometry() * (kin.FootPosition(kin.nominal(), ws.leg(c.leg)) +
+                                    Eigen::Vector3d(0.05 * unit(rng), 0.03 * unit(rng), 0.03 * unit(rng)));
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("stance leg rows predict the joints and the reach of a moved body to second order", "[body][rows]") {
@@ -34,15 +54,8 @@ TEST_CASE("stance leg rows predict the joints and the reach of a moved body to s
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   int checked = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const int leg = trial % 4;
+    const auto [leg, pose, foot_W] = RandomLegCase(kinematics, ws, trial, rng);
     const LegKinematics& kin = kinematics.leg(leg);
-    BodyPose pose;
-    pose.yaw = trial % 2 == 0 ? 0.0 : M_PI;
-    pose.pitch = 0.3 * unit(rng);
-    // A foot reachable from the nominal stance, moved a little.
-    pose.position_W = Eigen::Vector3d(0.1 * unit(rng), 0.05 * unit(rng), 0.05 * unit(rng));
-    const Eigen::Vector3d foot_W = pose.ToIsometry() * (kin.FootPosition(kin.nominal(), ws.leg(leg)) +
-                                                        Eigen::Vector3d(0.05 * unit(rng), 0.03 * unit(rng), 0.03 * unit(rng)));
     const StanceLegRows rows = LinearizeStanceLeg(kin, ws.leg(leg), foot_W, pose, kin.nominal(), {});
     if (!rows.reached) continue;
     const Eigen::Vector4d dv = 0.01 * Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng));
@@ -93,14 +106,8 @@ TEST_CASE("a moving foot's bend tightens each row by what it moves the joint or 
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   int checked = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const int leg = trial % 4;
+    const auto [leg, pose, foot_W] = RandomLegCase(kinematics, ws, trial, rng);
     const LegKinematics& kin = kinematics.leg(leg);
-    BodyPose pose;
-    pose.yaw = trial % 2 == 0 ? 0.0 : M_PI;
-    pose.pitch = 0.3 * unit(rng);
-    pose.position_W = Eigen::Vector3d(0.1 * unit(rng), 0.05 * unit(rng), 0.05 * unit(rng));
-    const Eigen::Vector3d foot_W = pose.ToIsometry() * (kin.FootPosition(kin.nominal(), ws.leg(leg)) +
-                                                        Eigen::Vector3d(0.05 * unit(rng), 0.03 * unit(rng), 0.03 * unit(rng)));
     // The foot's path to the next knot: a 2 cm chord and a parabola bulging up to 1 cm from it.
     const Eigen::Vector3d chord = 0.02 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
     const Eigen::Vector3d bend = 0.01 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
