@@ -22,11 +22,12 @@ constexpr double kClearanceInset = 0.006;
 constexpr double kSwingClearanceInset = 0.006;
 // Step of the finite differences of the closest point's motion [m or rad].
 constexpr double kPointStep = 1e-5;
-// A clearance the body moves less than this per unit of its own motion gets no row: a swing
-// leg's shank near its foot follows the swing trajectory whatever the body does. Normalised,
-// such a row would ask the body to move the clearance's deficit divided by this gradient (3 mm
-// at 0.01: 0.3 m), which only the knot's relaxation can pay, and that relaxation frees every
-// row of the knot, the support rows with it. Such a clearance is the swing trajectory's to keep.
+// A clearance the body moves less than this per unit of its own motion gets no row: a link
+// point near the foot barely moves with the body (a swing foot follows its trajectory whatever
+// the body does, a stance shank pivots about its foot). Normalised, such a row would ask the
+// body to move the clearance's deficit divided by this gradient (3 mm at 0.01: 0.3 m), which
+// only the knot's relaxation can pay, and that relaxation frees every row of the knot, the
+// support rows with it. Such a clearance is the footholds' and the swing trajectory's to keep.
 constexpr double kMinClearanceGradient = 0.1;
 
 // `at` moved by `step` along body variable v (z, pitch, along, sideways of the heading).
