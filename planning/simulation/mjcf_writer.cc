@@ -147,6 +147,19 @@ void WriteBody(std::ostringstream& out, const urdf::Link& link, const MjcfSettin
   out << indent << "</body>\n";
 }
 
+// MuJoCo never lets a body touch its parent; a link and its grandparent are left apart too: their
+// collision shapes may overlap by design (ANYmal B's base boxes reach 2.5 mm into its thighs at
+// every pose), and MuJoCo would push them apart with contact forces the real robot never feels.
+// `parent`: link's parent body in the MJCF (null for the base, whose URDF parent is not written).
+void WriteExcludes(std::ostringstream& out, const urdf::Link& link, const urdf::Link* parent) {
+  for (const auto& child : link.child_links) {
+    if (parent != nullptr) {
+      out << "    <exclude body1='" << XmlEscaped(parent->name) << "' body2='" << XmlEscaped(child->name) << "'/>\n";
+    }
+    WriteExcludes(out, *child, &link);
+  }
+}
+
 void WriteStairs(std::ostringstream& out, const Staircase& stairs) {
   for (const Box3& box : stairs.Solids()) {
     const Eigen::Vector3d c = box.Center(), h = 0.5 * box.Size();
@@ -206,7 +219,9 @@ std::string WriteMjcf(const RobotModel& robot, const Staircase& stairs, const Mj
   WriteInertial(out, *base, settings, "      ");
   WriteGeoms(out, *base, "      ");
   for (const auto& child : base->child_links) WriteBody(out, *child, settings, 3);
-  out << "    </body>\n  </worldbody>\n";
+  out << "    </body>\n  </worldbody>\n  <contact>\n";
+  WriteExcludes(out, *base, nullptr);
+  out << "  </contact>\n";
   WriteMotors(out, robot, settings.effort_scale);
   out << "</mujoco>\n";
   return out.str();

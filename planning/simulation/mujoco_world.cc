@@ -1,6 +1,7 @@
 #include "planning/simulation/mujoco_world.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -10,8 +11,13 @@
 namespace stairplan {
 namespace {
 
+// MuJoCo prints its warnings on stdout (and into MUJOCO_LOG.TXT in the working folder), where
+// `simulate --json` writes its result: they go to stderr.
+void WarnOnStderr(const char* message) { std::fprintf(stderr, "MuJoCo warning: %s\n", message); }
+
 // MuJoCo loads from files; a virtual file system keeps the MJCF in memory.
 mjModel* LoadFromString(const std::string& mjcf) {
+  mju_user_warning = WarnOnStderr;
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
   const char* name = "stairplan_world.xml";
