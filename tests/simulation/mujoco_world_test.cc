@@ -106,6 +106,7 @@ TEST_CASE("MuJoCo's warnings go to stderr, not into stdout where simulate --json
   std::fflush(stdout);
   dup2(saved, fileno(stdout));
   close(saved);
+  std::fseek(captured, 0, SEEK_END);
   CHECK(std::ftell(captured) == 0);
   std::fclose(captured);
 }
