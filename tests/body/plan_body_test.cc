@@ -270,11 +270,11 @@ TEST_CASE("with leg rows every cycle's QP solves on Unitree A1's descent", "[bod
 
 TEST_CASE("with leg rows Unitree A1 climbs low stairs and validates: a clearance the body cannot move frees no row",
           "[body][stance_rows]") {
-  // A swing leg's shank near its foot follows the swing trajectory, so the body barely moves its
-  // clearance (0.03 m per unit of motion). Its normalised row asked the body to move 0.2-0.4 m,
-  // the knot's relaxation paid for it at most knots of the horizon, and with it the support rows
-  // gave way: the body shifted sideways only when a liftoff was two knots away and the COM
-  // crossed into the triangle 3 mm late (t = 5.62 s on the third step).
+  // The right hind shank, just set down, pivots about its foot: the body barely moves its
+  // clearance. Its normalised row asked the body to move 0.2-0.4 m, the knot's relaxation paid
+  // for it at most knots of the horizon, and with it the support rows gave way: the body shifted
+  // sideways only when the next liftoff was two knots away and the COM crossed into the triangle
+  // 3 mm late (t = 5.62 s on the third step).
   const std::string path = testing::SharedPath("data/robots/unitree_a1.urdf");
   if (path.empty()) {
     WARN("shared robots skipped: ../shared not found");
