@@ -48,17 +48,17 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
                                  const BodyPose& pose, const Eigen::Vector3d& seed, const StanceLegMargins& margins) {
   const double cy = std::cos(pose.yaw), sy = std::sin(pose.yaw), cp = std::cos(pose.pitch), sp = std::sin(pose.pitch);
   // The foot relative to the body in the heading frame, then in the base frame (R = Rz Ry).
-  const Eigen::Vector3d rel_W = foot_W - pose.position_W;
-  const Eigen::Vector3d rel_H(cy * rel_W.x() + sy * rel_W.y(), -sy * rel_W.x() + cy * rel_W.y(), rel_W.z());
+  const auto to_heading = [&](const Eigen::Vector3d& v_W) {
+    return Eigen::Vector3d(cy * v_W.x() + sy * v_W.y(), -sy * v_W.x() + cy * v_W.y(), v_W.z());
+  };
+  const Eigen::Vector3d rel_H = to_heading(foot_W - pose.position_W);
   Eigen::Matrix3d ry_t;  // Ry(pitch)^T
   ry_t << cp, 0.0, -sp, 0.0, 1.0, 0.0, sp, 0.0, cp;
   Eigen::Matrix3d dry_t;  // d Ry(pitch)^T / d pitch
   dry_t << -sp, 0.0, -cp, 0.0, 0.0, 0.0, cp, 0.0, -sp;
   const Eigen::Vector3d foot_B = ry_t * rel_H;
-  const auto to_base = [&](const Eigen::Vector3d& v_W) {
-    return Eigen::Vector3d(ry_t * Eigen::Vector3d(cy * v_W.x() + sy * v_W.y(), -sy * v_W.x() + cy * v_W.y(), v_W.z()));
-  };
-  const std::array<Eigen::Vector3d, 2> bends_B{to_base(margins.foot_bends_W[0]), to_base(margins.foot_bends_W[1])};
+  const std::array<Eigen::Vector3d, 2> bends_B{ry_t * to_heading(margins.foot_bends_W[0]),
+                                               ry_t * to_heading(margins.foot_bends_W[1])};
   // D: d foot_B / d (z, pitch, along, sideways); moving the body moves the foot the other way.
   Eigen::Matrix<double, 3, 4> d;
   d.col(kBodyZ) = -ry_t.col(2);
