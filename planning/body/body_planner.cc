@@ -594,6 +594,7 @@ void BodyPlanner::StoreSolution(const optim::SolveResult& result, double now) {
   previous_pitch_ = result.x.segment(qp_->pitch().start, n);
   previous_shift_ = result.x.segment(qp_->shift().start, n);
   previous_lateral_ = qp_->LateralOf(result);
+  previous_active_ = result.active_set;
   has_previous_ = true;
 }
 
@@ -699,6 +700,9 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
     }
     solve_estimate_us_ = 0.0;
   } else {
+    // The knots of the stored plan, a cycle ago, lie that many knots later than now's.
+    const int advanced = static_cast<int>(std::lround((now - previous_t0_) / settings_.knot_dt));
+    if (advanced > 0) qp_->ShiftWarmStart(previous_active_, advanced);
     Linearise(state, command, now);
     output_.timings.bounds_us = ElapsedMicros(start);
     const double remaining_us = settings_.cycle_budget_s * 1e6 - output_.timings.bounds_us;

@@ -228,6 +228,7 @@ class BodyPlanner {
   std::vector<int> support_side_;
   Eigen::VectorXd leg_lo_, leg_hi_;        // each stance leg's own row bounds, k * 4 + leg
   optim::SolveResult result_;
+  optim::ActiveSet previous_active_;  // the stored solution's active set (at previous_t0_)
   BodyPlannerOutput output_;
   double solve_estimate_us_ = 0.0;
   static double kDefaultPullIn();

@@ -17,6 +17,13 @@ constexpr double kRelaxCurvature = 1.0;
 // Gravity for the support rows' pendulum [m/s^2].
 constexpr double kZmpGravity = 9.81;
 
+// Moves the states of a block of `per_knot` entries per knot `knots` knots earlier; the last
+// `knots` knots keep theirs.
+void ShiftKnots(std::vector<optim::ActiveSide>* states, int start, int size, int per_knot, int knots) {
+  const int offset = per_knot * knots;
+  for (int i = start; i < start + size - offset; ++i) (*states)[static_cast<std::size_t>(i)] = (*states)[static_cast<std::size_t>(i + offset)];
+}
+
 }  // namespace
 
 BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients,
@@ -96,7 +103,8 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   accel_rows_ = program_.AddLinearConstraint({{z_, accel_z}, {pitch_, accel_p}, {shift_, accel_s}}, -accel_hi, accel_hi,
                                              "acceleration");
   const Eigen::VectorXd lateral_accel = Eigen::VectorXd::Constant(n - 2, settings_.max_lateral_accel * dt * dt);
-  lateral_program.AddLinearConstraint({{lateral_, d2}}, -lateral_accel, lateral_accel, "lateral_acceleration");
+  lateral_accel_rows_ =
+      lateral_program.AddLinearConstraint({{lateral_, d2}}, -lateral_accel, lateral_accel, "lateral_acceleration");
   // With stance rows the pitch and the weight shifts come to rest at the horizon's end: a plan
   // ending in motion toward a limit leaves the next cycle, whose last knot lies beyond, no way to
   // stop within the acceleration limits (the plan shifted by a cycle is then outside the QP's
@@ -349,6 +357,30 @@ void BodyQp::Solve(double time_limit_s, optim::SolveResult* result) {
   lateral_solver_.Solve(lateral_program_, &lateral_result_);
   result->info.iterations += lateral_result_.info.iterations;
   if (result->solved() && !lateral_result_.solved()) result->status = lateral_result_.status;
+}
+
+void BodyQp::ShiftWarmStart(const optim::ActiveSet& last, int knots) {
+  const int n = knots_;
+  knots = std::min(knots, n - 1);
+  if (knots <= 0 || lateral_apart_) return;
+  if (last.rows.size() != static_cast<std::size_t>(program_.num_rows()) ||
+      last.bounds.size() != static_cast<std::size_t>(program_.num_variables())) {
+    return;
+  }
+  shifted_ = last;
+  for (const optim::VariableBlock* block : {&z_, &pitch_, &shift_, &lateral_, &relax_, &give_, &excursion_}) {
+    ShiftKnots(&shifted_.bounds, block->start, block->size, 1, knots);
+  }
+  ShiftKnots(&shifted_.bounds, retreat_.start, retreat_.size, 1, knots);
+  ShiftKnots(&shifted_.rows, hip_rows_.start, hip_rows_.size, groups_, knots);
+  for (int f = 0; f < 3; ++f) ShiftKnots(&shifted_.rows, accel_rows_.start + f * (n - 2), n - 2, 1, knots);
+  ShiftKnots(&shifted_.rows, lateral_accel_rows_.start, lateral_accel_rows_.size, 1, knots);
+  ShiftKnots(&shifted_.rows, progress_rows_.start, progress_rows_.size, 1, knots);
+  ShiftKnots(&shifted_.rows, com_support_.rows.start, com_support_.rows.size, kSupportRows, knots);
+  ShiftKnots(&shifted_.rows, zmp_support_.rows.start, zmp_support_.rows.size, kSupportRows, knots);
+  ShiftKnots(&shifted_.rows, stance_.rows.start, stance_.rows.size, stance_.per_knot, knots);
+  ShiftKnots(&shifted_.rows, clearance_.rows.start, clearance_.rows.size, clearance_.per_knot, knots);
+  solver_.SetWarmStart(shifted_);
 }
 
 Eigen::VectorBlock<const Eigen::VectorXd> BodyQp::LateralOf(const optim::SolveResult& result) const {

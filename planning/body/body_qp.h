@@ -170,6 +170,11 @@ class BodyQp {
   /// Allocation-free after the first call. Without support rows the sideways shift is its own
   /// QP (lateral_apart()): `result` then holds the rest, and its status and iterations both's.
   void Solve(double time_limit_s, optim::SolveResult* result);
+  /// The next Solve() starts from `last`, an earlier solve's active set, moved `knots` knots
+  /// earlier: the horizon has advanced that far since, so what was active at knot k + knots is
+  /// what is likely active at knot k now (the last `knots` knots keep their own). Unshifted, a
+  /// stretch of active rows one knot off is dropped and added back row by row.
+  void ShiftWarmStart(const optim::ActiveSet& last, int knots);
   /// The next solve starts cold.
   void ResetWarmStart() {
     solver_.ResetWarmStart();
@@ -229,7 +234,8 @@ class BodyQp {
   optim::ActiveSetQpSolver lateral_solver_;
   optim::SolveResult lateral_result_;
   optim::VariableBlock z_, pitch_, shift_, lateral_, relax_, retreat_, give_, excursion_;
-  optim::ConstraintRows hip_rows_, accel_rows_;
+  optim::ConstraintRows hip_rows_, accel_rows_, lateral_accel_rows_;
+  optim::ActiveSet shifted_;  // ShiftWarmStart's, sized once
   // One family of support rows in the program: the COM's (one knot each) or the ZMP's (over
   // ZmpStencil), and the coefficients pushed into them.
   struct SupportFamily {

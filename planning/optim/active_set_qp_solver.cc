@@ -262,15 +262,33 @@ void ActiveSetQpSolver::DropConstraint(int position) {
 void ActiveSetQpSolver::StartFromActiveSet(const ActiveSet& set) {
   StartCold();
   AddEqualities();
-  const auto add = [&](int k, ActiveSide side) {
-    if (side == 0 || state_[k] != 0) return;
-    const double b = side < 0 ? Lower(k) : Upper(k);
-    if (!std::isfinite(b)) return;
+  AddActive(set);
+}
+
+void ActiveSetQpSolver::MoveToActiveSet(const ActiveSet& set) {
+  // From the back: a drop rotates the factorisation from its position on.
+  for (int j = q_ - 1; j >= 0; --j) {
+    const int k = active_[j];
+    if (IsEquality(k)) continue;
+    if (SideIn(set, k) != state_[k]) DropConstraint(j);
+  }
+  AddActive(set);
+}
+
+ActiveSide ActiveSetQpSolver::SideIn(const ActiveSet& set, int k) const {
+  if (k < m_) return k < static_cast<int>(set.rows.size()) ? set.rows[static_cast<std::size_t>(k)] : 0;
+  const int i = k - m_;
+  return i < static_cast<int>(set.bounds.size()) ? set.bounds[static_cast<std::size_t>(i)] : 0;
+}
+
+void ActiveSetQpSolver::AddActive(const ActiveSet& set) {
+  for (int k = 0; k < m_ + n_; ++k) {
+    const ActiveSide side = SideIn(set, k);
+    if (side == 0 || state_[k] != 0 || q_ == n_) continue;
+    if (!std::isfinite(side < 0 ? Lower(k) : Upper(k))) continue;
     ComputeStepVector(k, side < 0 ? 1.0 : -1.0);
     AddConstraint(k, side);
-  };
-  for (int k = 0; k < m_ && k < static_cast<int>(set.rows.size()); ++k) add(k, set.rows[k]);
-  for (int i = 0; i < n_ && i < static_cast<int>(set.bounds.size()); ++i) add(m_ + i, set.bounds[i]);
+  }
 }
 
 void ActiveSetQpSolver::AddEqualities() {
@@ -442,12 +460,18 @@ void ActiveSetQpSolver::DoSolve(const Program& program, SolveResult* result) {
   }
   const bool regularized = rho_ > 0.0;
   // The proximal centre starts at the previous solution when warm, else at the initial guess.
-  // Hot: the kept factorisation is valid (H and A unchanged). Warm: H or A changed, so the
-  // factorisation is rebuilt from the previous (or a given) active set. Cold: from nothing.
-  const bool hot = settings_.warm_start && factorization_valid_ && !pending_warm_start_;
+  // Hot: the kept factorisation is valid (H and A unchanged); a given active set is reached from
+  // it by the drops and adds in which the two differ, a handful where rebuilding costs one add per
+  // active constraint. Warm: H or A changed, so the factorisation is rebuilt from the previous (or
+  // a given) active set. Cold: from nothing.
+  const bool hot = settings_.warm_start && factorization_valid_;
   bool started_warm = hot;
   if (hot) {
     x_prox_ = x_;
+    if (pending_warm_start_) {
+      MoveToActiveSet(warm_start_);
+      pending_warm_start_ = false;
+    }
   } else {
     x_prox_ = program.initial_guess();
     if (!pending_warm_start_ && settings_.warm_start && has_previous_) {

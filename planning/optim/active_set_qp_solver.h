@@ -101,6 +101,13 @@ class ActiveSetQpSolver final : public Solver {
   // Starting points: cold, from a given active set, or the kept factorisation.
   void StartCold();
   void StartFromActiveSet(const ActiveSet& set);
+  // From the kept factorisation to `set`: drops the active constraints `set` does not hold (on
+  // that side), then adds the ones it holds that are not active.
+  void MoveToActiveSet(const ActiveSet& set);
+  // Adds the constraints `set` holds that are not active (a finite bound on their side).
+  void AddActive(const ActiveSet& set);
+  // The side of constraint k in `set` (0 beyond its size).
+  ActiveSide SideIn(const ActiveSet& set, int k) const;
   void AddEqualities();
   // Closed-form primal and dual on the current active set; drops constraints with negative
   // multipliers until the start is dual feasible. Returns the number of drops.

@@ -35,7 +35,67 @@ void FillInputs(BodyQp* qp) {
   qp->lateral_lo[0] = qp->lateral_hi[0] = 0.005;
 }
 
+// Inputs of the cycle whose knot 0 is knot `first` of a longer flight, the same function of the
+// flight's time at every cycle: a step at flight knot 50 the hip rows bind around, pitch and a
+// forward shift that reach their bounds over stretches of knots, no knot pinned.
+void FillFlightInputs(BodyQp* qp, int first) {
+  const int n = qp->knots();
+  for (int k = 0; k < n; ++k) {
+    const int f = first + k;
+    const double t = 0.025 * f;
+    const double step = f < 50 ? 0.0 : 0.17;
+    for (int l = 0; l < kBodyLegs; ++l) qp->height_ref[k * kBodyLegs + l] = 0.45 + (l < 2 ? step : 0.5 * step);
+    qp->pitch_ref[k] = -0.5 * std::sin(3.0 * t);
+    qp->shift_ref[k] = 0.04 * std::sin(5.0 * t);
+    qp->lateral_ref[k] = 0.01 * std::cos(4.0 * t);
+    qp->pitch_lo[k] = -0.3, qp->pitch_hi[k] = 0.3;
+    qp->shift_lo[k] = -0.02, qp->shift_hi[k] = 0.02;
+    qp->lateral_lo[k] = -0.006, qp->lateral_hi[k] = 0.006;
+    for (int g = 0; g < qp->groups(); ++g) {
+      qp->hip_lo[k * qp->groups() + g] = 0.40 + 0.6 * step;
+      qp->hip_hi[k * qp->groups() + g] = 0.50 + step;
+    }
+  }
+}
+
 }  // namespace
+
+TEST_CASE("a warm start moved with the horizon reaches the cold optimum with fewer changes than the unmoved one",
+          "[body][qp]") {
+  const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
+  BodyPlannerSettings settings;
+  settings.stability_margin = 0.0;
+  // Three planners over the same flight: one moves its warm start with the horizon, one keeps it
+  // where it was, one solves every cycle cold.
+  BodyQp moved(settings, c, /*stance_rows=*/true), kept(settings, c, true), cold(settings, c, true);
+  const int n = moved.knots();
+  optim::SolveResult rm, rk, rc;
+  int moved_changes = 0, kept_changes = 0;
+  for (int cycle = 0; cycle < 40; ++cycle) {
+    if (cycle > 0) moved.ShiftWarmStart(rm.active_set, 1);
+    cold.ResetWarmStart();
+    for (BodyQp* qp : {&moved, &kept, &cold}) FillFlightInputs(qp, cycle);
+    moved.Solve(optim::kInf, &rm);
+    kept.Solve(optim::kInf, &rk);
+    cold.Solve(optim::kInf, &rc);
+    REQUIRE(rm.solved());
+    REQUIRE(rk.solved());
+    REQUIRE(rc.solved());
+    CHECK((rm.x - rc.x).lpNorm<Eigen::Infinity>() < 1e-8);
+    CHECK((rk.x - rc.x).lpNorm<Eigen::Infinity>() < 1e-8);
+    if (cycle > 0) {
+      moved_changes += rm.info.iterations;
+      kept_changes += rk.info.iterations;
+    }
+  }
+  // The bounds bind over stretches of knots (pitch, shift, sideways, the hips at the step), so
+  // there is an active set to carry: what was active at knot k + 1 is active at knot k now.
+  int active = 0;
+  for (const optim::ActiveSide side : rc.active_set.bounds) active += side != 0;
+  CHECK(active > n);
+  INFO("changes over 39 cycles: moved " << moved_changes << ", kept " << kept_changes);
+  CHECK(2 * moved_changes < kept_changes);
+}
 
 TEST_CASE("the sideways shift solved apart gives the joint QP's plan", "[body][qp]") {
   const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
