@@ -177,6 +177,7 @@ class ActiveSetQpSolver final : public Solver {
   // bound, and the equalities, in index order.
   Eigen::VectorXd lower_, upper_;
   std::vector<int> bounded_, equalities_;
+  std::vector<int> changed_rows_;  // rows whose coefficients changed since the last solve
 
   // Vectors of size n or m.
   Eigen::VectorXd x_, g_eff_, x_prox_, d_, z_, r_, tmp_, hx_;

@@ -60,8 +60,24 @@ void Program::TouchHessian() { hessian_revision_ = NextRevision(); }
 void Program::TouchMatrix() {
   matrix_revision_ = NextRevision();
   whole_matrix_revision_ = matrix_revision_;
-  row_revision_.resize(static_cast<std::size_t>(A_.rows()));  // allocates only when rows were added
+  const std::size_t m = static_cast<std::size_t>(A_.rows());
+  row_revision_.resize(m);  // these allocate only when rows were added
+  row_whole_revision_.resize(m);
+  written_columns_.resize(m);
+  written_count_.resize(m);
   std::fill(row_revision_.begin(), row_revision_.end(), matrix_revision_);
+  std::fill(row_whole_revision_.begin(), row_whole_revision_.end(), matrix_revision_);
+  std::fill(written_count_.begin(), written_count_.end(), 0);
+}
+
+bool Program::WrittenColumns(int k, std::uint64_t seen, const int** columns, int* count) const {
+  const std::size_t row = static_cast<std::size_t>(k);
+  if (row >= row_whole_revision_.size() || row_whole_revision_[row] > seen || written_count_[row] > kTrackedColumns) {
+    return false;
+  }
+  *columns = written_columns_[row].data();
+  *count = written_count_[row];
+  return true;
 }
 
 void Program::CheckBlock(const VariableBlock& block, const char* what) const {
@@ -251,7 +267,10 @@ void Program::SetConstraintCoefficients(const ConstraintRows& rows, const Variab
   // factorisation, when none of these rows is active).
   if (row_revision_.size() != static_cast<std::size_t>(A_.rows())) return TouchMatrix();  // resized behind our back
   matrix_revision_ = NextRevision();
-  for (int k = rows.start; k < rows.start + rows.size; ++k) row_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
+  for (int k = rows.start; k < rows.start + rows.size; ++k) {
+    row_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
+    row_whole_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
+  }
 }
 
 void Program::SetConstraintCoefficient(const ConstraintRows& rows, int row, const VariableBlock& block, int index,
@@ -264,10 +283,25 @@ void Program::SetConstraintCoefficient(const ConstraintRows& rows, int row, cons
                                 "' is outside them, or the value is not finite");
   }
   const int k = rows.start + row;
-  A_(k, block.start + index) = value;
+  const int column = block.start + index;
+  A_(k, column) = value;
   if (row_revision_.size() != static_cast<std::size_t>(A_.rows())) return TouchMatrix();  // resized behind our back
   matrix_revision_ = NextRevision();
   row_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
+  // The column joins the row's written ones, kept ascending.
+  int& count = written_count_[static_cast<std::size_t>(k)];
+  if (count > kTrackedColumns) return;
+  std::array<int, kTrackedColumns>& written = written_columns_[static_cast<std::size_t>(k)];
+  int at = 0;
+  while (at < count && written[static_cast<std::size_t>(at)] < column) ++at;
+  if (at < count && written[static_cast<std::size_t>(at)] == column) return;
+  if (count == kTrackedColumns) {
+    count = kTrackedColumns + 1;
+    return;
+  }
+  for (int i = count; i > at; --i) written[static_cast<std::size_t>(i)] = written[static_cast<std::size_t>(i - 1)];
+  written[static_cast<std::size_t>(at)] = column;
+  ++count;
 }
 
 void Program::SetInitialGuess(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& x0) {

@@ -31,6 +31,7 @@
 // them again for every change rather than keeping the reference across solves.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -203,6 +204,16 @@ class Program {
   /// changes only its rows): a solver that saw revision r needs to look again only at rows whose
   /// revision is above r, as long as whole_matrix_revision() is still what it saw.
   std::uint64_t row_revision(int k) const { return row_revision_[static_cast<std::size_t>(k)]; }
+  /// Single coefficients tracked per row (SetConstraintCoefficient) before the row counts as
+  /// written anywhere.
+  static constexpr int kTrackedColumns = 8;
+  /// Where row k's coefficients may have changed since matrix revision `seen`: false when
+  /// anywhere (the matrix changed as a whole, SetConstraintCoefficients wrote the row, or
+  /// SetConstraintCoefficient wrote it at more than kTrackedColumns columns); otherwise true with
+  /// the columns, ascending, at which SetConstraintCoefficient wrote it. A reader that knows the
+  /// row's nonzeros at `seen` then finds all of today's among those and these, without reading
+  /// the row's other coefficients (a column-major A strides by its height along a row).
+  bool WrittenColumns(int k, std::uint64_t seen, const int** columns, int* count) const;
 
  private:
   void CheckBlock(const VariableBlock& block, const char* what) const;
@@ -225,6 +236,11 @@ class Program {
   std::uint64_t matrix_revision_ = 0;
   std::uint64_t whole_matrix_revision_ = 0;
   std::vector<std::uint64_t> row_revision_;  // per row of A
+  // Per row of A: the revision at which it was last written other than by single coefficients,
+  // and the columns single coefficients were written at since (count kTrackedColumns + 1: more).
+  std::vector<std::uint64_t> row_whole_revision_;
+  std::vector<std::array<int, kTrackedColumns>> written_columns_;
+  std::vector<int> written_count_;
 };
 
 /// A bound value with +-1e20 and beyond mapped to +-inf.

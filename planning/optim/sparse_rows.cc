@@ -1,6 +1,7 @@
 #include "planning/optim/sparse_rows.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace stairplan::optim {
@@ -51,6 +52,58 @@ bool SparseRows::FillRow(const Eigen::MatrixXd& a, int k, int limit) {
 
 void SparseRows::UpdateRow(const Eigen::MatrixXd& a, int k) {
   if (!FillRow(a, k, start_[static_cast<std::size_t>(k) + 1])) Assign(a);
+}
+
+void SparseRows::UpdateRows(const Eigen::MatrixXd& a, const std::vector<int>& rows) {
+  for (const int k : rows) end_[static_cast<std::size_t>(k)] = start_[static_cast<std::size_t>(k)];
+  for (int i = 0; i < n_; ++i) {
+    const double* column = a.col(i).data();
+    for (const int k : rows) {
+      const double v = column[k];
+      if (v == 0.0) continue;
+      int& e = end_[static_cast<std::size_t>(k)];
+      if (e == start_[static_cast<std::size_t>(k) + 1]) return Assign(a);  // outgrew its slots
+      column_[static_cast<std::size_t>(e)] = i;
+      value_[static_cast<std::size_t>(e)] = v;
+      ++e;
+    }
+  }
+}
+
+bool SparseRows::UpdateRowAt(const Eigen::MatrixXd& a, int k, const int* columns, int count) {
+  // The union of the two ascending lists, read from `a`, into a small buffer first: the row's
+  // slots are overwritten from their start.
+  constexpr int kMerged = 32;
+  const std::size_t row = static_cast<std::size_t>(k);
+  const int first = start_[row], present = end_[row] - first;
+  if (present + count > kMerged) return false;
+  std::array<int, kMerged> merged_column;
+  std::array<double, kMerged> merged_value;
+  int merged = 0, i = first, j = 0;
+  while (i < end_[row] || j < count) {
+    int column;
+    if (j == count || (i < end_[row] && column_[static_cast<std::size_t>(i)] < columns[j])) {
+      column = column_[static_cast<std::size_t>(i++)];
+    } else {
+      column = columns[j++];
+      if (i < end_[row] && column_[static_cast<std::size_t>(i)] == column) ++i;
+    }
+    const double v = a(k, column);
+    if (v == 0.0) continue;
+    merged_column[static_cast<std::size_t>(merged)] = column;
+    merged_value[static_cast<std::size_t>(merged)] = v;
+    ++merged;
+  }
+  if (first + merged > start_[row + 1]) {
+    Assign(a);  // outgrew its slots
+    return true;
+  }
+  for (int e = 0; e < merged; ++e) {
+    column_[static_cast<std::size_t>(first + e)] = merged_column[static_cast<std::size_t>(e)];
+    value_[static_cast<std::size_t>(first + e)] = merged_value[static_cast<std::size_t>(e)];
+  }
+  end_[row] = first + merged;
+  return true;
 }
 
 double SparseRows::RowNorm(int k) const {

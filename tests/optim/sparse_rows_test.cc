@@ -1,10 +1,15 @@
 // SparseRows, the active-set solver's copy of A's nonzeros: its products equal the dense ones,
 // and it follows row updates, in place when the new nonzeros fit the row's slots (its nonzeros
-// again and four spare) and by a rebuild when they do not.
+// again and four spare) and by a rebuild when they do not, read whole or only at the columns the
+// program says were written.
 #include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <random>
 
 #include <Eigen/Core>
 
+#include "planning/optim/program.h"
 #include "planning/optim/sparse_rows.h"
 
 using stairplan::optim::SparseRows;
@@ -25,7 +30,8 @@ Eigen::MatrixXd Example() {
 
 // Every product of `rows` against the dense `a`.
 void CheckAgainstDense(const SparseRows& rows, const Eigen::MatrixXd& a) {
-  const Eigen::VectorXd x = (Eigen::VectorXd(5) << 0.3, -1.2, 2.0, 0.7, -0.4).finished();
+  Eigen::VectorXd x(5);
+  x << 0.3, -1.2, 2.0, 0.7, -0.4;
   Eigen::VectorXd ax(7);
   rows.Multiply(x, &ax);
   CHECK((ax - a * x).lpNorm<Eigen::Infinity>() < 1e-14);
@@ -104,4 +110,65 @@ TEST_CASE("a row that outgrows its slots rebuilds the copy", "[sparse_rows]") {
   Eigen::VectorXd ax(3);
   rows.Multiply(x, &ax);
   CHECK((ax - a * x).lpNorm<Eigen::Infinity>() < 1e-14);
+}
+
+TEST_CASE("rows read only where the program says they were written follow the dense matrix", "[sparse_rows]") {
+  // A consumer as the active-set solver is one: after each batch of writes it looks again only at
+  // the rows whose revision moved, at the columns WrittenColumns names (and the nonzeros it knew)
+  // where it can, and reads the row whole where it cannot. Random single writes (zeros, new
+  // columns, more than kTrackedColumns in a row) and block writes, fixed seed.
+  using stairplan::optim::ConstraintRows;
+  using stairplan::optim::Program;
+  using stairplan::optim::VariableBlock;
+  constexpr int kN = 30, kM = 12;
+  Program p;
+  const VariableBlock x = p.AddVariables("x", kN);
+  Eigen::MatrixXd initial = Eigen::MatrixXd::Zero(kM, kN);
+  for (int k = 0; k < kM; ++k) initial(k, (3 * k) % kN) = 1.0 + k;
+  const Eigen::VectorXd lower = Eigen::VectorXd::Constant(kM, -1.0), upper = -lower;
+  const ConstraintRows rows = p.AddLinearConstraint({{x, initial}}, lower, upper, "rows");
+  SparseRows copy;
+  copy.Resize(kM, kN);
+  copy.Assign(p.constraint_matrix());
+  std::uint64_t seen = p.matrix_revision();
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<int> row_of(0, kM - 1), column_of(0, kN - 1), kind(0, 9);
+  std::uniform_real_distribution<double> value(-2.0, 2.0);
+  int partial = 0, whole = 0;
+  for (int batch = 0; batch < 300; ++batch) {
+    for (int w = 0; w < 6; ++w) {
+      const int k = row_of(rng);
+      const int roll = kind(rng);
+      if (roll == 0) {
+        Eigen::MatrixXd block = Eigen::MatrixXd::Zero(1, 4);
+        block(0, 0) = value(rng);
+        block(0, 2) = value(rng);
+        p.SetConstraintCoefficients({"one", k, 1}, {"few", 5, 4}, block);
+      } else {
+        // Mostly within a few columns per row, sometimes anywhere; a fifth of them zeros.
+        const int column = roll < 8 ? (k + 7 * (roll % 3)) % kN : column_of(rng);
+        p.SetConstraintCoefficient(rows, k, x, column, roll % 5 == 0 ? 0.0 : value(rng));
+      }
+    }
+    const Eigen::MatrixXd& a = p.constraint_matrix();
+    for (int k = 0; k < kM; ++k) {
+      if (p.row_revision(k) <= seen) continue;
+      const int* columns = nullptr;
+      int count = 0;
+      if (p.WrittenColumns(k, seen, &columns, &count) && copy.UpdateRowAt(a, k, columns, count)) {
+        ++partial;
+        for (int i = 1; i < count; ++i) CHECK(columns[i - 1] < columns[i]);
+      } else {
+        ++whole;
+        copy.UpdateRow(a, k);
+      }
+    }
+    seen = p.matrix_revision();
+    const Eigen::VectorXd probe = Eigen::VectorXd::LinSpaced(kN, -1.0, 2.0);
+    for (int k = 0; k < kM; ++k) REQUIRE(copy.RowDot(k, probe) == Approx(a.row(k).dot(probe)).margin(1e-13));
+    REQUIRE(copy.RowNorm(0) == Approx(a.row(0).norm()).margin(1e-13));
+  }
+  // Both ways were taken: rows read at their written columns, and rows read whole.
+  CHECK(partial > 100);
+  CHECK(whole > 20);
 }
