@@ -362,19 +362,22 @@ void BodyQp::Solve(double time_limit_s, optim::SolveResult* result) {
 void BodyQp::ShiftWarmStart(const optim::ActiveSet& last, int knots) {
   const int n = knots_;
   knots = std::min(knots, n - 1);
-  if (knots <= 0 || lateral_apart_) return;
+  if (knots <= 0) return;
   if (last.rows.size() != static_cast<std::size_t>(program_.num_rows()) ||
       last.bounds.size() != static_cast<std::size_t>(program_.num_variables())) {
     return;
   }
   shifted_ = last;
-  for (const optim::VariableBlock* block : {&z_, &pitch_, &shift_, &lateral_, &relax_, &give_, &excursion_}) {
+  // The sideways shift's own QP, when apart, keeps its solver's last active set.
+  if (!lateral_apart_) {
+    ShiftKnots(&shifted_.bounds, lateral_.start, lateral_.size, 1, knots);
+    ShiftKnots(&shifted_.rows, lateral_accel_rows_.start, lateral_accel_rows_.size, 1, knots);
+  }
+  for (const optim::VariableBlock* block : {&z_, &pitch_, &shift_, &relax_, &retreat_, &give_, &excursion_}) {
     ShiftKnots(&shifted_.bounds, block->start, block->size, 1, knots);
   }
-  ShiftKnots(&shifted_.bounds, retreat_.start, retreat_.size, 1, knots);
   ShiftKnots(&shifted_.rows, hip_rows_.start, hip_rows_.size, groups_, knots);
   for (int f = 0; f < 3; ++f) ShiftKnots(&shifted_.rows, accel_rows_.start + f * (n - 2), n - 2, 1, knots);
-  ShiftKnots(&shifted_.rows, lateral_accel_rows_.start, lateral_accel_rows_.size, 1, knots);
   ShiftKnots(&shifted_.rows, progress_rows_.start, progress_rows_.size, 1, knots);
   ShiftKnots(&shifted_.rows, com_support_.rows.start, com_support_.rows.size, kSupportRows, knots);
   ShiftKnots(&shifted_.rows, zmp_support_.rows.start, zmp_support_.rows.size, kSupportRows, knots);

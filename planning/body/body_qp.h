@@ -173,7 +173,8 @@ class BodyQp {
   /// The next Solve() starts from `last`, an earlier solve's active set, moved `knots` knots
   /// earlier: the horizon has advanced that far since, so what was active at knot k + knots is
   /// what is likely active at knot k now (the last `knots` knots keep their own). Unshifted, a
-  /// stretch of active rows one knot off is dropped and added back row by row.
+  /// stretch of active rows one knot off is dropped and added back row by row. `last` is of
+  /// program(); the sideways shift's own QP (lateral_apart()) starts where it ended.
   void ShiftWarmStart(const optim::ActiveSet& last, int knots);
   /// The next solve starts cold.
   void ResetWarmStart() {

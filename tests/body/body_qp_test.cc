@@ -63,38 +63,46 @@ void FillFlightInputs(BodyQp* qp, int first) {
 TEST_CASE("a warm start moved with the horizon reaches the cold optimum with fewer changes than the unmoved one",
           "[body][qp]") {
   const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
-  BodyPlannerSettings settings;
-  settings.stability_margin = 0.0;
-  // Three planners over the same flight: one moves its warm start with the horizon, one keeps it
-  // where it was, one solves every cycle cold.
-  BodyQp moved(settings, c, /*stance_rows=*/true), kept(settings, c, true), cold(settings, c, true);
-  const int n = moved.knots();
-  optim::SolveResult rm, rk, rc;
-  int moved_changes = 0, kept_changes = 0;
-  for (int cycle = 0; cycle < 40; ++cycle) {
-    if (cycle > 0) moved.ShiftWarmStart(rm.active_set, 1);
-    cold.ResetWarmStart();
-    for (BodyQp* qp : {&moved, &kept, &cold}) FillFlightInputs(qp, cycle);
-    moved.Solve(optim::kInf, &rm);
-    kept.Solve(optim::kInf, &rk);
-    cold.Solve(optim::kInf, &rc);
-    REQUIRE(rm.solved());
-    REQUIRE(rk.solved());
-    REQUIRE(rc.solved());
-    CHECK((rm.x - rc.x).lpNorm<Eigen::Infinity>() < 1e-8);
-    CHECK((rk.x - rc.x).lpNorm<Eigen::Infinity>() < 1e-8);
-    if (cycle > 0) {
-      moved_changes += rm.info.iterations;
-      kept_changes += rk.info.iterations;
+  // With leg rows (one QP), and without stability or leg rows (the sideways shift apart, whose
+  // own QP is not moved).
+  for (const bool stance_rows : {true, false}) {
+    INFO("stance rows " << stance_rows);
+    BodyPlannerSettings settings;
+    if (stance_rows) settings.stability_margin = 0.0;
+    // Three planners over the same flight: one moves its warm start with the horizon, one keeps
+    // it where it was, one solves every cycle cold.
+    BodyQp moved(settings, c, stance_rows), kept(settings, c, stance_rows), cold(settings, c, stance_rows);
+    REQUIRE(moved.lateral_apart() == !stance_rows);
+    const int n = moved.knots();
+    optim::SolveResult rm, rk, rc;
+    int moved_changes = 0, kept_changes = 0;
+    for (int cycle = 0; cycle < 40; ++cycle) {
+      if (cycle > 0) moved.ShiftWarmStart(rm.active_set, 1);
+      cold.ResetWarmStart();
+      for (BodyQp* qp : {&moved, &kept, &cold}) FillFlightInputs(qp, cycle);
+      moved.Solve(optim::kInf, &rm);
+      kept.Solve(optim::kInf, &rk);
+      cold.Solve(optim::kInf, &rc);
+      REQUIRE(rm.solved());
+      REQUIRE(rk.solved());
+      REQUIRE(rc.solved());
+      CHECK((rm.x - rc.x).lpNorm<Eigen::Infinity>() < 1e-8);
+      CHECK((rk.x - rc.x).lpNorm<Eigen::Infinity>() < 1e-8);
+      CHECK((moved.LateralOf(rm) - cold.LateralOf(rc)).lpNorm<Eigen::Infinity>() < 1e-8);
+      if (cycle > 0) {
+        moved_changes += rm.info.iterations;
+        kept_changes += rk.info.iterations;
+      }
     }
+    // The bounds bind over stretches of knots (pitch, shift, the hips at the step), so there is
+    // an active set to carry: what was active at knot k + 1 is active at knot k now.
+    int active = 0;
+    for (const optim::ActiveSide side : rc.active_set.bounds) active += side != 0;
+    for (const optim::ActiveSide side : rc.active_set.rows) active += side != 0;
+    CHECK(active > n / 2);
+    INFO("changes over 39 cycles: moved " << moved_changes << ", kept " << kept_changes);
+    CHECK(2 * moved_changes < kept_changes);
   }
-  // The bounds bind over stretches of knots (pitch, shift, sideways, the hips at the step), so
-  // there is an active set to carry: what was active at knot k + 1 is active at knot k now.
-  int active = 0;
-  for (const optim::ActiveSide side : rc.active_set.bounds) active += side != 0;
-  CHECK(active > n);
-  INFO("changes over 39 cycles: moved " << moved_changes << ", kept " << kept_changes);
-  CHECK(2 * moved_changes < kept_changes);
 }
 
 TEST_CASE("the sideways shift solved apart gives the joint QP's plan", "[body][qp]") {
