@@ -28,6 +28,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -178,6 +179,7 @@ class ActiveSetQpSolver final : public Solver {
   Eigen::VectorXd lower_, upper_;
   std::vector<int> bounded_, equalities_;
   std::vector<int> changed_rows_;  // rows whose coefficients changed since the last solve
+  std::vector<std::pair<int, ActiveSide>> readd_;  // changed active rows and their sides
 
   // Vectors of size n or m.
   Eigen::VectorXd x_, g_eff_, x_prox_, d_, z_, r_, tmp_, hx_;

@@ -334,6 +334,38 @@ TEST_CASE("changed constraint rows re-solve from the previous active set", "[act
   CHECK(warm_iterations < cold_iterations);
 }
 
+TEST_CASE("active rows whose coefficients barely change stay active: no active-set change", "[active_set]") {
+  // A planner that re-linearises every cycle rewrites its active rows with nearly the same
+  // coefficients. They leave the factorisation (it depends on them) and must come straight back:
+  // the start is then the optimum again. Waiting for the iteration to find them violated costs an
+  // add each, and the restart without them drops neighbours whose multipliers needed them.
+  BodyQpExample e = MakeBodyQpExample(40);
+  UpdateBodyQpExample(5, &e);
+  ActiveSetQpSolver solver;
+  SolveResult first, again;
+  solver.Solve(e.program, &first);
+  REQUIRE(first.status == SolveStatus::kSolved);
+  int changed = 0;
+  for (const ConstraintRows& rows : {e.hip_heights, e.rates}) {
+    for (int r = 0; r < rows.size && changed < 3; ++r) {
+      if (first.active_set.rows[static_cast<std::size_t>(rows.start + r)] == 0) continue;
+      for (const VariableBlock& block : {e.height, e.pitch}) {
+        for (int k = 0; k < e.knots; ++k) {
+          const double c = e.program.constraint_matrix()(rows.start + r, block.start + k);
+          if (c != 0.0) e.program.SetConstraintCoefficient(rows, r, block, k, c * (1.0 + 1e-9));
+        }
+      }
+      ++changed;
+    }
+  }
+  REQUIRE(changed == 3);
+  solver.Solve(e.program, &again);
+  REQUIRE(again.status == SolveStatus::kSolved);
+  CHECK(again.info.iterations == 0);
+  CHECK(again.active_set.rows == first.active_set.rows);
+  CHECK((again.x - first.x).lpNorm<Eigen::Infinity>() < 1e-6);
+}
+
 TEST_CASE("the automatic choice sends QPs to the active-set solver and NLPs to Ipopt", "[active_set]") {
   Program p;
   const VariableBlock v = p.AddVariables("v", 1);
