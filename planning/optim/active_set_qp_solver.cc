@@ -124,7 +124,6 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     lower_.resize(n + m);
     upper_.resize(n + m);
     bounded_.reserve(static_cast<std::size_t>(n + m));
-    changed_rows_.reserve(static_cast<std::size_t>(m));
     readd_.reserve(static_cast<std::size_t>(n));
     equalities_.reserve(static_cast<std::size_t>(n + m));
     llt_ = Eigen::LLT<Eigen::MatrixXd>(n);
@@ -143,22 +142,18 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
       // When many active rows changed, refactorising from the active set (the warm start) is
       // cheaper than dropping them one by one.
       int changed_active = 0;
-      // Rows written at a few known columns are read there; the others whole, column by column.
-      changed_rows_.clear();
+      // Rows written at a few known columns are read there, the others whole.
       const Eigen::MatrixXd& a = program.constraint_matrix();
       for (int k = 0; k < m; ++k) {
         if (program.row_revision(k) <= matrix_revision_) continue;
         if (state_[k] != 0) ++changed_active;
         const int* columns = nullptr;
         int count = 0;
-        if (program.WrittenColumns(k, matrix_revision_, &columns, &count) && rows_.UpdateRowAt(a, k, columns, count)) {
-          row_norm_[k] = std::max(rows_.RowNorm(k), 1e-300);
-        } else {
-          changed_rows_.push_back(k);
+        if (!program.WrittenColumns(k, matrix_revision_, &columns, &count) || !rows_.UpdateRowAt(a, k, columns, count)) {
+          rows_.UpdateRow(a, k);
         }
+        row_norm_[k] = std::max(rows_.RowNorm(k), 1e-300);
       }
-      rows_.UpdateRows(a, changed_rows_);
-      for (const int k : changed_rows_) row_norm_[k] = std::max(rows_.RowNorm(k), 1e-300);
       if (changed_active > 0 && (!factorization_valid_ || 4 * changed_active > q_)) {
         factorization_valid_ = false;
       } else if (changed_active > 0) {

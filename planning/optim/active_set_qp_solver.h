@@ -178,7 +178,6 @@ class ActiveSetQpSolver final : public Solver {
   // bound, and the equalities, in index order.
   Eigen::VectorXd lower_, upper_;
   std::vector<int> bounded_, equalities_;
-  std::vector<int> changed_rows_;  // rows whose coefficients changed since the last solve
   std::vector<std::pair<int, ActiveSide>> readd_;  // changed active rows and their sides
 
   // Vectors of size n or m.

@@ -54,22 +54,6 @@ void SparseRows::UpdateRow(const Eigen::MatrixXd& a, int k) {
   if (!FillRow(a, k, start_[static_cast<std::size_t>(k) + 1])) Assign(a);
 }
 
-void SparseRows::UpdateRows(const Eigen::MatrixXd& a, const std::vector<int>& rows) {
-  for (const int k : rows) end_[static_cast<std::size_t>(k)] = start_[static_cast<std::size_t>(k)];
-  for (int i = 0; i < n_; ++i) {
-    const double* column = a.col(i).data();
-    for (const int k : rows) {
-      const double v = column[k];
-      if (v == 0.0) continue;
-      int& e = end_[static_cast<std::size_t>(k)];
-      if (e == start_[static_cast<std::size_t>(k) + 1]) return Assign(a);  // outgrew its slots
-      column_[static_cast<std::size_t>(e)] = i;
-      value_[static_cast<std::size_t>(e)] = v;
-      ++e;
-    }
-  }
-}
-
 bool SparseRows::UpdateRowAt(const Eigen::MatrixXd& a, int k, const int* columns, int count) {
   // The union of the two ascending lists, read from `a`, into a small buffer first: the row's
   // slots are overwritten from their start.

@@ -28,10 +28,6 @@ class SparseRows {
   /// Takes row k of `a` again, in place when its nonzeros fit the row's slots; rebuilds the copy
   /// from `a` when they do not.
   void UpdateRow(const Eigen::MatrixXd& a, int k);
-  /// Takes the rows `rows` (ascending) of `a` again, as UpdateRow() each, but column by column:
-  /// `a` is column-major, so one row at a time reads it with a stride of its height, a cache miss
-  /// per coefficient, where a column's rows lie together.
-  void UpdateRows(const Eigen::MatrixXd& a, const std::vector<int>& rows);
   /// Takes row k of `a` again where it can have nonzeros: the row's present ones and `columns`
   /// (`count` of them, ascending; Program::WrittenColumns). False, with the row untouched, when
   /// they are too many to merge here (then UpdateRow()).
