@@ -27,8 +27,11 @@ Bulge BulgeOf(double before, double after) {
   return {std::max({0.0, before, after}), std::max({0.0, -before, -after})};
 }
 
-// Normalises row r (its coefficients to unit length); an all-zero row is left free.
+// Normalises row r (its coefficients to unit length); an all-zero row is left free. Margins and
+// a swing's bulge wider than the joint's or the extension's whole range leave lo above hi: the row
+// then asks for the middle of what they leave, the point farthest from both limits.
 void SetRow(StanceLegRows* rows, int r, const Eigen::Vector4d& a, double lo, double hi) {
+  if (lo > hi) lo = hi = 0.5 * (lo + hi);
   const double norm = a.norm();
   auto& row_a = rows->a[static_cast<std::size_t>(r)];
   if (!(norm > 1e-12)) {

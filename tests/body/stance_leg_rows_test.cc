@@ -134,3 +134,28 @@ TEST_CASE("a moving foot's bend tightens each row by what it moves the joint or 
   }
   CHECK(checked > 100);
 }
+
+TEST_CASE("margins wider than a joint's range make the row ask for its middle, not an empty interval", "[body][rows]") {
+  // A swing's bulge plus the joint margin can exceed a small robot's joint range: the bounds
+  // would cross, and the QP refuses crossed bounds (it threw, on Unitree A1 climbing).
+  const RobotModel& robot = BuiltinRobot();
+  const RobotKinematics kinematics(robot);
+  RobotWorkspace ws(kinematics);
+  const LegKinematics& kin = kinematics.leg(0);
+  BodyPose pose;
+  const Eigen::Vector3d foot_W = pose.ToIsometry() * kin.FootPosition(kin.nominal(), ws.leg(0));
+  StanceLegMargins wide;
+  wide.joint = 10.0;  // [rad], beyond any range
+  wide.reach = 10.0;  // [m]
+  const StanceLegRows rows = LinearizeStanceLeg(kin, ws.leg(0), foot_W, pose, kin.nominal(), wide);
+  for (std::size_t j = 0; j < rows.lo.size(); ++j) {
+    INFO("row " << j);
+    REQUIRE(std::isfinite(rows.lo[j]));
+    CHECK(rows.lo[j] == rows.hi[j]);
+  }
+  // The joints' rows ask for the middle of the range (relative to the nominal joints, per unit
+  // of the normalised row), the same for any margin beyond it.
+  wide.joint = 20.0;
+  const StanceLegRows wider = LinearizeStanceLeg(kin, ws.leg(0), foot_W, pose, kin.nominal(), wide);
+  for (std::size_t j = 0; j < 3; ++j) CHECK(wider.lo[j] == Approx(rows.lo[j]).margin(1e-12));
+}
