@@ -172,7 +172,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
   for (int k = 0; k < n; ++k) {
     const double t = now + k * dt;
     const LegPhase* knot_phases = &phases_[static_cast<std::size_t>(k * kBodyLegs)];
-    const Eigen::Vector2d xy = schedule_.NeutralBodyXY(knot_phases);
+    const Eigen::Vector2d xy = schedule_.NeutralBodyXY(t);
     neutral_x_[k] = xy.x();
     neutral_y_[k] = xy.y();
     // The trust region's centre: the previous plan (the state before there is one).

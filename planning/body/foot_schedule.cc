@@ -63,6 +63,7 @@ FootSchedule::FootSchedule(const RobotModel& robot, const Plan& plan, const Stai
     end_time_ = std::max(end_time_, f.t_touchdown);
   }
   if (!plan.body.empty()) end_time_ = std::max(end_time_, plan.body.back().t);
+  PrepareNeutral();
 }
 
 LegPhase FootSchedule::Phase(int leg, double t) const {
@@ -98,13 +99,60 @@ Eigen::Vector3d FootSchedule::SwingFoot(int leg, const LegPhase& phase) const {
   return legs_[static_cast<std::size_t>(leg)].swings[static_cast<std::size_t>(phase.swing)].At(phase.progress);
 }
 
-template <typename FootAt>
-Eigen::Vector2d FootSchedule::NeutralBodyXYOf(const FootAt& foot_W) const {
+Eigen::Vector2d FootSchedule::FeetCentreXY(double t) const {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   for (int l = 0; l < leg_count(); ++l) {
-    sum += foot_W(l).template head<2>() - legs_[static_cast<std::size_t>(l)].offset_W;
+    sum += Phase(l, t).foot_W.head<2>() - legs_[static_cast<std::size_t>(l)].offset_W;
   }
   return sum / static_cast<double>(std::max(1, leg_count()));
+}
+
+Eigen::Vector2d FootSchedule::NeutralBodyXY(double t) const {
+  if (!(smoothing_window_ > 0.0)) return FeetCentreXY(t);
+  const double half = 0.5 * smoothing_window_;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (int l = 0; l < leg_count(); ++l) {
+    sum += (FootIntegral(l, t + half) - FootIntegral(l, t - half)) / smoothing_window_ - legs_[static_cast<std::size_t>(l)].offset_W;
+  }
+  return sum / static_cast<double>(std::max(1, leg_count()));
+}
+
+Eigen::Vector2d FootSchedule::FootholdXY(int leg, std::size_t j) const {
+  const int f = legs_[static_cast<std::size_t>(leg)].footholds[j];
+  return footholds_[static_cast<std::size_t>(f)].contact_W.head<2>();
+}
+
+Eigen::Vector2d FootSchedule::FootIntegral(int leg, double t) const {
+  const LegTimeline& tl = legs_[static_cast<std::size_t>(leg)];
+  const auto j = static_cast<std::size_t>(std::upper_bound(tl.liftoffs.begin(), tl.liftoffs.end(), t) - tl.liftoffs.begin());
+  if (j > 0 && t < tl.touchdowns[j - 1]) {  // in swing j - 1: linear from one foothold to the next
+    const double tau = t - tl.liftoffs[j - 1], span = tl.touchdowns[j - 1] - tl.liftoffs[j - 1];
+    const Eigen::Vector2d a = FootholdXY(leg, j - 1);
+    return tl.integral_at_liftoff[j - 1] + tau * a + 0.5 * tau * tau / span * (FootholdXY(leg, j) - a);
+  }
+  if (j == 0) return t * FootholdXY(leg, 0);
+  return tl.integral_at_touchdown[j - 1] + (t - tl.touchdowns[j - 1]) * FootholdXY(leg, j);
+}
+
+void FootSchedule::PrepareNeutral() {
+  std::vector<double> swings;
+  for (int l = 0; l < leg_count(); ++l) {
+    LegTimeline& tl = legs_[static_cast<std::size_t>(l)];
+    const std::size_t count = tl.liftoffs.size();
+    tl.integral_at_liftoff.resize(count);
+    tl.integral_at_touchdown.resize(count);
+    Eigen::Vector2d at = count == 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(tl.liftoffs[0] * FootholdXY(l, 0));
+    for (std::size_t j = 0; j < count; ++j) {
+      if (j > 0) at += (tl.liftoffs[j] - tl.touchdowns[j - 1]) * FootholdXY(l, j);
+      tl.integral_at_liftoff[j] = at;
+      at += 0.5 * (tl.touchdowns[j] - tl.liftoffs[j]) * (FootholdXY(l, j) + FootholdXY(l, j + 1));
+      tl.integral_at_touchdown[j] = at;
+      swings.push_back(tl.touchdowns[j] - tl.liftoffs[j]);
+    }
+  }
+  if (swings.empty()) return;
+  std::nth_element(swings.begin(), swings.begin() + static_cast<std::ptrdiff_t>(swings.size() / 2), swings.end());
+  smoothing_window_ = swings[swings.size() / 2];
 }
 
 template <typename FootAt>
@@ -125,16 +173,8 @@ double FootSchedule::FeetPitchOf(const FootAt& foot_W) const {
   return -std::atan2(front_z / fronts - hind_z / hinds, run);
 }
 
-Eigen::Vector2d FootSchedule::NeutralBodyXY(double t) const {
-  return NeutralBodyXYOf([&](int l) { return Phase(l, t).foot_W; });
-}
-
 double FootSchedule::FeetPitch(double t) const {
   return FeetPitchOf([&](int l) { return Phase(l, t).foot_W; });
-}
-
-Eigen::Vector2d FootSchedule::NeutralBodyXY(const LegPhase* phases) const {
-  return NeutralBodyXYOf([&](int l) -> const Eigen::Vector3d& { return phases[l].foot_W; });
 }
 
 double FootSchedule::FeetPitch(const LegPhase* phases) const {

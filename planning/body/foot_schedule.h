@@ -65,16 +65,23 @@ class FootSchedule {
   /// Where leg `leg`'s foot contact point is in `phase` (from Phase()): on its foothold in stance,
   /// along its swing trajectory in swing. Allocation-free.
   Eigen::Vector3d SwingFoot(int leg, const LegPhase& phase) const;
-  /// The body's neutral horizontal position at t: the mean of (foot - the leg's neutral offset).
+  /// The body above the feet at t: the mean of (foot - the leg's neutral offset), feet in swing
+  /// on the straight line between their footholds. It moves only while a foot swings, so its
+  /// velocity steps at every liftoff and touchdown.
+  Eigen::Vector2d FeetCentreXY(double t) const;
+  /// The body's neutral horizontal position at t: FeetCentreXY averaged over smoothing_window()
+  /// centred at t. Each swing's ramp becomes an S-curve: the velocity steps become accelerations
+  /// of the ramp's velocity over the window (0.3 m/s^2 on the default crawl), and the neutral body
+  /// stays within an eighth of the window's travel of the feet centre. The body planner's weight
+  /// shifts are measured from it, so their acceleration limits bound the body's.
   Eigen::Vector2d NeutralBodyXY(double t) const;
+  /// The median swing duration [s]; 0 without swings.
+  double smoothing_window() const { return smoothing_window_; }
   /// The pitch of the line from the hind feet to the front feet at t (nose-up negative).
   double FeetPitch(double t) const;
-  ///@{
-  /// The same two from the legs' phases at one instant (leg_count() of them, in leg order, as
-  /// Phase() gives them), for callers that have the phases already.
-  Eigen::Vector2d NeutralBodyXY(const LegPhase* phases) const;
+  /// The same from the legs' phases at one instant (leg_count() of them, in leg order, as Phase()
+  /// gives them), for callers that have the phases already.
   double FeetPitch(const LegPhase* phases) const;
-  ///@}
   /// The leg's neutral foot offset from the body origin in the world, horizontal [m].
   const Eigen::Vector2d& NeutralOffset(int leg) const { return legs_[static_cast<std::size_t>(leg)].offset_W; }
   /// True for a front leg.
@@ -88,16 +95,23 @@ class FootSchedule {
     std::vector<double> liftoffs;   // liftoffs[j]: leaving footholds[j]
     std::vector<double> touchdowns; // touchdowns[j]: arriving on footholds[j + 1]
     std::vector<SwingTrajectory> swings;  // swings[j]: from footholds[j] to footholds[j + 1]
+    // The integral of the foot's horizontal contact point over time from t = 0 (feet in swing on
+    // the straight line), at each liftoff and touchdown: FootIntegral() reads it.
+    std::vector<Eigen::Vector2d> integral_at_liftoff, integral_at_touchdown;
   };
-  // The two above over the feet foot_W(leg) gives.
-  template <typename FootAt>
-  Eigen::Vector2d NeutralBodyXYOf(const FootAt& foot_W) const;
+  // Fills the legs' integrals and smoothing_window_ once the footsteps are read.
+  void PrepareNeutral();
+  // The integral from 0 to t of leg `leg`'s horizontal contact point (negative before 0).
+  Eigen::Vector2d FootIntegral(int leg, double t) const;
+  Eigen::Vector2d FootholdXY(int leg, std::size_t j) const;
+  // FeetPitch over the feet foot_W(leg) gives.
   template <typename FootAt>
   double FeetPitchOf(const FootAt& foot_W) const;
 
   std::vector<Foothold> footholds_;
   std::vector<LegTimeline> legs_;
   double end_time_ = 0.0;
+  double smoothing_window_ = 0.0;
   double yaw_ = 0.0;
   double heading_ = 1.0;
 };

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "kinematics/builtin_robot.h"
+#include <algorithm>
 #include <limits>
 
 #include "planning/body/foot_schedule.h"
@@ -25,6 +26,31 @@ Plan OneStep(const RobotModel& robot) {
   step.from_W = plan.initial_feet_W[0];
   step.position_W = step.from_W + Eigen::Vector3d(0.2, 0.0, 0.1);
   plan.footsteps.push_back(step);
+  return plan;
+}
+
+// A crawl on flat ground: `cycles` times each leg in the paper's order (RH, LH, RF, LF) steps
+// 0.2 m forward in a 0.45 s swing, each swing followed by 0.6 s with four feet down.
+Plan FlatCrawl(const RobotModel& robot, int cycles) {
+  Plan plan = OneStep(robot);
+  plan.footsteps.clear();
+  std::vector<Eigen::Vector3d> feet = plan.initial_feet_W;
+  double t = 0.5;
+  for (int c = 0; c < cycles; ++c) {
+    for (const char* name : {"RH", "LH", "RF", "LF"}) {
+      const auto l = static_cast<std::size_t>(
+          std::find(plan.legs.begin(), plan.legs.end(), name) - plan.legs.begin());
+      Footstep step;
+      step.leg = name;
+      step.t_liftoff = t;
+      step.t_touchdown = t + 0.45;
+      step.from_W = feet[l];
+      feet[l].x() += 0.2;
+      step.position_W = feet[l];
+      plan.footsteps.push_back(step);
+      t += 1.05;
+    }
+  }
   return plan;
 }
 
@@ -57,13 +83,17 @@ TEST_CASE("a leg stands, swings with interpolated foot, then stands on its new f
   for (int l = 1; l < 4; ++l) CHECK(schedule.Phase(l, 1.25).stance);
 }
 
-TEST_CASE("the neutral body sits over the feet and the feet's slope is their pitch", "[body][schedule]") {
+TEST_CASE("the feet centre sits over the feet and the feet's slope is their pitch", "[body][schedule]") {
   const RobotModel& robot = BuiltinRobot();
   const Plan plan = OneStep(robot);
   const FootSchedule schedule(robot, plan);
-  CHECK(schedule.NeutralBodyXY(0.0).norm() < 1e-12);
+  CHECK(schedule.FeetCentreXY(0.0).norm() < 1e-12);
   // After the step the LF foot is 0.2 m ahead: the body moves a quarter of it.
-  CHECK(schedule.NeutralBodyXY(2.0).x() == Approx(0.05));
+  CHECK(schedule.FeetCentreXY(2.0).x() == Approx(0.05));
+  // Half a swing away from the swing the neutral body is the feet centre.
+  CHECK(schedule.smoothing_window() == Approx(0.5));
+  CHECK(schedule.NeutralBodyXY(0.7).norm() < 1e-12);
+  CHECK(schedule.NeutralBodyXY(1.8).x() == Approx(0.05));
   CHECK(schedule.FeetPitch(0.0) == Approx(0.0).margin(1e-12));
   // One front foot 0.1 m higher over the body length (+0.1 m): front mean +0.05 m, nose-up negative.
   const double run = 2.0 * robot.legs()[0].hip_B.x() + 0.1;
@@ -106,4 +136,35 @@ TEST_CASE("a swinging foot follows its swing trajectory: the footstep's apex, or
   const FootSchedule derived(robot, plan, &stairs);
   const SwingTrajectory from_stairs(plan.footsteps[0].from_W, plan.footsteps[0].position_W, stairs);
   CHECK(derived.SwingFoot(0, derived.Phase(0, 1.25)).z() == Approx(from_stairs.apex_z()));
+}
+
+TEST_CASE("the neutral body is the feet centre averaged over a swing: smooth, and near the feet", "[body][schedule]") {
+  const RobotModel& robot = BuiltinRobot();
+  const FootSchedule schedule(robot, FlatCrawl(robot, 3));
+  REQUIRE(schedule.smoothing_window() == Approx(0.45));
+  const double window = schedule.smoothing_window();
+  // The average by the midpoint rule, at times from before the first liftoff to after the end.
+  for (double t = -0.3; t < schedule.end_time() + 1.0; t += 0.37) {
+    constexpr int kSamples = 4000;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (int i = 0; i < kSamples; ++i) mean += schedule.FeetCentreXY(t - 0.5 * window + (i + 0.5) * window / kSamples);
+    mean /= kSamples;
+    INFO("t = " << t);
+    CHECK((schedule.NeutralBodyXY(t) - mean).norm() < 1e-6);
+  }
+  // The feet centre stops and goes: 0.05 m per 0.45 s swing, its velocity v steps at every
+  // liftoff and touchdown. The neutral body accelerates at most v over the window and stays
+  // within v times an eighth of the window of the feet centre.
+  const double dt = 0.025, v = 0.05 / 0.45;
+  double feet_peak = 0.0, neutral_peak = 0.0, apart = 0.0;
+  for (double t = 0.0; t < schedule.end_time(); t += dt) {
+    const auto second = [&](auto f) { return std::abs((f(t + dt) - 2.0 * f(t) + f(t - dt)) / (dt * dt)); };
+    feet_peak = std::max(feet_peak, second([&](double s) { return schedule.FeetCentreXY(s).x(); }));
+    neutral_peak = std::max(neutral_peak, second([&](double s) { return schedule.NeutralBodyXY(s).x(); }));
+    apart = std::max(apart, (schedule.NeutralBodyXY(t) - schedule.FeetCentreXY(t)).norm());
+  }
+  CHECK(feet_peak > 4.0);
+  CHECK(neutral_peak <= v / window * 1.01);
+  CHECK(apart <= v * window / 8.0 * 1.01);
+  CHECK(apart > 0.5 * v * window / 8.0);
 }
