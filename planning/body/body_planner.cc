@@ -147,6 +147,16 @@ BodyState BodyPlanner::StartState() const {
   return s;
 }
 
+BodyState BodyPlanner::StartStateAt(const BodyState& standing) const {
+  BodyState s = StartState();
+  const double h = schedule_.heading();
+  s.com_shift = std::clamp(h * (standing.x - s.x), -settings_.max_shift, settings_.max_shift);
+  s.com_shift_y = std::clamp(h * (standing.y - s.y), -settings_.max_lateral_shift, settings_.max_lateral_shift);
+  s.x += h * s.com_shift;
+  s.y += h * s.com_shift_y;
+  return s;
+}
+
 double BodyPlanner::PreviousAt(const Eigen::VectorXd& values, double t) const {
   const double u = (t - previous_t0_) / settings_.knot_dt;
   const int n = static_cast<int>(values.size());

@@ -25,7 +25,8 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   body.reserve(static_cast<std::size_t>(cycles) + 1);
   plan.body_cycles.clear();
   plan.body_cycles.reserve(static_cast<std::size_t>(cycles) + 1);
-  BodyState state = planner.StartState();
+  // The footstep planner's body starts where the robot stands (its first state).
+  BodyState state = plan.body.empty() ? planner.StartState() : planner.StartStateAt(plan.body.front());
   // Cycles whose next knot had no valid body height under the (conservative, linearised) bounds.
   int conflict_cycles = 0, stale_cycles = 0;
   std::string first_conflict, solver_failure;

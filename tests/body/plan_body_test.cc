@@ -315,3 +315,21 @@ TEST_CASE("with leg rows the built-in robot climbs steep stairs: swing legs keep
   INFO(FirstViolation(result.validation));
   CHECK(result.validation.ok);
 }
+
+TEST_CASE("the body optimisation's plan starts where the robot stands: at the alignment pose", "[body][alignment]") {
+  // Knot 0 is the robot's state: the footstep planner's body stands over the feet of the
+  // alignment stance, not where the feet centre puts the neutral body (2.6 cm apart on the
+  // built-in robot, whose hips are not centred on its body).
+  StairSpec spec;
+  spec.steps = 2;
+  PipelineOptions options;
+  options.body = BodySource::kRecedingHorizonQp;
+  options.start_at_alignment = true;
+  const PipelineResult result = RunPipeline(BuiltinRobot(), Staircase(spec), options);
+  REQUIRE(result.plan.status == PlanStatus::kOk);
+  REQUIRE(result.plan.body_planner == BodyPlannerKind::kRecedingHorizonQp);
+  const AlignmentStance& a = result.approach.alignment;
+  REQUIRE(a.found);
+  CHECK(result.plan.body.front().x == Approx(a.position.x()).margin(0.002));
+  CHECK(result.plan.body.front().y == Approx(a.position.y()).margin(0.002));
+}
