@@ -415,9 +415,15 @@ void BodyPlanner::KeepAccelerationAcrossCycles(const BodyState& state, double no
   // state itself before there is a plan): knot 1 may differ from their straight line by the
   // acceleration limit, as the rows within the horizon ask of every other knot. Without this each
   // cycle may pick a new velocity, and the executed body jumps where a row enters the horizon.
-  if (!has_previous_) return;
   BodyQp& qp = *qp_;
+  if (!has_previous_) {  // at rest
+    qp.straight = {state.z, state.pitch, state.com_shift, state.com_shift_y};
+    return;
+  }
   const double dt = settings_.knot_dt, t = now - dt;
+  qp.straight = {2.0 * state.z - PreviousAt(previous_z_, t), 2.0 * state.pitch - PreviousAt(previous_pitch_, t),
+                 2.0 * state.com_shift - PreviousAt(previous_shift_, t),
+                 2.0 * state.com_shift_y - PreviousAt(previous_lateral_, t)};
   const auto window = [&](double current, double before, double max_accel, double& lo, double& hi) {
     const double straight = 2.0 * current - before, reach = max_accel * dt * dt;
     lo = std::max(lo, straight - reach);

@@ -68,8 +68,9 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   for (double c : c_) sum_c += c, sum_c2 += c * c;
   const double wh = settings_.height_weight;
   const Eigen::MatrixXd d1 = FirstDifferences(n), d2 = SecondDifferences(n);
-  const Eigen::MatrixXd smooth = 2.0 * settings_.velocity_weight / (dt * dt) * d1.transpose() * d1 +
-                                 2.0 * settings_.acceleration_weight / (dt * dt * dt * dt) * d2.transpose() * d2;
+  Eigen::MatrixXd smooth = 2.0 * settings_.velocity_weight / (dt * dt) * d1.transpose() * d1 +
+                           2.0 * settings_.acceleration_weight / (dt * dt * dt * dt) * d2.transpose() * d2;
+  smooth(1, 1) += 2.0 * settings_.acceleration_weight / (dt * dt * dt * dt);  // knot 0's term (`straight`)
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   program_.AddQuadraticCost(z_, 2.0 * wh * kBodyLegs * identity + smooth, zero);
   program_.AddQuadraticCost(pitch_, (2.0 * wh * sum_c2 + 2.0 * settings_.pitch_weight) * identity + smooth, zero);
@@ -226,6 +227,12 @@ void BodyQp::PushInputs() {
     g_shift_[k] = -2.0 * settings_.shift_weight * shift_ref[k];
     g_lateral_[k] = -2.0 * settings_.lateral_weight * lateral_ref[k];
   }
+  // Knot 0's acceleration term, w (x_1 - straight)^2 / dt^4.
+  const double w0 = -2.0 * settings_.acceleration_weight / std::pow(settings_.knot_dt, 4);
+  g_z_[1] += w0 * straight[0];
+  g_pitch_[1] += w0 * straight[1];
+  g_shift_[1] += w0 * straight[2];
+  g_lateral_[1] += w0 * straight[3];
   program_.SetLinearCost(z_, g_z_);
   program_.SetLinearCost(pitch_, g_pitch_);
   program_.SetLinearCost(shift_, g_shift_);

@@ -127,6 +127,10 @@ class BodyQp {
   ///@{
   Eigen::VectorXd hip_lo, hip_hi;      ///< knots * groups(), row k * groups() + group; +-inf: none
   ///@}
+  /// Knot 1 on the straight line from the body executed a cycle ago through knot 0, per variable
+  /// (z, pitch, shift, lateral): the acceleration cost's term centred at knot 0, the one the
+  /// robot executes, prices knot 1's distance from it like every other knot's second difference.
+  std::array<double, 4> straight = {0.0, 0.0, 0.0, 0.0};
   Eigen::VectorXd height_ref;          ///< knots * 4: wanted value of z + c_l pitch
   ///@{
   Eigen::VectorXd pitch_ref, shift_ref, lateral_ref;  ///< knots

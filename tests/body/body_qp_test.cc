@@ -260,3 +260,29 @@ TEST_CASE("a ZMP row holds the pendulum's ZMP over three knots, and what the lim
     }
   }
 }
+
+TEST_CASE("knot 1's acceleration from the executed body is priced like every other knot's", "[body][qp]") {
+  // The cost's second difference centred at knot 0, (x_1 - straight)^2 with straight = 2 x_0 -
+  // x_-1: without it each cycle could pick knot 1 (what the robot executes next) anywhere the
+  // acceleration limit allows, and the executed body chattered between the limits.
+  const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
+  BodyPlannerSettings settings;
+  settings.stability_margin = -1.0;
+  settings.stance_rows = false;
+  settings.acceleration_weight = 1.0;
+  const auto knot1 = [&](double straight) {
+    BodyQp qp(settings, c);
+    FillInputs(&qp);
+    qp.straight = {0.45, 0.0, straight, 0.005};
+    optim::SolveResult r;
+    qp.Solve(optim::kInf, &r);
+    REQUIRE(r.solved());
+    return r.x[qp.shift().start + 1];
+  };
+  // Knot 0 pinned at shift 0: the straight line ahead or behind pulls knot 1 that way, within the
+  // trust box [-0.01, 0.02].
+  const double ahead = knot1(0.004), level = knot1(0.0), behind = knot1(-0.004);
+  INFO("knot 1 shift: behind " << behind << ", level " << level << ", ahead " << ahead);
+  CHECK(ahead > level + 1e-4);
+  CHECK(behind < level - 1e-4);
+}
