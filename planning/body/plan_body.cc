@@ -1,6 +1,7 @@
 #include "planning/body/plan_body.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "planning/body/body_check.h"
@@ -8,6 +9,21 @@
 #include "planning/body/kinematic_body_bounds.h"
 
 namespace stairplan {
+namespace {
+
+// The body moved less than this between its last two samples, in every coordinate (pitch times a
+// 1 m lever) [m]: it stands.
+constexpr double kRestStep = 1e-4;
+
+bool AtRest(const std::vector<BodyState>& body) {
+  if (body.size() < 2) return false;
+  const BodyState& a = body[body.size() - 2];
+  const BodyState& b = body.back();
+  return std::abs(b.x - a.x) < kRestStep && std::abs(b.y - a.y) < kRestStep && std::abs(b.z - a.z) < kRestStep &&
+         std::abs(b.pitch - a.pitch) < kRestStep;
+}
+
+}  // namespace
 
 Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan plan,
               const BodyPlannerSettings& settings) {
@@ -21,17 +37,20 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   const double end = planner.schedule().end_time();
   const double dt = settings.knot_dt;
   const int cycles = static_cast<int>(std::ceil(end / dt - 1e-9));
+  // After the last touchdown the loop runs on, at most a horizon, until the body stands still:
+  // a plan that ends while the body moves asks the robot to stop it at once.
+  const int settle_cycles = settings.knots;
   std::vector<BodyState> body;
-  body.reserve(static_cast<std::size_t>(cycles) + 1);
+  body.reserve(static_cast<std::size_t>(cycles + settle_cycles) + 1);
   plan.body_cycles.clear();
-  plan.body_cycles.reserve(static_cast<std::size_t>(cycles) + 1);
+  plan.body_cycles.reserve(static_cast<std::size_t>(cycles + settle_cycles) + 1);
   // The footstep planner's body starts where the robot stands (its first state).
   BodyState state = plan.body.empty() ? planner.StartState() : planner.StartStateAt(plan.body.front());
   // Cycles whose next knot had no valid body height under the (conservative, linearised) bounds.
   int conflict_cycles = 0, stale_cycles = 0;
   std::string first_conflict, solver_failure;
-  for (int c = 0; c <= cycles; ++c) {
-    const double now = std::min(end, c * dt);
+  for (int c = 0; c <= cycles + settle_cycles; ++c) {
+    const double now = c < cycles ? c * dt : end + (c - cycles) * dt;
     const BodyPlannerOutput& out = planner.Update(state, BodyCommand{}, now);
     if (out.status == BodyPlanStatus::kStale) {
       ++stale_cycles;  // the shifted previous plan: still a valid plan
@@ -50,7 +69,8 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
     plan.body_cycles.push_back({now, out.status, out.solves, out.iterations, out.timings.solve_us, out.timings.total_us});
     body.push_back(out.knots[0]);
     body.back().t = now;
-    state = planner.Interpolate(std::min(end, (c + 1) * dt));
+    if (c >= cycles && AtRest(body)) break;
+    state = planner.Interpolate(c + 1 < cycles ? (c + 1) * dt : end + (c + 1 - cycles) * dt);
   }
   plan.body = std::move(body);
   plan.body_planner = BodyPlannerKind::kRecedingHorizonQp;
