@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "geometry/field_error.h"
@@ -151,7 +152,11 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
   result.plan.timing_us = {{"plan", MicrosSince(t_plan)}};
   if (options.body == BodySource::kRecedingHorizonQp && result.plan.status == PlanStatus::kOk) {
     const std::vector<std::pair<std::string, double>> timing = result.plan.timing_us;
-    result.plan = PlanBody(robot, stairs, result.map, result.plan, options.body_qp);
+    // Where the robot stands is known when it starts at the alignment pose; else the body starts
+    // over the feet.
+    std::optional<Eigen::Vector2d> standing;
+    if (options.start_at_alignment && aligned.found) standing = aligned.position.head<2>();
+    result.plan = PlanBody(robot, stairs, result.map, result.plan, options.body_qp, standing);
     if (!options.body_nlp.empty() && result.plan.status == PlanStatus::kOk) {
       BodyNlpSettings nlp = options.nlp;
       nlp.solver = options.body_nlp;

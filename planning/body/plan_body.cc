@@ -26,7 +26,7 @@ bool AtRest(const std::vector<BodyState>& body) {
 }  // namespace
 
 Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan plan,
-              const BodyPlannerSettings& settings) {
+              const BodyPlannerSettings& settings, const std::optional<Eigen::Vector2d>& standing_xy) {
   settings.Validate();
   if (plan.status != PlanStatus::kOk) return plan;
   const auto start = std::chrono::steady_clock::now();
@@ -44,8 +44,13 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   body.reserve(static_cast<std::size_t>(cycles + settle_cycles) + 1);
   plan.body_cycles.clear();
   plan.body_cycles.reserve(static_cast<std::size_t>(cycles + settle_cycles) + 1);
-  // The footstep planner's body starts where the robot stands (its first state).
-  BodyState state = plan.body.empty() ? planner.StartState() : planner.StartStateAt(plan.body.front());
+  BodyState state = planner.StartState();
+  if (standing_xy) {
+    BodyState standing;
+    standing.x = standing_xy->x();
+    standing.y = standing_xy->y();
+    state = planner.StartStateAt(standing);
+  }
   // Cycles whose next knot had no valid body height under the (conservative, linearised) bounds.
   int conflict_cycles = 0, stale_cycles = 0;
   std::string first_conflict, solver_failure;

@@ -3,6 +3,10 @@
 // com_shift, into the plan; then re-checks it exactly (IK and FCL). `stairplan plan` calls it.
 #pragma once
 
+#include <optional>
+
+#include <Eigen/Core>
+
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
 #include "kinematics/robot_model.h"
@@ -15,8 +19,11 @@ namespace stairplan {
 /// plan. Its status becomes infeasible, with the reason, when a cycle finds no valid body height
 /// for a stance leg, a QP fails, or the exact re-check finds a stance leg out of reach or closer
 /// to the stairs than settings.clearance_margin. A plan that is already infeasible is returned as
-/// it is. Throws std::invalid_argument naming the field for bad settings.
+/// it is. Throws std::invalid_argument naming the field for bad settings. `standing_xy`, where
+/// known, is where the robot's body stands at the start (the alignment pose it walked to): the
+/// plan starts there, its offset from the neutral body as the start's weight shifts; otherwise it
+/// starts over the feet (BodyPlanner::StartState()).
 Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan footsteps_plan,
-              const BodyPlannerSettings& settings = {});
+              const BodyPlannerSettings& settings = {}, const std::optional<Eigen::Vector2d>& standing_xy = std::nullopt);
 
 }  // namespace stairplan

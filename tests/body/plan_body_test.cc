@@ -325,9 +325,9 @@ TEST_CASE("with leg rows the built-in robot climbs steep stairs: swing legs keep
 }
 
 TEST_CASE("the body optimisation's plan starts where the robot stands: at the alignment pose", "[body][alignment]") {
-  // Knot 0 is the robot's state: the footstep planner's body stands over the feet of the
-  // alignment stance, not where the feet centre puts the neutral body (2.6 cm apart on the
-  // built-in robot, whose hips are not centred on its body).
+  // Knot 0 is the robot's state: a robot that walked to the alignment pose stands there, not
+  // where the feet centre puts the neutral body (2.6 cm apart on the built-in robot, whose hips
+  // are not centred on its body).
   StairSpec spec;
   spec.steps = 2;
   PipelineOptions options;
