@@ -415,6 +415,7 @@ void BodyPlanner::KeepAccelerationAcrossCycles(const BodyState& state, double no
   // state itself before there is a plan): knot 1 may differ from their straight line by the
   // acceleration limit, as the rows within the horizon ask of every other knot. Without this each
   // cycle may pick a new velocity, and the executed body jumps where a row enters the horizon.
+  // The same straight line prices knot 1 in the acceleration cost (BodyQp::straight).
   BodyQp& qp = *qp_;
   if (!has_previous_) {  // at rest
     qp.straight = {state.z, state.pitch, state.com_shift, state.com_shift_y};

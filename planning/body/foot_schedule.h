@@ -71,7 +71,7 @@ class FootSchedule {
   Eigen::Vector2d FeetCentreXY(double t) const;
   /// The body's neutral horizontal position at t: FeetCentreXY averaged over smoothing_window()
   /// centred at t. Each swing's ramp becomes an S-curve: the velocity steps become accelerations
-  /// of the ramp's velocity over the window (0.3 m/s^2 on the default crawl), and the neutral body
+  /// of the ramp's velocity over the window (about 0.4 m/s^2 on the default crawl), and the neutral body
   /// stays within an eighth of the window's travel of the feet centre. The body planner's weight
   /// shifts are measured from it, so their acceleration limits bound the body's.
   Eigen::Vector2d NeutralBodyXY(double t) const;
@@ -103,6 +103,7 @@ class FootSchedule {
   void PrepareNeutral();
   // The integral from 0 to t of leg `leg`'s horizontal contact point (negative before 0).
   Eigen::Vector2d FootIntegral(int leg, double t) const;
+  // Leg `leg`'s j-th foothold, horizontal.
   Eigen::Vector2d FootholdXY(int leg, std::size_t j) const;
   // FeetPitch over the feet foot_W(leg) gives.
   template <typename FootAt>
