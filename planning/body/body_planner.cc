@@ -147,11 +147,11 @@ BodyState BodyPlanner::StartState() const {
   return s;
 }
 
-BodyState BodyPlanner::StartStateAt(const BodyState& standing) const {
+BodyState BodyPlanner::StartStateAt(const Eigen::Vector2d& standing_xy) const {
   BodyState s = StartState();
   const double h = schedule_.heading();
-  s.com_shift = std::clamp(h * (standing.x - s.x), -settings_.max_shift, settings_.max_shift);
-  s.com_shift_y = std::clamp(h * (standing.y - s.y), -settings_.max_lateral_shift, settings_.max_lateral_shift);
+  s.com_shift = std::clamp(h * (standing_xy.x() - s.x), -settings_.max_shift, settings_.max_shift);
+  s.com_shift_y = std::clamp(h * (standing_xy.y() - s.y), -settings_.max_lateral_shift, settings_.max_lateral_shift);
   s.x += h * s.com_shift;
   s.y += h * s.com_shift_y;
   return s;
@@ -425,17 +425,16 @@ void BodyPlanner::KeepAccelerationAcrossCycles(const BodyState& state, double no
   qp.straight = {2.0 * state.z - PreviousAt(previous_z_, t), 2.0 * state.pitch - PreviousAt(previous_pitch_, t),
                  2.0 * state.com_shift - PreviousAt(previous_shift_, t),
                  2.0 * state.com_shift_y - PreviousAt(previous_lateral_, t)};
-  const auto window = [&](double current, double before, double max_accel, double& lo, double& hi) {
-    const double straight = 2.0 * current - before, reach = max_accel * dt * dt;
+  const auto window = [&](double straight, double max_accel, double& lo, double& hi) {
+    const double reach = max_accel * dt * dt;
     lo = std::max(lo, straight - reach);
     hi = std::min(hi, straight + reach);
     if (lo > hi) lo = hi = std::clamp(straight, hi, lo);  // the trust region or a limit is nearer: its edge
   };
-  window(state.z, PreviousAt(previous_z_, t), settings_.max_height_accel, qp.z_lo[1], qp.z_hi[1]);
-  window(state.pitch, PreviousAt(previous_pitch_, t), settings_.max_pitch_accel, qp.pitch_lo[1], qp.pitch_hi[1]);
-  window(state.com_shift, PreviousAt(previous_shift_, t), settings_.max_shift_accel, qp.shift_lo[1], qp.shift_hi[1]);
-  window(state.com_shift_y, PreviousAt(previous_lateral_, t), settings_.max_lateral_accel, qp.lateral_lo[1],
-         qp.lateral_hi[1]);
+  window(qp.straight[0], settings_.max_height_accel, qp.z_lo[1], qp.z_hi[1]);
+  window(qp.straight[1], settings_.max_pitch_accel, qp.pitch_lo[1], qp.pitch_hi[1]);
+  window(qp.straight[2], settings_.max_shift_accel, qp.shift_lo[1], qp.shift_hi[1]);
+  window(qp.straight[3], settings_.max_lateral_accel, qp.lateral_lo[1], qp.lateral_hi[1]);
 }
 
 Eigen::Vector2d BodyPlanner::ComBase(int k, double t, double pitch, const Eigen::Vector2d& feet_sum,

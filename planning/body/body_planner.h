@@ -110,10 +110,10 @@ class BodyPlanner {
   /// (with leg rows, the nearest height at which every leg stands within its limits and clear of
   /// the stairs).
   BodyState StartState() const;
-  /// StartState() with the body where a robot stands at `standing` (its x and y, e.g. the
-  /// alignment pose it walked to): the difference to the neutral body becomes the start's weight
-  /// shifts, within their bounds.
-  BodyState StartStateAt(const BodyState& standing) const;
+  /// StartState() with the body where a robot stands (`standing_xy`, e.g. the alignment pose it
+  /// walked to): the difference to the neutral body becomes the start's weight shifts, within
+  /// their bounds.
+  BodyState StartStateAt(const Eigen::Vector2d& standing_xy) const;
   /// The body reference at time t from the latest plan (interpolated between knots).
   BodyState Interpolate(double t) const;
   /// The latest cycle's output.

@@ -31,7 +31,9 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
     : knots_(settings.knots),
       settings_(settings),
       c_(row_coefficients),
-      lateral_apart_(settings.stability_margin < 0.0 && !stance_rows) {
+      lateral_apart_(settings.stability_margin < 0.0 && !stance_rows),
+      accel_curvature_(2.0 * settings.acceleration_weight /
+                       (settings.knot_dt * settings.knot_dt * settings.knot_dt * settings.knot_dt)) {
   settings_.Validate();
   if (!(zmp_height >= 0.0 && zmp_height < 10.0)) throw std::invalid_argument("BodyQp: zmp_height must be in [0, 10) m");
   zmp_weight_ = zmp_height / (kZmpGravity * settings_.knot_dt * settings_.knot_dt);
@@ -69,8 +71,8 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   const double wh = settings_.height_weight;
   const Eigen::MatrixXd d1 = FirstDifferences(n), d2 = SecondDifferences(n);
   Eigen::MatrixXd smooth = 2.0 * settings_.velocity_weight / (dt * dt) * d1.transpose() * d1 +
-                           2.0 * settings_.acceleration_weight / (dt * dt * dt * dt) * d2.transpose() * d2;
-  smooth(1, 1) += 2.0 * settings_.acceleration_weight / (dt * dt * dt * dt);  // knot 0's term (`straight`)
+                           accel_curvature_ * d2.transpose() * d2;
+  smooth(1, 1) += accel_curvature_;  // knot 0's term (`straight`)
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   program_.AddQuadraticCost(z_, 2.0 * wh * kBodyLegs * identity + smooth, zero);
   program_.AddQuadraticCost(pitch_, (2.0 * wh * sum_c2 + 2.0 * settings_.pitch_weight) * identity + smooth, zero);
@@ -228,11 +230,10 @@ void BodyQp::PushInputs() {
     g_lateral_[k] = -2.0 * settings_.lateral_weight * lateral_ref[k];
   }
   // Knot 0's acceleration term, w (x_1 - straight)^2 / dt^4.
-  const double w0 = -2.0 * settings_.acceleration_weight / std::pow(settings_.knot_dt, 4);
-  g_z_[1] += w0 * straight[0];
-  g_pitch_[1] += w0 * straight[1];
-  g_shift_[1] += w0 * straight[2];
-  g_lateral_[1] += w0 * straight[3];
+  g_z_[1] -= accel_curvature_ * straight[0];
+  g_pitch_[1] -= accel_curvature_ * straight[1];
+  g_shift_[1] -= accel_curvature_ * straight[2];
+  g_lateral_[1] -= accel_curvature_ * straight[3];
   program_.SetLinearCost(z_, g_z_);
   program_.SetLinearCost(pitch_, g_pitch_);
   program_.SetLinearCost(shift_, g_shift_);

@@ -233,6 +233,8 @@ class BodyQp {
   std::array<int, kBodyLegs> group_of_{};
   std::array<double, kBodyLegs> group_c_{};
   bool lateral_apart_ = false;
+  // 2 w / dt^4: the curvature the acceleration cost gives each second difference.
+  double accel_curvature_ = 0.0;
   double zmp_weight_ = 0.0;  // h / (g dt^2): the ZMP's weight on a knot's neighbours
   optim::Program program_;
   optim::Program lateral_program_;  // the sideways shift when apart (else empty)

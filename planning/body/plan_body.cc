@@ -44,18 +44,14 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   body.reserve(static_cast<std::size_t>(cycles + settle_cycles) + 1);
   plan.body_cycles.clear();
   plan.body_cycles.reserve(static_cast<std::size_t>(cycles + settle_cycles) + 1);
-  BodyState state = planner.StartState();
-  if (standing_xy) {
-    BodyState standing;
-    standing.x = standing_xy->x();
-    standing.y = standing_xy->y();
-    state = planner.StartStateAt(standing);
-  }
+  BodyState state = standing_xy ? planner.StartStateAt(*standing_xy) : planner.StartState();
   // Cycles whose next knot had no valid body height under the (conservative, linearised) bounds.
   int conflict_cycles = 0, stale_cycles = 0;
   std::string first_conflict, solver_failure;
+  // Cycle c's time: on the knots up to the flight's end, then from the end on.
+  const auto time_of = [&](int c) { return c < cycles ? c * dt : end + (c - cycles) * dt; };
   for (int c = 0; c <= cycles + settle_cycles; ++c) {
-    const double now = c < cycles ? c * dt : end + (c - cycles) * dt;
+    const double now = time_of(c);
     const BodyPlannerOutput& out = planner.Update(state, BodyCommand{}, now);
     if (out.status == BodyPlanStatus::kStale) {
       ++stale_cycles;  // the shifted previous plan: still a valid plan
@@ -75,7 +71,7 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
     body.push_back(out.knots[0]);
     body.back().t = now;
     if (c >= cycles && AtRest(body)) break;
-    state = planner.Interpolate(c + 1 < cycles ? (c + 1) * dt : end + (c + 1 - cycles) * dt);
+    state = planner.Interpolate(time_of(c + 1));
   }
   plan.body = std::move(body);
   plan.body_planner = BodyPlannerKind::kRecedingHorizonQp;

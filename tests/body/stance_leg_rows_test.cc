@@ -44,6 +44,13 @@ LegCase RandomLegCase(const RobotKinematics& kinematics, RobotWorkspace& ws, int
   return c;
 }
 
+// The built-in robot's first leg with its kinematics and workspace.
+struct FirstLeg {
+  RobotKinematics kinematics{BuiltinRobot()};
+  RobotWorkspace ws{kinematics};
+  const LegKinematics& kin = kinematics.leg(0);
+};
+
 }  // namespace
 
 TEST_CASE("stance leg rows predict the joints and the reach of a moved body to second order", "[body][rows]") {
@@ -81,11 +88,10 @@ TEST_CASE("stance leg rows predict the joints and the reach of a moved body to s
 }
 
 TEST_CASE("a foot beyond the leg's reach gives a reach row the pose breaks, pointing back", "[body][rows]") {
-  const RobotModel& robot = BuiltinRobot();
-  const RobotKinematics kinematics(robot);
-  RobotWorkspace ws(kinematics);
-  const LegKinematics& kin = kinematics.leg(0);
-  BodyPose pose;
+  FirstLeg f;
+  const LegKinematics& kin = f.kin;
+  RobotWorkspace& ws = f.ws;
+  const BodyPose pose;
   // The foot straight below the hip, further than the leg reaches.
   const Eigen::Vector3d foot_W = kin.hip_B() - Eigen::Vector3d(0.0, 0.0, kin.model().max_reach + 0.05);
   const StanceLegRows rows = LinearizeStanceLeg(kin, ws.leg(0), foot_W, pose, kin.nominal(), {});
@@ -138,11 +144,10 @@ TEST_CASE("a moving foot's bend tightens each row by what it moves the joint or 
 TEST_CASE("margins wider than a joint's range make the row ask for its middle, not an empty interval", "[body][rows]") {
   // A swing's bulge plus the joint margin can exceed a small robot's joint range: the bounds
   // would cross, and the QP refuses crossed bounds (it threw, on Unitree A1 climbing).
-  const RobotModel& robot = BuiltinRobot();
-  const RobotKinematics kinematics(robot);
-  RobotWorkspace ws(kinematics);
-  const LegKinematics& kin = kinematics.leg(0);
-  BodyPose pose;
+  FirstLeg f;
+  const LegKinematics& kin = f.kin;
+  RobotWorkspace& ws = f.ws;
+  const BodyPose pose;
   const Eigen::Vector3d foot_W = pose.ToIsometry() * kin.FootPosition(kin.nominal(), ws.leg(0));
   StanceLegMargins wide;
   wide.joint = 10.0;  // [rad], beyond any range
