@@ -77,28 +77,29 @@ bool LegKinematics::WithinLimits(const Eigen::Vector3d& q, double tol) const {
 Eigen::Vector3d LegKinematics::Clamp(const Eigen::Vector3d& q) const { return q.cwiseMax(lower_).cwiseMin(upper_); }
 
 Eigen::Isometry3d LegKinematics::FootPose(const Eigen::Vector3d& q, LegWorkspace& ws) const {
-  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
-  ws.fk_->JntToCart(ws.q_, ws.frame_);
-  return ToEigen(ws.frame_);
+  SegmentFrames(q, ws);
+  return ToEigen(ws.frames_.back());
 }
 
-Eigen::Vector3d LegKinematics::FootPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
-  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
-  ws.fk_->JntToCart(ws.q_, ws.frame_);
-  return ToEigen(ws.frame_.p);
-}
+Eigen::Vector3d LegKinematics::FootPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const { return SegmentFrames(q, ws); }
 
 Eigen::Vector3d LegKinematics::KneePosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
-  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
-  ws.fk_->JntToCart(ws.q_, ws.frame_, knee_segment_ + 1);
-  return ToEigen(ws.frame_.p);
+  SegmentFrames(q, ws);
+  return ToEigen(ws.frames_[static_cast<std::size_t>(knee_segment_)].p);
 }
 
 const std::vector<Eigen::Isometry3d>& LegKinematics::LinkFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const {
-  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
-  ws.fk_->JntToCart(ws.q_, ws.frames_);
-  for (std::size_t i = 0; i < ws.frames_.size(); ++i) ws.frames_B_[i] = ToEigen(ws.frames_[i]);
+  SegmentFrames(q, ws);
+  if (!ws.frames_B_current_) {
+    for (std::size_t i = 0; i < ws.frames_.size(); ++i) ws.frames_B_[i] = ToEigen(ws.frames_[i]);
+    ws.frames_B_current_ = true;
+  }
   return ws.frames_B_;
+}
+
+Eigen::Isometry3d LegKinematics::LinkFrame(const Eigen::Vector3d& q, int i, LegWorkspace& ws) const {
+  SegmentFrames(q, ws);
+  return ToEigen(ws.frames_.at(static_cast<std::size_t>(i)));
 }
 
 Eigen::Matrix3d LegKinematics::FootJacobian(const Eigen::Vector3d& q, LegWorkspace& ws) const {
@@ -107,8 +108,15 @@ Eigen::Matrix3d LegKinematics::FootJacobian(const Eigen::Vector3d& q, LegWorkspa
 }
 
 Eigen::Vector3d LegKinematics::SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const {
-  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
-  ws.fk_->JntToCart(ws.q_, ws.frames_);
+  // The planners ask for several things at one q in a row (foot, Jacobian, flexion joint, link
+  // frames): the chain is run once per q. A NaN q never equals the kept one, so it is recomputed.
+  if (!ws.frames_current_ || !(ws.frames_q_.array() == q.array()).all()) {
+    for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
+    ws.fk_->JntToCart(ws.q_, ws.frames_);
+    ws.frames_q_ = q;
+    ws.frames_current_ = true;
+    ws.frames_B_current_ = false;
+  }
   return ToEigen(ws.frames_.back().p);
 }
 
@@ -269,9 +277,8 @@ void LegKinematics::BuildKneeTable(LegWorkspace& ws) {
 }
 
 Eigen::Vector3d LegKinematics::FlexionPosition(const Eigen::Vector3d& q, LegWorkspace& ws) const {
-  for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
-  ws.fk_->JntToCart(ws.q_, ws.frame_, joint_segment_[1] + 1);
-  return ToEigen(ws.frame_.p);
+  SegmentFrames(q, ws);
+  return ToEigen(ws.frames_[static_cast<std::size_t>(joint_segment_[1])].p);
 }
 
 Eigen::Vector3d LegKinematics::AimedSeed(const Eigen::Vector3d& target, const Eigen::Vector3d& seed, LegWorkspace& ws) const {

@@ -87,6 +87,8 @@ class LegKinematics {
   Eigen::Vector3d KneePosition(const Eigen::Vector3d& q, LegWorkspace& ws) const;
   /// Every segment's tip frame (link frame), index as segment_link(); the reference lives in `ws`.
   const std::vector<Eigen::Isometry3d>& LinkFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+  /// Segment i's tip frame alone (LinkFrames(q, ws)[i] without converting the others).
+  Eigen::Isometry3d LinkFrame(const Eigen::Vector3d& q, int i, LegWorkspace& ws) const;
   /// d(foot position)/dq, 3x3.
   Eigen::Matrix3d FootJacobian(const Eigen::Vector3d& q, LegWorkspace& ws) const;
 
@@ -101,7 +103,8 @@ class LegKinematics {
   double Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q, bool clamp, const IkSettings& settings,
                  LegWorkspace& ws, int& iterations) const;
   Eigen::Vector3d RestartSeed(int k) const;
-  // KDL's forward kinematics at q, every segment's frame left in `ws`; returns the foot.
+  // KDL's forward kinematics at q, every segment's frame left in `ws` (kept there: a second call
+  // at the same q costs a comparison); returns the foot.
   Eigen::Vector3d SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
   // Movable joint j's line in the base frame, from the frames SegmentFrames left in `ws`.
   struct JointLine {
@@ -151,9 +154,13 @@ class LegWorkspace {
   std::shared_ptr<const KDL::Chain> chain_;  // keeps the chain alive for the solvers
   std::unique_ptr<KDL::ChainFkSolverPos_recursive> fk_;
   KDL::JntArray q_;
-  KDL::Frame frame_;
+  // Every segment's frame at frames_q_ (valid when frames_current_), and the same as Eigen
+  // isometries (valid when frames_B_current_): queries at the q of the last one reuse them.
   std::vector<KDL::Frame> frames_;
   std::vector<Eigen::Isometry3d> frames_B_;
+  Eigen::Vector3d frames_q_ = Eigen::Vector3d::Zero();
+  bool frames_current_ = false;
+  bool frames_B_current_ = false;
 };
 
 }  // namespace stairplan

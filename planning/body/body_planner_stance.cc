@@ -151,7 +151,7 @@ void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Ve
   const int segment = robot_->collision_model().leg_shapes(l)[static_cast<std::size_t>(c.shape)].segment;
   const auto point_at = [&](const BodyPose& pose, const Eigen::Vector3d& q) -> Eigen::Isometry3d {
     const Eigen::Isometry3d body_W = pose.ToIsometry();
-    return segment < 0 ? body_W : body_W * kin.LinkFrames(q, ws)[static_cast<std::size_t>(segment)];
+    return segment < 0 ? body_W : body_W * kin.LinkFrame(q, segment, ws);
   };
   const Eigen::Vector3d point_link = point_at(at, rows.q).inverse() * c.point_robot_W;
   const double inset = kClearanceInset + (swing ? kSwingClearanceInset : 0.0);
