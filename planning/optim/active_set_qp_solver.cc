@@ -139,8 +139,10 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
       // Only some rows changed (SetConstraintCoefficients): the factorisation depends on the
       // active rows alone, so it stays valid once the changed active rows leave the active set
       // (the iteration adds them back with their new coefficients if they are still needed).
-      // When many active rows changed, refactorising from the active set (the warm start) is
-      // cheaper than dropping them one by one.
+      // When so many active rows changed that dropping and re-adding them costs more rotations
+      // than adding the whole active set from none, the factorisation is rebuilt from the active
+      // set (the warm start). (The rule before, more than a quarter of the active set changed,
+      // rebuilt a sixth of the body planner's leg-row cycles where re-adding was cheaper.)
       int changed_active = 0;
       // Rows written at a few known columns are read there, the others whole.
       const Eigen::MatrixXd& a = program.constraint_matrix();
@@ -154,7 +156,7 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
         }
         row_norm_[k] = std::max(rows_.RowNorm(k), 1e-300);
       }
-      if (changed_active > 0 && (!factorization_valid_ || 4 * changed_active > q_)) {
+      if (changed_active > 0 && (!factorization_valid_ || !ReaddCheaperThanRebuild(program))) {
         factorization_valid_ = false;
       } else if (changed_active > 0) {
         // The changed active rows leave the factorisation and, unless a given active set is to be
@@ -186,6 +188,22 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     }
     matrix_revision_ = program.matrix_revision();
   }
+}
+
+bool ActiveSetQpSolver::ReaddCheaperThanRebuild(const Program& program) const {
+  // Both are counted in Givens rotations of J's columns, the work that dominates either: a drop
+  // at position p rotates the q - 1 - p columns after it, an add at q the n - 1 - q free columns,
+  // and a rebuild adds every active constraint from none. Drops go from the back, so each one
+  // finds the later changed rows gone.
+  long readd = 0;
+  int dropped = 0;
+  for (int position = q_ - 1; position >= 0; --position) {
+    const int k = active_[position];
+    if (k >= m_ || program.row_revision(k) <= matrix_revision_) continue;
+    readd += (q_ - dropped) - 1 - position;
+    ++dropped;
+  }
+  return readd + AddCost(q_ - dropped, dropped) <= AddCost(0, q_);
 }
 
 bool ActiveSetQpSolver::FactorizeHessian(const Program& program) {
@@ -297,6 +315,12 @@ void ActiveSetQpSolver::MoveToActiveSet(const ActiveSet& set) {
     if (SideIn(set, k) != state_[k]) DropConstraint(j);
   }
   AddActive(set);
+}
+
+long ActiveSetQpSolver::AddCost(int q, int adds) const {
+  long cost = 0;
+  for (int i = 0; i < adds && q + i < n_; ++i) cost += n_ - 1 - (q + i);
+  return cost;
 }
 
 ActiveSide ActiveSetQpSolver::SideIn(const ActiveSet& set, int k) const {

@@ -99,12 +99,17 @@ class ActiveSetQpSolver final : public Solver {
   // Workspace sizing and the factorisation of H (+ rho I), reused while H is unchanged.
   void Prepare(const Program& program);
   bool FactorizeHessian(const Program& program);
+  // Whether dropping the active rows `program` changed since the last solve and adding them back
+  // takes fewer rotations than rebuilding the factorisation from the whole active set.
+  bool ReaddCheaperThanRebuild(const Program& program) const;
   // Starting points: cold, from a given active set, or the kept factorisation.
   void StartCold();
   void StartFromActiveSet(const ActiveSet& set);
   // From the kept factorisation to `set`: drops the active constraints `set` does not hold (on
   // that side), then adds the ones it holds that are not active.
   void MoveToActiveSet(const ActiveSet& set);
+  // Rotations of `adds` constraint additions from q active ones.
+  long AddCost(int q, int adds) const;
   // Adds the constraints `set` holds that are not active (a finite bound on their side).
   void AddActive(const ActiveSet& set);
   // The side of constraint k in `set` (0 beyond its size).
