@@ -36,10 +36,20 @@ constexpr int kMaxPolish = 5;
 // judge a solution by (qpbenchmark's) are.
 constexpr double kRefineFloor = 1e-12;
 
+// Where the compiler can, RotateColumns gets a second version in 256-bit vectors (AVX2), picked
+// at load time on machines that have them: a quarter less time per rotation than in SSE2's 128
+// bits. AVX2 brings no fused multiply-add (that is FMA's own flag), so both versions round alike
+// and the solver's results do not depend on the machine.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define STAIRPLAN_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
+#else
+#define STAIRPLAN_AVX2_CLONE
+#endif
+
 // Givens rotation of columns (i, j) of M: col_i <- c col_i + s col_j, col_j <- -s col_i + c col_j.
 // On the columns' contiguous storage: the hottest loop of every solve, and element access through
 // Eigen's operator() is a call per element where it is not inlined (the sanitized -O1 build).
-void RotateColumns(Eigen::MatrixXd& M, int i, int j, double c, double s) {
+STAIRPLAN_AVX2_CLONE void RotateColumns(Eigen::MatrixXd& M, int i, int j, double c, double s) {
   double* col_i = M.col(i).data();
   double* col_j = M.col(j).data();
   const Eigen::Index rows = M.rows();
