@@ -36,10 +36,10 @@ constexpr int kMaxPolish = 5;
 // judge a solution by (qpbenchmark's) are.
 constexpr double kRefineFloor = 1e-12;
 
-// Where the compiler can, RotateColumns gets a second version in 256-bit vectors (AVX2), picked
-// at load time on machines that have them: a quarter less time per rotation than in SSE2's 128
-// bits. AVX2 brings no fused multiply-add (that is FMA's own flag), so both versions round alike
-// and the solver's results do not depend on the machine.
+// Where GCC or Clang targets x86-64, RotateColumns gets a second version in 256-bit vectors
+// (AVX2), picked at load time on machines that have them: a quarter less time per rotation than
+// in SSE2's 128 bits. AVX2 brings no fused multiply-add (that is FMA's own flag), so both
+// versions round alike and the solver's results do not depend on the machine.
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 #define STAIRPLAN_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
 #else
@@ -151,8 +151,7 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
       // (the iteration adds them back with their new coefficients if they are still needed).
       // When so many active rows changed that dropping and re-adding them costs more rotations
       // than adding the whole active set from none, the factorisation is rebuilt from the active
-      // set (the warm start). (The rule before, more than a quarter of the active set changed,
-      // rebuilt a sixth of the body planner's leg-row cycles where re-adding was cheaper.)
+      // set (the warm start).
       int changed_active = 0;
       // Rows written at a few known columns are read there, the others whole.
       const Eigen::MatrixXd& a = program.constraint_matrix();
