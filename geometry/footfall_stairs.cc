@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "geometry/field_error.h"
+#include "geometry/stair_uncertainty.h"
 
 namespace stairplan {
 namespace {
@@ -189,6 +190,28 @@ FootfallStaircase BuildStaircase(const std::vector<Footfall>& f, const std::vect
   m.center = s0 * dir + (lat_sum / count) * left;
   for (int k = 0; k <= m.steps; ++k) m.levels.push_back(z0 + rise * k);
   for (int k = 0; k < m.steps; ++k) m.edge_offsets.push_back(run * k);
+  // How far the nosings may be off. A tread's height is its footfalls' mean: their scatter about
+  // it (pooled over the treads) over the root of their number is its own error. An edge is the
+  // midpoint of two footfalls: the same scatter, taken as the sensor's in every direction, over
+  // root two.
+  IndexedSamples level_samples, edge_samples;
+  double scatter = 0.0, tread_footfalls = 0.0;
+  int dof = 0;
+  for (std::size_t j = 0; j < clusters.size(); ++j) {
+    level_samples.index.push_back(static_cast<double>(j));
+    level_samples.value.push_back(s.tread_heights[j]);
+    for (int i : clusters[j]) scatter += std::pow(f[static_cast<std::size_t>(i)].position.z() - s.tread_heights[j], 2);
+    dof += static_cast<int>(clusters[j].size()) - 1;
+    tread_footfalls += static_cast<double>(clusters[j].size());
+  }
+  const double footfall_sigma = dof > 0 ? std::sqrt(scatter / dof) : 0.0;
+  level_samples.sample_sigma = footfall_sigma / std::sqrt(tread_footfalls / static_cast<double>(clusters.size()));
+  for (std::size_t j = 0; j < along.size(); ++j) {
+    edge_samples.index.push_back(static_cast<double>(j + 1));
+    edge_samples.value.push_back(along[j]);
+  }
+  edge_samples.sample_sigma = footfall_sigma / std::sqrt(2.0);
+  if (edge_samples.index.size() >= 2) m.uncertainty = NosingUncertainty(level_samples, edge_samples, m.steps);
   return s;
 }
 

@@ -43,6 +43,7 @@ Staircase StairModel::ToStaircase(TravelDirection travel, double nosing, double 
   spec.landing_before = landing;
   spec.landing_after = landing;
   spec.direction = travel;
+  spec.uncertainty = uncertainty;
   return Staircase(spec);
 }
 
@@ -87,6 +88,7 @@ StairModel ModelOfStaircase(const Staircase& stairs, const Eigen::Vector3d& orig
   for (const StairEdge& e : edges) m.edge_offsets.push_back((world(e.x_nose, 0.0) - m.center).dot(m.direction));
   m.rise = (m.levels.back() - m.levels.front()) / m.steps;
   m.run = m.steps > 1 ? m.edge_offsets.back() / (m.steps - 1) : stairs.spec().run;
+  m.uncertainty = stairs.spec().uncertainty;
   return m;
 }
 

@@ -27,6 +27,11 @@ struct StairModel {
   double width = 0.0;  ///< [m]
   std::vector<double> levels;        ///< heights of the landings and treads, lowest first (steps + 1) [m]
   std::vector<double> edge_offsets;  ///< each edge's distance from `center` along `direction`, lowest first (steps) [m]
+  /// How far the true nosings may be from the model's [m], in the world and relative to the
+  /// model's own first edge and lowest level (the Staircase frame's origin): the fitter's bound
+  /// (geometry/stair_uncertainty.h); 0 when unknown. ToStaircase() passes it on as
+  /// StairSpec::uncertainty.
+  double uncertainty = 0.0;
 
   /// Heading of `direction` [rad].
   double yaw() const;

@@ -85,7 +85,7 @@ StairSpec StairSpecFromYaml(const std::string& text, const std::string& source, 
   const std::map<std::string, double*> numbers = {
       {"rise", &spec.rise}, {"run", &spec.run}, {"nosing", &spec.nosing}, {"width", &spec.width},
       {"landing_before", &spec.landing_before}, {"landing_after", &spec.landing_after},
-      {"nosing_thickness", &spec.nosing_thickness}};
+      {"nosing_thickness", &spec.nosing_thickness}, {"uncertainty", &spec.uncertainty}};
   for (const auto& item : root) {
     // A key that is a list or a mapping ("? [a]: 1") names no field; as<std::string>() would throw
     // YAML::TypedBadConversion, which is not the FieldError callers handle (found by fuzz_stairs_yaml).
@@ -134,6 +134,10 @@ std::string StairSpecToYaml(const StairSpec& spec, const std::string& comment) {
       << "\nnosing_thickness: " << Shortest(spec.nosing_thickness) << "\ndirection: " << ToString(spec.direction) << "\n";
   if (!AllEqual(spec.rises, spec.rise)) out << "rises: " << YamlList(spec.rises) << "\n";
   if (!AllEqual(spec.runs, spec.run)) out << "runs: " << YamlList(spec.runs) << "\n";
+  if (spec.uncertainty > 0.0) {
+    out << "# How far the true nosings may be from these (the estimate's bound); planners keep it as clearance.\n"
+        << "uncertainty: " << Shortest(spec.uncertainty) << "\n";
+  }
   return out.str();
 }
 

@@ -1,5 +1,6 @@
 // A StairSpec as YAML, read and written. Keys: steps, rise, run, nosing, width, landing_before,
-// landing_after, nosing_thickness, rises, runs, direction (up|down). Unknown keys are errors.
+// landing_after, nosing_thickness, rises, runs, direction (up|down), and the optional uncertainty
+// (StairSpec::uncertainty, written by the estimators; absent: 0). Unknown keys are errors.
 #pragma once
 
 #include <string>
@@ -16,7 +17,8 @@ StairSpec StairSpecFromYaml(const std::string& text, const std::string& source, 
 StairSpec StairSpecFromYamlFile(const std::string& path, const StairSpec& defaults = {});
 
 /// The YAML that StairSpecFromYaml reads back into `spec` exactly (shortest round-trip numbers).
-/// `rises` and `runs` are written only where a step differs from `rise` or `run`. Each line of
+/// `rises` and `runs` are written only where a step differs from `rise` or `run`, `uncertainty`
+/// only when positive. Each line of
 /// `comment` becomes a leading "# " line.
 std::string StairSpecToYaml(const StairSpec& spec, const std::string& comment = "");
 

@@ -50,6 +50,10 @@ void StairSpec::Validate() const {
   RequireRange("landing_before", landing_before, 0.0, 50.0);
   RequireRange("landing_after", landing_after, 0.0, 50.0);
   RequireRange("nosing_thickness", nosing_thickness, 0.0, 0.2);
+  // A bound larger than a nosing's thickness says the stairs are not known well enough to plan on.
+  if (!std::isfinite(uncertainty) || uncertainty < 0.0 || uncertainty > 0.1) {
+    throw FieldError("uncertainty", "must be in [0, 0.1] m (got " + Num(uncertainty) + ")");
+  }
   if (!std::isfinite(nosing) || nosing < 0.0) {
     throw FieldError("nosing", "must be a finite number >= 0 (got " + Num(nosing) + ")");
   }

@@ -31,6 +31,11 @@ struct StairSpec {
   std::vector<double> rises;      ///< optional per-step rises (size == steps)
   std::vector<double> runs;       ///< optional per-tread runs (size == steps - 1)
   TravelDirection direction = TravelDirection::kUp;  ///< which way the robot travels: up or down the stairs
+  /// How far the true nosings may be from these stairs' [m]: 0 for stairs known exactly, else the
+  /// bound the estimate that produced them derived (StairModel::uncertainty: a cloud's fit, footfalls).
+  /// Planners keep it as clearance on top of their own margins (WithStairUncertainty,
+  /// planning/plan_pipeline.h); the geometry does not change with it.
+  double uncertainty = 0.0;
 
   /// Throws std::invalid_argument naming the offending field (e.g. "run", "rises[3]").
   void Validate() const;
