@@ -41,7 +41,7 @@ nlohmann::json StairsToJson(const Staircase& stairs) {
           {"landing_after", spec.landing_after}, {"nosing_thickness", spec.nosing_thickness},
           {"rises", spec.rises},       {"runs", spec.runs},
           {"direction", ToString(spec.direction)}, {"total_rise", stairs.total_rise()},
-          {"surfaces", surfaces}};
+          {"surfaces", surfaces}, {"uncertainty", spec.uncertainty}};
 }
 
 nlohmann::json ValidationToJson(const ValidationReport& report) {

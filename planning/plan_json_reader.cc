@@ -45,6 +45,7 @@ StairSpec ReadStairs(const Reader& r, const json& node) {
   spec.landing_before = r.Number(node, "landing_before", p);
   spec.landing_after = r.Number(node, "landing_after", p);
   if (node.contains("nosing_thickness")) spec.nosing_thickness = r.Number(node, "nosing_thickness", p);
+  if (node.contains("uncertainty")) spec.uncertainty = r.Number(node, "uncertainty", p);
   spec.rises = Numbers(r, node, "rises", p);
   spec.runs = Numbers(r, node, "runs", p);
   try {

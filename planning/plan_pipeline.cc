@@ -136,11 +136,13 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
                         PipelineOptions options) {
   const RobotModel& robot = kinematics.robot();
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
+  options.body_qp.Validate();  // a clearance margin raised beyond its range names the field
   if (stairs.direction() == TravelDirection::kDown) {
     options.crawl.shift_duration = std::max(options.crawl.shift_duration, options.descent_shift_duration);
   }
   PipelineResult result;
   result.map = std::move(map);
+  result.clearances = ClearancesOf(options, stairs);
   // The alignment pose (seed 001 [0042]) and, when asked, the crawl's feet starting in its stance;
   // computed here only, for every footstep source.
   const AlignmentStance aligned = ComputeAlignmentStance(kinematics, stairs, result.map, options.facing,
@@ -194,14 +196,38 @@ StepPlannerSettings CrawlControllers() {
   return settings;
 }
 
+PipelineOptions WithStairUncertainty(PipelineOptions options, const Staircase& stairs) {
+  const double u = stairs.spec().uncertainty;
+  if (u <= 0.0) return options;
+  options.body_qp.clearance_margin += u;
+  // Negative: the posture fit is off, and stays off.
+  if (options.crawl.body.touchdown_clearance >= 0.0) options.crawl.body.touchdown_clearance += u;
+  options.crawl.swing.clearance += u;
+  // Footholds keep off the edges and risers by their margins: the edges may be off by u.
+  options.map.edge_margin += u;
+  options.map.riser_margin += u;
+  return options;
+}
+
+PlannerClearances ClearancesOf(const PipelineOptions& options, const Staircase& stairs) {
+  PlannerClearances c;
+  c.stairs_uncertainty = stairs.spec().uncertainty;
+  c.body_qp = options.body_qp.clearance_margin;
+  c.touchdown = options.crawl.body.touchdown_clearance;
+  c.swing = options.crawl.swing.clearance;
+  c.edge_margin = options.map.edge_margin;
+  c.riser_margin = options.map.riser_margin;
+  return c;
+}
+
 void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
                              ConstrainedMap& map) {
   if (!options.robot_regions) return;
-  AddRobotRegions(RobotKinematics(robot), stairs, options, map);
+  AddRobotRegions(RobotKinematics(robot), stairs, WithStairUncertainty(options, stairs), map);
 }
 
 ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
-  return BuildMap(RobotKinematics(robot), stairs, options);
+  return BuildMap(RobotKinematics(robot), stairs, WithStairUncertainty(options, stairs));
 }
 
 PipelineOptions OptionsForPlan(const Plan& plan) {
@@ -213,11 +239,11 @@ PipelineOptions OptionsForPlan(const Plan& plan) {
 
 PipelineResult RunPipelineOnMap(const RobotModel& robot, const Staircase& stairs, ConstrainedMap map,
                                 const PipelineOptions& given) {
-  return RunOnMap(RobotKinematics(robot), stairs, std::move(map), ForFootstepSource(given));
+  return RunOnMap(RobotKinematics(robot), stairs, std::move(map), WithStairUncertainty(ForFootstepSource(given), stairs));
 }
 
 PipelineResult RunPipeline(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& given) {
-  const PipelineOptions options = ForFootstepSource(given);
+  const PipelineOptions options = WithStairUncertainty(ForFootstepSource(given), stairs);
   // The paper's crawl plans at the paper's posture whatever crawl.body says, and the body
   // optimisation finds its own: only the quasi-static path retries postures.
   const bool retry = !IsPaperCrawl(options.footsteps) && options.body == BodySource::kQuasiStaticPath;

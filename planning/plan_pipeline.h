@@ -138,6 +138,34 @@ struct PipelineOptions {
   bool start_at_alignment = false;
 };
 
+/// The clearances the planners kept on the stairs planned on [m]: each planner's own margin raised
+/// by the stairs' uncertainty (WithStairUncertainty). plan.json's `clearance` reports them.
+struct PlannerClearances {
+  double stairs_uncertainty = 0.0;   ///< StairSpec::uncertainty of the stairs planned on
+  double body_qp = 0.0;              ///< BodyPlannerSettings::clearance_margin (the body optimisation's rows keep theirs on top)
+  double touchdown = 0.0;            ///< BodyPathSettings::touchdown_clearance (the quasi-static path's posture fit)
+  double swing = 0.0;                ///< SwingSettings::clearance (swing feet over the stairs)
+  double edge_margin = 0.0;          ///< ConstrainedMapSettings::edge_margin (footholds off the walking edges)
+  double riser_margin = 0.0;         ///< ConstrainedMapSettings::riser_margin (footholds off the risers and nosings above)
+};
+
+/// `options` with every planner's clearance margin raised by `stairs.spec().uncertainty`: the
+/// body optimisation's (body_qp.clearance_margin), the quasi-static path's (touchdown clearance),
+/// the swings' and the step regions' margins off the edges and risers. Stairs estimated from data
+/// are off by up to that much at their nosings, and a clearance is 1-Lipschitz in where the stairs
+/// are, so a plan that keeps its margin plus the uncertainty on the estimate keeps its margin on
+/// the true stairs. The robot's own collision regions (RobotRegionSettings::min_clearance) are
+/// judged at a nominal posture and stay: the body's planners own the clearance of the posture
+/// planned (raised with the others by 2.6-4.0 cm, they left two of the footfall loop's four flights
+/// without a body-optimisation plan). The
+/// validator's margins are a judge's, on the stairs it is given, and stay. The pipeline calls it
+/// (RunPipeline, RunPipelineOnMap, BuildPipelineMap, AddPipelineRobotRegions): give them the options
+/// as set, not raised already.
+PipelineOptions WithStairUncertainty(PipelineOptions options, const Staircase& stairs);
+
+/// The clearances `options` keep (after WithStairUncertainty) on `stairs`.
+PlannerClearances ClearancesOf(const PipelineOptions& options, const Staircase& stairs);
+
 /// What RunPipeline() produced: the map planned on, the plan and its validation.
 struct PipelineResult {
   ConstrainedMap map;  ///< the constrained map planned on
@@ -145,6 +173,7 @@ struct PipelineResult {
   bool validated = false;  ///< the validator ran
   ValidationReport validation;  ///< meaningful when validated
   StairApproach approach;  ///< the alignment pose (the start with start_at_alignment), and stair mode at the robot's pose
+  PlannerClearances clearances;  ///< the clearances the planners kept (their margins plus the stairs' uncertainty)
 };
 
 /// The constrained map the pipeline plans on: analytic margins plus, when asked, the robot's own

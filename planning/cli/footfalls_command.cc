@@ -24,6 +24,7 @@ nlohmann::json StaircaseJson(const FootfallStaircase& s) {
   }
   return {{"steps", s.model.steps}, {"rise", s.model.rise}, {"run", s.model.run}, {"direction", Xy(s.model.direction)},
           {"yaw_rad", s.model.yaw()}, {"traversal", ToString(s.traversal)}, {"width", s.model.width},
+          {"uncertainty", s.model.uncertainty},
           {"center", Xy(s.model.center)}, {"tread_heights", s.tread_heights}, {"levels", s.model.levels},
           {"cluster_sizes", s.cluster_sizes}, {"edges", edges}, {"t_begin", s.t_begin}, {"t_end", s.t_end}};
 }
@@ -100,7 +101,8 @@ int RunFootfalls(const std::vector<std::string>& args) {
     for (std::size_t i = 0; i < found.size(); ++i) {
       const FootfallStaircase& s = found[i];
       std::cout << "  " << i + 1 << ": " << s.model.steps << " steps walked " << ToString(s.traversal) << ", rise " << s.model.rise
-                << " m, run " << s.model.run << " m, heading " << s.model.yaw() * 180.0 / M_PI << " deg, from t = " << s.t_begin
+                << " m, run " << s.model.run << " m, nosings within " << s.model.uncertainty * 1000 << " mm, heading "
+                << s.model.yaw() * 180.0 / M_PI << " deg, from t = " << s.t_begin
                 << " s to " << s.t_end << " s" << (i < written.size() ? "; wrote " + written[i] : "") << "\n";
     }
     return code;

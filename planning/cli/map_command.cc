@@ -25,6 +25,7 @@ nlohmann::json StairsJson(const StairFit& fit) {
   nlohmann::json edges = nlohmann::json::array();
   for (const EdgeLine& e : m.Edges()) edges.push_back({{"a", MapXyz(e.a)}, {"b", MapXyz(e.b)}});
   return {{"steps", m.steps}, {"rise", m.rise}, {"run", m.run}, {"yaw_rad", m.yaw()}, {"width", m.width},
+          {"uncertainty", m.uncertainty},
           {"direction", MapXy(m.direction)}, {"center", MapXy(m.center)}, {"levels", m.levels}, {"edges", edges},
           {"residuals", {{"level_rms", fit.level_rms}, {"edge_rms", fit.edge_rms}, {"point_rms", fit.point_rms},
                          {"tread_points", fit.tread_points}, {"levels", fit.level_residuals}, {"edges", fit.edge_residuals}}}};
@@ -216,7 +217,8 @@ int RunMap(const std::vector<std::string>& args) {
       if (p.fit.found) {
         const StairModel& s = p.fit.model;
         std::cout << "  stairs:     " << s.steps << " steps, rise " << s.rise << " m, run " << s.run << " m, yaw "
-                  << s.yaw() * 180.0 / M_PI << " deg, width " << s.width << " m\n"
+                  << s.yaw() * 180.0 / M_PI << " deg, width " << s.width << " m; nosings within " << s.uncertainty * 1000
+                  << " mm\n"
                   << "  residuals:  levels " << p.fit.level_rms << " m, edges " << p.fit.edge_rms << " m, tread points "
                   << p.fit.point_rms << " m rms\n"
                   << "  map:        " << p.stairs->map.size() << " surfaces (" << ToString(settings.regions.travel) << ", facing "

@@ -189,6 +189,7 @@ CloudStairs PerceiveCloud(const std::string& path, const StairFlags& flags, Faci
                            {"level_rms_m", seen.fit.level_rms},
                            {"edge_rms_m", seen.fit.edge_rms},
                            {"point_rms_m", seen.fit.point_rms},
+                           {"uncertainty_m", m.uncertainty},
                            {"plan_frame_origin_W", {origin.x(), origin.y(), origin.z()}},
                            {"plan_frame_yaw_rad", m.TravelYaw(settings.regions.travel)}};
   return {seen.stairs->stairs, seen.stairs->map, {m, settings.regions.travel, settings.regions.nosing}, fitted};
@@ -295,6 +296,12 @@ int RunPlan(const std::vector<std::string>& args) {
     nlohmann::json json = PlanToJson(plan, stairs, result.map);
     if (result.validated) json["validation"] = ValidationToJson(result.validation);
     if (perceived) json["fitted"] = perceived->fitted;
+    // The clearances the planners kept: their margins plus the uncertainty of the stairs planned on.
+    const PlannerClearances& c = result.clearances;
+    json["clearance"] = {{"stairs_uncertainty_m", c.stairs_uncertainty}, {"body_qp_margin_m", c.body_qp},
+                         {"touchdown_m", c.touchdown}, {"swing_m", c.swing}, {"edge_margin_m", c.edge_margin},
+                         {"riser_margin_m", c.riser_margin},
+                         {"validator_min_m", options.validation.min_clearance}};
     json.update(StairApproachToJson(result.approach, plan, world));
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");
