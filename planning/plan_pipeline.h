@@ -143,24 +143,26 @@ struct PipelineOptions {
 struct PlannerClearances {
   double stairs_uncertainty = 0.0;   ///< StairSpec::uncertainty of the stairs planned on
   double body_qp = 0.0;              ///< BodyPlannerSettings::clearance_margin (the body optimisation's rows keep theirs on top)
-  double touchdown = 0.0;            ///< BodyPathSettings::touchdown_clearance (the quasi-static path's posture fit)
+  double touchdown = 0.0;            ///< BodyPathSettings::touchdown_clearance (the quasi-static path's posture fit; not raised)
   double swing = 0.0;                ///< SwingSettings::clearance (swing feet over the stairs)
-  double edge_margin = 0.0;          ///< ConstrainedMapSettings::edge_margin (footholds off the walking edges)
-  double riser_margin = 0.0;         ///< ConstrainedMapSettings::riser_margin (footholds off the risers and nosings above)
+  double edge_margin = 0.0;          ///< ConstrainedMapSettings::edge_margin (footholds off the walking edges; not raised)
+  double riser_margin = 0.0;         ///< ConstrainedMapSettings::riser_margin (footholds off the risers above; not raised)
 };
 
-/// `options` with every planner's clearance margin raised by `stairs.spec().uncertainty`: the
-/// body optimisation's (body_qp.clearance_margin), the quasi-static path's (touchdown clearance),
-/// the swings' and the step regions' margins off the edges and risers. Stairs estimated from data
-/// are off by up to that much at their nosings, and a clearance is 1-Lipschitz in where the stairs
-/// are, so a plan that keeps its margin plus the uncertainty on the estimate keeps its margin on
-/// the true stairs. The robot's own collision regions (RobotRegionSettings::min_clearance) are
-/// judged at a nominal posture and stay: the body's planners own the clearance of the posture
-/// planned (raised with the others by 2.6-4.0 cm, they left two of the footfall loop's four flights
-/// without a body-optimisation plan). The
-/// validator's margins are a judge's, on the stairs it is given, and stay. The pipeline calls it
-/// (RunPipeline, RunPipelineOnMap, BuildPipelineMap, AddPipelineRobotRegions): give them the options
-/// as set, not raised already.
+/// `options` with the planners' clearance margins raised by `stairs.spec().uncertainty`: the body
+/// optimisation's (body_qp.clearance_margin, which its clearance rows keep for stance and swing
+/// legs) and the swings' (SwingSettings::clearance over the nosings). Stairs estimated
+/// from data are off by up to that much at their nosings, and a clearance is 1-Lipschitz in where
+/// the stairs are, so a plan that keeps its margin plus the uncertainty on the estimate keeps its
+/// margin on the true stairs. Not raised (planning/plan_pipeline.cc has the numbers): the
+/// quasi-static path's touchdown clearance (its posture fit then found no height for the footfall
+/// loop's descent), the step regions' edge and riser margins (5 and 7 cm; raised, a descent's crawl
+/// tipped) and the
+/// robot's own collision regions (RobotRegionSettings::min_clearance, judged at a nominal posture;
+/// raised with the others by 2.6-4.0 cm they left two of the footfall loop's four flights without
+/// a body-optimisation plan). The validator's margins are a judge's, on the stairs it is given,
+/// and stay. The pipeline calls it (RunPipeline, RunPipelineOnMap, BuildPipelineMap,
+/// AddPipelineRobotRegions): give them the options as set, not raised already.
 PipelineOptions WithStairUncertainty(PipelineOptions options, const Staircase& stairs);
 
 /// The clearances `options` keep (after WithStairUncertainty) on `stairs`.
