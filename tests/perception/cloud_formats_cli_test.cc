@@ -16,6 +16,7 @@
 #include "perception/footfall_scenes.h"
 #include "perception/pcd_files.h"
 #include "perception/perception_scenes.h"
+#include "perception/body_optimisation_flags.h"
 #include "sanitized.h"
 #include "stairplan/version.h"
 #include "test_paths.h"
@@ -125,4 +126,52 @@ TEST_CASE("footfalls --stairs-out writes one stairs YAML per staircase walked", 
     CHECK(ToString(spec.direction) == staircases[i]["traversal"].get<std::string>());
   }
   CHECK_FALSE(std::filesystem::exists(dir + "/flight_4.yaml"));
+}
+
+TEST_CASE("map --stairs-out: plans on the perceived stairs keep the fit's uncertainty and validate on the true stairs", "[cli][perception][pcd]") {
+  const std::string dir = MakeTempDir("map-true-stairs");
+  // Scanned in the stairs' own frame and without a nosing, so that the true stairs YAML and the
+  // fitted one (origin at the first edge, nosing 0) share their frame up to the fit's error.
+  StairSpec spec;
+  spec.steps = FullOrSanitized(7, 3);
+  spec.nosing = 0.0;
+  const Staircase truth(spec);
+  const PointCloud cloud = RoundedToFloat(ScanFromBottom(truth, 0.0, Eigen::Vector3d::Zero(), 0.005, 3).cloud);
+  const std::string scan = WriteCloudFile(dir + "/scan.pcd", PcdFileBytes(cloud, PcdEncoding::kBinary));
+  std::ofstream(dir + "/true.yaml") << StairSpecToYaml(spec);
+  const StairplanRun map = RunStairplan(dir, "map --cloud " + scan + " --stairs-out " + dir + "/stairs.yaml");
+  INFO(map.out << map.err);
+  REQUIRE(map.code == 0);
+  const StairSpec seen = StairSpecFromYamlFile(dir + "/stairs.yaml");
+  CHECK(seen.uncertainty > 0.0);
+  CHECK(seen.uncertainty < 0.03);
+  for (const std::string& body : {std::string(), std::string(kBodyOptimisation)}) {
+    INFO((body.empty() ? "default" : "body optimisation"));
+    const std::string out = dir + (body.empty() ? "/plan" : "/plan_qp");
+    const StairplanRun plan = RunStairplan(dir, "plan --stairs " + dir + "/stairs.yaml " + body + " --out " + out);
+    INFO(plan.out << plan.err);
+    REQUIRE(plan.code == 0);
+    const nlohmann::json j = nlohmann::json::parse(ReadFile(out + "/plan.json"));
+    CHECK(j["clearance"]["stairs_uncertainty_m"].get<double>() == seen.uncertainty);
+    CHECK(j["stairs"]["uncertainty"].get<double>() == seen.uncertainty);
+    const StairplanRun valid = RunStairplan(dir, "validate " + out + "/plan.json --stairs " + dir + "/true.yaml");
+    INFO(valid.out << valid.err);
+    CHECK(valid.code == 0);
+  }
+}
+
+TEST_CASE("stairs YAML: the uncertainty is optional, and a bad one exits 2 naming the file and field", "[cli][perception]") {
+  const std::string dir = MakeTempDir("stairs-uncertainty");
+  StairSpec spec;
+  spec.uncertainty = 0.004;
+  CHECK(StairSpecFromYaml(StairSpecToYaml(spec), "round trip").uncertainty == 0.004);
+  CHECK(StairSpecFromYaml("steps: 3\n", "old file").uncertainty == 0.0);
+  CHECK(StairSpecToYaml(StairSpec{}).find("uncertainty") == std::string::npos);
+  for (const char* bad : {"-0.001", "0.5", "nan", "[1]"}) {
+    std::ofstream(dir + "/bad.yaml") << "steps: 3\nuncertainty: " << bad << "\n";
+    const StairplanRun plan = RunStairplan(dir, "plan --stairs " + dir + "/bad.yaml --out " + dir + "/out");
+    INFO(bad << ": " << plan.err);
+    CHECK(plan.code == 2);
+    CHECK_THAT(plan.err, Catch::Contains(dir + "/bad.yaml") && Catch::Contains("uncertainty"));
+  }
 }

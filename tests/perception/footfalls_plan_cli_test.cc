@@ -15,11 +15,13 @@
 #include "geometry/stair_mode.h"
 #include "geometry/stair_spec_yaml.h"
 #include "perception/footfall_scenes.h"
+#include "perception/body_optimisation_flags.h"
 #include "sanitized.h"
 #include "test_paths.h"
 
 using namespace stairplan;
 using namespace stairplan::testing;
+
 
 TEST_CASE("footfalls --stairs-out, plan --stairs: plans that validate on the true stairs", "[cli][perception][footfalls]") {
   const std::string dir = MakeTempDir("footfalls-plan");
@@ -40,13 +42,26 @@ TEST_CASE("footfalls --stairs-out, plan --stairs: plans that validate on the tru
   for (std::size_t i = 0; i < loop.size(); i += stride) {
     INFO("flight " << i);
     const std::string truth = dir + "/true_" + std::to_string(i) + ".yaml";
-    const std::string out = dir + "/plan_" + std::to_string(i);
-    const StairplanRun plan = RunStairplan(dir, "plan --stairs " + dir + "/" + found_files[i] + " --out " + out);
-    INFO(plan.out << plan.err);
-    REQUIRE(plan.code == 0);
-    const StairplanRun valid = RunStairplan(dir, "validate " + out + "/plan.json --stairs " + truth);
-    INFO(valid.out << valid.err);
-    CHECK(valid.code == 0);
+    // The footfalls' bound on their nosings, which the planners keep as clearance.
+    const double uncertainty = StairSpecFromYamlFile(dir + "/" + found_files[i]).uncertainty;
+    CHECK(uncertainty > 0.0);
+    // The quasi-static default and the body optimisation, which uses every millimetre it is
+    // given: without the uncertainty its plans keep exactly the rows' 6 mm on the found stairs and
+    // 3.3-4.6 mm on the true ones.
+    for (const std::string& body : {std::string(), std::string(kBodyOptimisation)}) {
+      INFO((body.empty() ? "default" : "body optimisation"));
+      const std::string out = dir + "/plan_" + std::to_string(i) + (body.empty() ? "" : "_qp");
+      const StairplanRun plan = RunStairplan(dir, "plan --stairs " + dir + "/" + found_files[i] + " " + body + " --out " + out);
+      INFO(plan.out << plan.err);
+      REQUIRE(plan.code == 0);
+      const nlohmann::json clearance = nlohmann::json::parse(ReadFile(out + "/plan.json")).at("clearance");
+      CHECK(clearance.at("stairs_uncertainty_m").get<double>() == uncertainty);
+      CHECK(clearance.at("body_qp_margin_m").get<double>() == Approx(uncertainty));
+      CHECK(clearance.at("validator_min_m").get<double>() == 0.005);
+      const StairplanRun valid = RunStairplan(dir, "validate " + out + "/plan.json --stairs " + truth + " --json");
+      INFO(valid.out << valid.err);
+      CHECK(valid.code == 0);
+    }
   }
   // plan --footfalls plans on a staircase of the log directly: the third, walked down. Not under the
   // sanitizers (a 7-step descent planned and replayed there took most of this test's 68 s); the
