@@ -148,7 +148,7 @@ void BindStairs(py::module_& m) {
 
 Stairs(spec=None, **fields): `spec` is None (the defaults: 7 steps, rise 0.17, run 0.27,
 nosing 0.02, width 1.0, up), a dict or a YAML file of the stairs YAML keys (steps, rise, run,
-nosing, width, landing_before, landing_after, nosing_thickness, rises, runs, direction); the
+nosing, width, landing_before, landing_after, nosing_thickness, rises, runs, direction, uncertainty); the
 keyword fields override it. Raises ValueError (stairplan.FieldError) naming a bad field and
 FileNotFoundError for a missing file.)")
       .def(py::init([](const py::object& spec, const py::kwargs& fields) { return StairsArg(spec, Overrides(fields)); }),
@@ -158,6 +158,8 @@ FileNotFoundError for a missing file.)")
       .def_property_readonly("run", [](const Staircase& s) { return s.spec().run; })
       .def_property_readonly("nosing", [](const Staircase& s) { return s.spec().nosing; })
       .def_property_readonly("width", [](const Staircase& s) { return s.spec().width; })
+      .def_property_readonly("uncertainty", [](const Staircase& s) { return s.spec().uncertainty; },
+                             "How far the true nosings may be from these [m]; the planners keep it as clearance.")
       .def_property_readonly("direction", [](const Staircase& s) { return std::string(ToString(s.direction())); })
       .def_property_readonly("total_rise", &Staircase::total_rise)
       .def_property_readonly("rises", [](const Staircase& s) {
