@@ -44,6 +44,12 @@ nlohmann::json StairsToJson(const Staircase& stairs) {
           {"surfaces", surfaces}, {"uncertainty", spec.uncertainty}};
 }
 
+nlohmann::json ClearancesToJson(const PlannerClearances& c) {
+  return {{"stairs_uncertainty_m", c.stairs_uncertainty}, {"body_qp_margin_m", c.body_qp}, {"touchdown_m", c.touchdown},
+          {"swing_m", c.swing}, {"edge_margin_m", c.edge_margin}, {"riser_margin_m", c.riser_margin},
+          {"validator_min_m", c.validator}};
+}
+
 nlohmann::json ValidationToJson(const ValidationReport& report) {
   nlohmann::json violations = nlohmann::json::array();
   for (const Violation& v : report.violations) {

@@ -8,6 +8,7 @@
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
 #include "planning/plan.h"
+#include "planning/planner_clearances.h"
 #include "planning/validation/traversal_validator.h"
 
 namespace stairplan {
@@ -19,6 +20,10 @@ nlohmann::json StairsToJson(const Staircase& stairs);
 /// failed_instants, first_failure {t, kind, leg} when one fails}, violations [{t, leg, kind, family,
 /// value, detail}].
 nlohmann::json ValidationToJson(const ValidationReport& report);
+
+/// plan.json's `clearance`: the margins the planners kept (stairs_uncertainty_m, body_qp_margin_m,
+/// touchdown_m, swing_m, edge_margin_m, riser_margin_m) and the validator's (validator_min_m).
+nlohmann::json ClearancesToJson(const PlannerClearances& clearances);
 /// The whole plan: robot, stairs, map regions, footsteps, body, cadence, status, timings, and the
 /// version and schema_version of the writer.
 nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const ConstrainedMap& map);

@@ -219,6 +219,7 @@ PlannerClearances ClearancesOf(const PipelineOptions& options, const Staircase& 
   c.swing = options.crawl.swing.clearance;
   c.edge_margin = options.map.edge_margin;
   c.riser_margin = options.map.riser_margin;
+  c.validator = options.validation.min_clearance;
   return c;
 }
 

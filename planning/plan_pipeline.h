@@ -12,6 +12,7 @@
 #include "planning/body/body_nlp.h"
 #include "planning/body/body_planner_settings.h"
 #include "planning/plan.h"
+#include "planning/planner_clearances.h"
 #include "planning/stair_approach.h"
 #include "planning/step/step_planner_settings.h"
 #include "planning/validation/traversal_validator.h"
@@ -138,16 +139,6 @@ struct PipelineOptions {
   bool start_at_alignment = false;
 };
 
-/// The clearances the planners kept on the stairs planned on [m]: each planner's own margin raised
-/// by the stairs' uncertainty (WithStairUncertainty). plan.json's `clearance` reports them.
-struct PlannerClearances {
-  double stairs_uncertainty = 0.0;   ///< StairSpec::uncertainty of the stairs planned on
-  double body_qp = 0.0;              ///< BodyPlannerSettings::clearance_margin (the body optimisation's rows keep theirs on top)
-  double touchdown = 0.0;            ///< BodyPathSettings::touchdown_clearance (the quasi-static path's posture fit; not raised)
-  double swing = 0.0;                ///< SwingSettings::clearance (swing feet over the stairs)
-  double edge_margin = 0.0;          ///< ConstrainedMapSettings::edge_margin (footholds off the walking edges; not raised)
-  double riser_margin = 0.0;         ///< ConstrainedMapSettings::riser_margin (footholds off the risers above; not raised)
-};
 
 /// `options` with the planners' clearance margins raised by `stairs.spec().uncertainty`: the body
 /// optimisation's (body_qp.clearance_margin, which its clearance rows keep for stance and swing

@@ -297,11 +297,7 @@ int RunPlan(const std::vector<std::string>& args) {
     if (result.validated) json["validation"] = ValidationToJson(result.validation);
     if (perceived) json["fitted"] = perceived->fitted;
     // The clearances the planners kept: their margins plus the uncertainty of the stairs planned on.
-    const PlannerClearances& c = result.clearances;
-    json["clearance"] = {{"stairs_uncertainty_m", c.stairs_uncertainty}, {"body_qp_margin_m", c.body_qp},
-                         {"touchdown_m", c.touchdown}, {"swing_m", c.swing}, {"edge_margin_m", c.edge_margin},
-                         {"riser_margin_m", c.riser_margin},
-                         {"validator_min_m", options.validation.min_clearance}};
+    json["clearance"] = ClearancesToJson(result.clearances);
     json.update(StairApproachToJson(result.approach, plan, world));
     MakeOutputDir(o.out, "--out");
     WriteFileAtomically(o.out + "/plan.json", json.dump(2) + "\n");

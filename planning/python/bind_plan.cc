@@ -88,6 +88,7 @@ PlanResult RunPlan(const py::object& robot_arg, const py::object& stairs_arg, co
     *result = RunPlanPipeline(*out.robot, *out.stairs, perceived ? perceived->map.get() : nullptr, pipeline);
     out.json = PlanToJson(result->plan, *out.stairs, result->map);
     if (result->validated) out.json["validation"] = ValidationToJson(result->validation);
+    out.json["clearance"] = ClearancesToJson(result->clearances);
     // As `stairplan plan` writes them: the robot's pose and its source, in the cloud's world too.
     out.json.update(StairApproachToJson(result->approach, result->plan, world));
   }
