@@ -136,7 +136,6 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
                         PipelineOptions options) {
   const RobotModel& robot = kinematics.robot();
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
-  options.body_qp.Validate();  // a clearance margin raised beyond its range names the field
   if (stairs.direction() == TravelDirection::kDown) {
     options.crawl.shift_duration = std::max(options.crawl.shift_duration, options.descent_shift_duration);
   }

@@ -67,7 +67,8 @@ int RunFootfalls(const std::vector<std::string>& args) {
   app.add_option("--max-depth", settings.max_depth, "Largest horizontal step between treads [m] (default 0.60)");
   app.add_option("--stairs-out", stairs_out,
                  "Write each staircase as the YAML that `stairplan plan --stairs` reads: the first to this file, the "
-                 "others beside it with _1, _2... before the extension (F.yaml, F_1.yaml, ...); exit 3 when none is found");
+                 "others beside it with _1, _2... before the extension (F.yaml, F_1.yaml, ...), each with its `uncertainty`, "
+                 "the bound on its nosings' error that the planners keep as clearance; exit 3 when none is found");
   app.add_option("--nosing", nosing,
                  "Nosing of the stairs written by --stairs-out [m]: footfalls find the walking edges but cannot see "
                  "the overhang, which a plan must clear (default 0)")

@@ -178,7 +178,8 @@ int RunMap(const std::vector<std::string>& args) {
   app.add_option("--svg", svg_path, "Write a top view of the map to this SVG file");
   app.add_option("--stairs-out", stairs_out,
                  "Write the fitted stairs as the YAML that `stairplan plan --stairs` reads (in the stairs' own frame; "
-                 "a comment says where that frame lies in the cloud's)");
+                 "a comment says where that frame lies in the cloud's), with the fit's `uncertainty`, the bound on its "
+                 "nosings' error that the planners keep as clearance");
   app.add_flag("--json", json, "Print JSON (keys cloud, height_map, stairs, map) instead of the summary");
   if (const int code = Parse(app, args); code >= 0) return code;
   return Guarded("map", [&] {
