@@ -206,7 +206,9 @@ PipelineOptions WithStairUncertainty(PipelineOptions options, const Staircase& s
   options.crawl.swing.clearance += u;
   // Nor the step regions' margins off the edges and risers (5 and 7 cm, beyond any uncertainty
   // written): 2.4 cm more left the footfall loop's 5-step descent a crawl that tips (8.7 mm
-  // outside the support) and grazes a nosing on the stairs planned on.
+  // outside the support) and grazes a nosing on the stairs planned on. Nor the robot regions'
+  // clearance, judged at a nominal posture: raised with the others, two of the footfall loop's
+  // four flights had no body-optimisation plan.
   return options;
 }
 

@@ -142,18 +142,13 @@ struct PipelineOptions {
 
 /// `options` with the planners' clearance margins raised by `stairs.spec().uncertainty`: the body
 /// optimisation's (body_qp.clearance_margin, which its clearance rows keep for stance and swing
-/// legs) and the swings' (SwingSettings::clearance over the nosings). Stairs estimated
-/// from data are off by up to that much at their nosings, and a clearance is 1-Lipschitz in where
-/// the stairs are, so a plan that keeps its margin plus the uncertainty on the estimate keeps its
-/// margin on the true stairs. Not raised (planning/plan_pipeline.cc has the numbers): the
-/// quasi-static path's touchdown clearance (its posture fit then found no height for the footfall
-/// loop's descent), the step regions' edge and riser margins (5 and 7 cm; raised, a descent's crawl
-/// tipped) and the
-/// robot's own collision regions (RobotRegionSettings::min_clearance, judged at a nominal posture;
-/// raised with the others by 2.6-4.0 cm they left two of the footfall loop's four flights without
-/// a body-optimisation plan). The validator's margins are a judge's, on the stairs it is given,
-/// and stay. The pipeline calls it (RunPipeline, RunPipelineOnMap, BuildPipelineMap,
-/// AddPipelineRobotRegions): give them the options as set, not raised already.
+/// legs) and the swings' (SwingSettings::clearance over the nosings). Stairs estimated from data
+/// are off by up to that much at their nosings, and a clearance is 1-Lipschitz in where the stairs
+/// are, so a plan that keeps its margin plus the uncertainty on the estimate keeps its margin on
+/// the true stairs. The quasi-static path's touchdown clearance, the step regions' margins and the
+/// robot regions' clearance are not raised (planning/plan_pipeline.cc says why); the validator's
+/// margins are a judge's, on the stairs it is given. The pipeline calls it (RunPipeline,
+/// RunPipelineOnMap, BuildPipelineMap, AddPipelineRobotRegions): give them the options as set.
 PipelineOptions WithStairUncertainty(PipelineOptions options, const Staircase& stairs);
 
 /// The clearances `options` keep (after WithStairUncertainty) on `stairs`.
