@@ -115,6 +115,8 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
   com_ = CalibrateComEstimate(robot, contacts, StartState());
   neutral_x_.setZero(n);
   neutral_y_.setZero(n);
+  centres_.setZero(4, n);
+  anchors_.setZero(4, n);
   com_base_.setZero(2, n);
   support_normal_.setZero(2, BodyQp::kSupportRows * n);
   support_edge_.setZero(BodyQp::kSupportRows * n);
@@ -312,6 +314,8 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       ++output_.linearised_knots;
       output_.reused_knots += restored ? 1 : 0;
     }
+    centres_.col(k) = v0;
+    anchors_.col(k) = anchor;
     SupportRows(k, t, pm, at, v0, restored);
     if (recentred) {
       qp.stance.RelaxAt(BodyQp::StanceRow(k, 0, 0), kBodyLegs * BodyQp::kStanceRows, anchor);
@@ -321,6 +325,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
   if (leg_rows) {
     ZmpSupportRows(now);
     ProgressRows();
+    PassingRows(now);
   }
 }
 

@@ -177,16 +177,23 @@ class BodyPlanner {
   // How far leg l's foot strays at the middles of the knot intervals before and after instant t
   // from the chords between the knots (StanceLegMargins::foot_bends_W).
   std::array<Eigen::Vector3d, 2> FootBends(int l, double t) const;
-  // Leg l's clearance row at knot k: its closest link point's distance to the stairs (FCL),
-  // linearised through `rows`' joint derivative; free when the leg is far from them. A swing
-  // leg's foot contact shape is left out (its path is the swing trajectory's).
-  void ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows, bool swing);
-  // The body's clearance row at knot k: its closest point's distance to the stairs (FCL).
-  void BodyClearanceRow(int k, const BodyPose& at, const Eigen::Vector4d& v0);
+  // Leg l's clearance row k of `into` (the knots' or the half-knots' rows) at the pose `at`: its
+  // closest link point's distance to the stairs (FCL), linearised through `rows`' joint
+  // derivative; free when the leg is far from them. A swing leg's foot contact shape is left out
+  // (its path is the swing trajectory's).
+  void ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyPose& at, const Eigen::Vector4d& v0,
+                    const StanceLegRows& rows, bool swing);
+  // The body's clearance row k of `into` at the pose `at`: its closest point's distance to the
+  // stairs (FCL).
+  void BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose& at, const Eigen::Vector4d& v0);
+  // The clearance rows half a knot after each knot (BodyQp::passing), linearised at the mean of
+  // the two knots' centres, for the legs (and the body) with a clearance row at either knot. Not
+  // carried across cycles: every cycle linearises them again.
+  void PassingRows(double now);
   // Clearance row `row` from the closest pair `c` and the closest robot point moved by a small
   // step along each body variable (`moved`, one column per variable), kept `inset` beyond the
   // clearance margin.
-  void SetClearanceRow(int row, const Clearance& c, const Eigen::Vector4d& v0, double inset,
+  void SetClearanceRow(BodyQp::KnotRows& into, int row, const Clearance& c, const Eigen::Vector4d& v0, double inset,
                        const Eigen::Matrix<double, 3, 4>& moved);
   // Moves knot k's shift reference to the shift that widens its narrowest stance-leg range.
   void RestoreShift(int k, double neutral_x, double pitch_lo, double pitch_hi, double width);
@@ -223,6 +230,9 @@ class BodyPlanner {
   ComEstimate com_;
   std::vector<LegPhase> phases_;  // (knots + 1) * 4: each leg at now + k * knot_dt, this cycle
   Eigen::VectorXd neutral_x_, neutral_y_;  // this cycle's neutral body xy per knot
+  // This cycle's linearisation points per knot, and the points the relaxation answers to (the
+  // previous plan; they differ where a new knot was recentred).
+  Eigen::Matrix<double, 4, Eigen::Dynamic> centres_, anchors_;
   // SupportRows' record for ZmpSupportRows: each knot's COM without the weight shifts, and per
   // row its edge's normal, normal . first foot, and side (+1: the COM below the edge, -1: above,
   // 0: free).

@@ -111,15 +111,48 @@ void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::V
       qp.stance.hi[first + j] = hi + at_v0;
       qp.stance.sigma[first + j] = lo > 0.0 ? lo : hi < 0.0 ? hi : 0.0;  // what the centre breaks
     }
-    ClearanceRow(k, l, at, v0, rows, !phase.stance);
+    ClearanceRow(qp.clearance, k, l, at, v0, rows, !phase.stance);
   }
-  BodyClearanceRow(k, at, v0);
+  BodyClearanceRow(qp.clearance, k, at, v0);
 }
 
-void BodyPlanner::BodyClearanceRow(int k, const BodyPose& at, const Eigen::Vector4d& v0) {
+void BodyPlanner::PassingRows(double now) {
+  BodyQp& qp = *qp_;
+  if (!qp.has_stance_rows()) return;
+  const int n = settings_.knots;
+  qp.passing.lo.setConstant(-optim::kInf);
+  qp.passing.sigma.setZero();
+  StanceLegMargins margins{settings_.joint_margin, settings_.reach_margin};
+  const auto near = [&](int k, int l) { return std::isfinite(qp.clearance.lo[BodyQp::ClearanceRow(k, l)]); };
+  // From knot 0, the state: the interval the robot executes next.
+  for (int k = 0; k + 1 < n; ++k) {
+    const double t = now + (k + 0.5) * settings_.knot_dt;
+    const Eigen::Vector4d v0 = 0.5 * (centres_.col(k) + centres_.col(k + 1));
+    const BodyPose at =
+        CentrePose(Eigen::Vector2d(0.5 * (neutral_x_[k] + neutral_x_[k + 1]), 0.5 * (neutral_y_[k] + neutral_y_[k + 1])), v0);
+    const Eigen::Matrix3d body_rotation = at.ToIsometry().linear();
+    for (int l = 0; l < kBodyLegs; ++l) {
+      if (!near(k, l) && !near(k + 1, l)) continue;
+      const LegPhase phase = schedule_.Phase(l, t);
+      const Eigen::Vector3d contact = phase.stance ? phase.foot_W : schedule_.SwingFoot(l, phase);
+      const LegKinematics& kin = robot_->kinematics().leg(l);
+      LegWorkspace& ws = stance_ws_->leg(l);
+      const Eigen::Vector3d& seed = stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)];
+      const Eigen::Matrix3d foot_rotation = body_rotation * kin.FootPose(seed, ws).linear();
+      const Eigen::Vector3d origin = FootOriginForContact(kin.model(), contact, foot_rotation);
+      const StanceLegRows rows = LinearizeStanceLeg(kin, ws, origin, at, seed, margins);
+      ClearanceRow(qp.passing, k, l, at, v0, rows, !phase.stance);
+    }
+    if (near(k, kBodyLegs) || near(k + 1, kBodyLegs)) BodyClearanceRow(qp.passing, k, at, v0);
+    // With knot k's relaxation at 1 the previous plan meets the rows, as every knot row's.
+    qp.passing.RelaxAt(BodyQp::ClearanceRow(k, 0), BodyQp::kClearanceRows, 0.5 * (anchors_.col(k) + anchors_.col(k + 1)));
+  }
+}
+
+void BodyPlanner::BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose& at, const Eigen::Vector4d& v0) {
   const int row = BodyQp::ClearanceRow(k, kBodyLegs);
-  qp_->clearance.lo[row] = -optim::kInf;
-  qp_->clearance.sigma[row] = 0.0;
+  into.lo[row] = -optim::kInf;
+  into.sigma[row] = 0.0;
   if (k == 0) return;  // knot 0 is the measured state
   ClearanceOptions options;
   options.prune_above = kClearanceRange;
@@ -129,11 +162,11 @@ void BodyPlanner::BodyClearanceRow(int k, const BodyPose& at, const Eigen::Vecto
   const Eigen::Vector3d point_B = at.ToIsometry().inverse() * c.point_robot_W;
   Eigen::Matrix<double, 3, 4> moved;
   for (int v = 0; v < 4; ++v) moved.col(v) = Moved(at, v, kPointStep).ToIsometry() * point_B;
-  SetClearanceRow(row, c, v0, kClearanceInset, moved);
+  SetClearanceRow(into, row, c, v0, kClearanceInset, moved);
 }
 
-void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Vector4d& v0, const StanceLegRows& rows,
-                               bool swing) {
+void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyPose& at, const Eigen::Vector4d& v0,
+                               const StanceLegRows& rows, bool swing) {
   const RobotKinematics& kinematics = robot_->kinematics();
   ClearanceOptions options;
   options.prune_above = kClearanceRange;
@@ -159,10 +192,10 @@ void BodyPlanner::ClearanceRow(int k, int l, const BodyPose& at, const Eigen::Ve
   for (int v = 0; v < 4; ++v) {
     moved.col(v) = point_at(Moved(at, v, kPointStep), rows.q + kPointStep * rows.dq.col(v)) * point_link;
   }
-  SetClearanceRow(BodyQp::ClearanceRow(k, l), c, v0, inset, moved);
+  SetClearanceRow(into, BodyQp::ClearanceRow(k, l), c, v0, inset, moved);
 }
 
-void BodyPlanner::SetClearanceRow(int row, const Clearance& c, const Eigen::Vector4d& v0, double inset,
+void BodyPlanner::SetClearanceRow(BodyQp::KnotRows& into, int row, const Clearance& c, const Eigen::Vector4d& v0, double inset,
                                   const Eigen::Matrix<double, 3, 4>& moved) {
   Eigen::Vector3d normal = c.point_robot_W - c.point_other_W;
   const double length = normal.norm();
@@ -172,10 +205,10 @@ void BodyPlanner::SetClearanceRow(int row, const Clearance& c, const Eigen::Vect
   for (int v = 0; v < 4; ++v) grad[v] = normal.dot(moved.col(v) - c.point_robot_W) / kPointStep;
   const double norm = grad.norm();
   if (!(norm >= kMinClearanceGradient)) return;
-  qp_->clearance.a.row(row) = (grad / norm).transpose();
+  into.a.row(row) = (grad / norm).transpose();
   const double lo = (settings_.clearance_margin + inset - c.distance) / norm;
-  qp_->clearance.lo[row] = lo + grad.dot(v0) / norm;
-  qp_->clearance.sigma[row] = std::max(lo, 0.0);
+  into.lo[row] = lo + grad.dot(v0) / norm;
+  into.sigma[row] = std::max(lo, 0.0);
 }
 
 }  // namespace stairplan

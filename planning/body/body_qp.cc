@@ -189,6 +189,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   const int legs_rows = stance_rows ? kBodyLegs * n : 0;
   AddKnotRows("stance", kStanceRows * legs_rows, kStanceRows * kBodyLegs, &stance, &stance_);
   AddKnotRows("clearance", stance_rows ? kClearanceRows * n : 0, kClearanceRows, &clearance, &clearance_);
+  AddKnotRows("passing_clearance", stance_rows ? kClearanceRows * n : 0, kClearanceRows, &passing, &passing_, true);
 
   for (Eigen::VectorXd* v : {&z_lo, &pitch_lo, &shift_lo, &lateral_lo}) v->setConstant(n, -optim::kInf);
   for (Eigen::VectorXd* v : {&z_hi, &pitch_hi, &shift_hi, &lateral_hi}) v->setConstant(n, optim::kInf);
@@ -249,9 +250,11 @@ void BodyQp::PushInputs() {
   PushProgressRows();
   PushKnotRows(stance, &stance_);
   PushKnotRows(clearance, &clearance_);
+  PushKnotRows(passing, &passing_);
 }
 
-void BodyQp::AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows) {
+void BodyQp::AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows,
+                         bool spans_next) {
   const int n = knots_;
   if (count > 0) {
     const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(count, n);
@@ -262,6 +265,7 @@ void BodyQp::AddKnotRows(const char* name, int count, int per_knot, KnotRows* in
     rows->rows = {name, program_.num_rows(), 0};
   }
   rows->per_knot = per_knot;
+  rows->spans_next = spans_next;
   rows->pushed.setZero(count, 5);
   inputs->a.setZero(count, 4);
   inputs->lo.setConstant(count, -optim::kInf);
@@ -347,7 +351,12 @@ void BodyQp::PushKnotRows(const KnotRows& inputs, PushedRows* rows) {
     for (int v = 0; v < 5; ++v) {
       const double value = v < 4 ? inputs.a(row, v) : inputs.sigma[row];
       if (value == rows->pushed(row, v)) continue;
-      SetCoefficient(one_row_, *blocks[static_cast<std::size_t>(v)], k, value);
+      if (rows->spans_next && v < 4) {
+        SetCoefficient(one_row_, *blocks[static_cast<std::size_t>(v)], k, 0.5 * value);
+        SetCoefficient(one_row_, *blocks[static_cast<std::size_t>(v)], k + 1, 0.5 * value);
+      } else {
+        SetCoefficient(one_row_, *blocks[static_cast<std::size_t>(v)], k, value);
+      }
       rows->pushed(row, v) = value;
     }
   }
@@ -391,6 +400,7 @@ void BodyQp::ShiftWarmStart(const optim::ActiveSet& last, int knots) {
   ShiftKnots(&shifted_.rows, zmp_support_.rows.start, zmp_support_.rows.size, kSupportRows, knots);
   ShiftKnots(&shifted_.rows, stance_.rows.start, stance_.rows.size, stance_.per_knot, knots);
   ShiftKnots(&shifted_.rows, clearance_.rows.start, clearance_.rows.size, clearance_.per_knot, knots);
+  ShiftKnots(&shifted_.rows, passing_.rows.start, passing_.rows.size, passing_.per_knot, knots);
   solver_.SetWarmStart(shifted_);
 }
 

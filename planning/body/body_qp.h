@@ -34,7 +34,9 @@
 //                                 linearised through the leg's KDL Jacobian (stance_leg_rows.h)
 //        clearance_lo_kl <= b_kl . (z_k, pitch_k, shift_k, lateral_k) + e_kl relax_k
 //                                 per knot and leg, and of the body: its links clear of the
-//                                 stairs (FCL)
+//                                 stairs (FCL); the same half a knot later over the mean of knots
+//                                 k and k + 1 (passing: a link sweeping past a nosing comes nearer
+//                                 between two knots than at either)
 //        variable bounds (limits intersected with the cycle's trust region; knot 0 pinned)
 //
 // With stance rows, relax_k in [0, 1] is one elastic variable per knot, the share of the linearisation point's
@@ -169,6 +171,10 @@ class BodyQp {
   KnotRows stance;
   /// The legs' and the body's clearance to the stairs, ClearanceRow(k, leg) (lower bounds only).
   KnotRows clearance;
+  /// The same half a knot after knot k, ClearanceRow(k, leg), over the mean of knots k and k + 1
+  /// (the body there, moving straight between them): a link sweeping past a nosing comes nearer
+  /// between two knots than at either.
+  KnotRows passing;
 
   /// Pushes the inputs into the program(s) and solves warm; `time_limit_s` may be +inf.
   /// Allocation-free after the first call. Without support rows the sideways shift is its own
@@ -255,9 +261,10 @@ class BodyQp {
   struct PushedRows {
     optim::ConstraintRows rows;
     int per_knot = 0;
+    bool spans_next = false;  // over the mean of knots k and k + 1
     Eigen::MatrixXd pushed;  // a and sigma
   };
-  PushedRows stance_, clearance_;
+  PushedRows stance_, clearance_, passing_;
   optim::ActiveSetQpSolver solver_;
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
   optim::ConstraintRows progress_rows_;
@@ -269,7 +276,8 @@ class BodyQp {
   void PushSupportFamily(SupportFamily* family);
   void PushProgressRows();
   // Adds `count` free rows over one knot's variables each; the inputs sized to match.
-  void AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows);
+  void AddKnotRows(const char* name, int count, int per_knot, KnotRows* inputs, PushedRows* rows,
+                   bool spans_next = false);
   void PushKnotRows(const KnotRows& inputs, PushedRows* rows);
   // Writes `value` as knot k's coefficient of `block` into `row` (one row).
   void SetCoefficient(const optim::ConstraintRows& row, const optim::VariableBlock& block, int k, double value);
