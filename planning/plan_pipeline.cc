@@ -227,11 +227,11 @@ PlannerClearances ClearancesOf(const PipelineOptions& options, const Staircase& 
 void AddPipelineRobotRegions(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options,
                              ConstrainedMap& map) {
   if (!options.robot_regions) return;
-  AddRobotRegions(RobotKinematics(robot), stairs, WithStairUncertainty(options, stairs), map);
+  AddRobotRegions(RobotKinematics(robot), stairs, options, map);
 }
 
 ConstrainedMap BuildPipelineMap(const RobotModel& robot, const Staircase& stairs, const PipelineOptions& options) {
-  return BuildMap(RobotKinematics(robot), stairs, WithStairUncertainty(options, stairs));
+  return BuildMap(RobotKinematics(robot), stairs, options);
 }
 
 PipelineOptions OptionsForPlan(const Plan& plan) {

@@ -147,8 +147,8 @@ struct PipelineOptions {
 /// are, so a plan that keeps its margin plus the uncertainty on the estimate keeps its margin on
 /// the true stairs. The quasi-static path's touchdown clearance, the step regions' margins and the
 /// robot regions' clearance are not raised (planning/plan_pipeline.cc says why); the validator's
-/// margins are a judge's, on the stairs it is given. The pipeline calls it (RunPipeline,
-/// RunPipelineOnMap, BuildPipelineMap, AddPipelineRobotRegions): give them the options as set.
+/// margins are a judge's, on the stairs it is given. RunPipeline and RunPipelineOnMap call it:
+/// give them the options as set (the map builders read none of the margins it raises).
 PipelineOptions WithStairUncertainty(PipelineOptions options, const Staircase& stairs);
 
 /// The clearances `options` keep (after WithStairUncertainty) on `stairs`.
