@@ -174,6 +174,11 @@ class BodyPlanner {
   // (the trust region's centre), a stance leg's foot on its contact, a swing leg's on its swing
   // trajectory (rows free at knot 0 and without kinematics). t is the knot's instant.
   void StanceRows(int k, double t, const BodyPose& at, const Eigen::Vector4d& v0);
+  // Leg l's rows (joints, extension, and the joint derivative its clearance rows read) at the
+  // body pose `at` (rotation `body_rotation`), its foot on the contact `phase` gives (a swing
+  // leg's on its swing trajectory), the IK started from `seed`.
+  StanceLegRows LinearizeLeg(int l, const LegPhase& phase, const BodyPose& at, const Eigen::Matrix3d& body_rotation,
+                             const Eigen::Vector3d& seed, const StanceLegMargins& margins);
   // How far leg l's foot strays at the middles of the knot intervals before and after instant t
   // from the chords between the knots (StanceLegMargins::foot_bends_W).
   std::array<Eigen::Vector3d, 2> FootBends(int l, double t) const;

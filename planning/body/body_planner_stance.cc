@@ -89,17 +89,9 @@ void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::V
     qp.clearance.sigma[BodyQp::ClearanceRow(k, l)] = 0.0;
     if (k == 0) continue;  // knot 0 is the measured state
     const LegPhase& phase = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
-    // A swing leg's foot is where its swing trajectory has it at the knot: its joints and links
-    // answer to the body's motion as a stance leg's do.
-    const Eigen::Vector3d contact = phase.stance ? phase.foot_W : schedule_.SwingFoot(l, phase);
-    const LegKinematics& kin = robot_->kinematics().leg(l);
-    LegWorkspace& ws = stance_ws_->leg(l);
     Eigen::Vector3d& q = stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)];
-    // The foot's sphere rests on the contact; its offset from the foot origin turns with the foot.
-    const Eigen::Matrix3d foot_rotation = body_rotation * kin.FootPose(q, ws).linear();
-    const Eigen::Vector3d origin = FootOriginForContact(kin.model(), contact, foot_rotation);
     margins.foot_bends_W = FootBends(l, t);
-    const StanceLegRows rows = LinearizeStanceLeg(kin, ws, origin, at, q, margins);
+    const StanceLegRows rows = LinearizeLeg(l, phase, at, body_rotation, q, margins);
     q = rows.q;
     for (int j = 0; j < BodyQp::kStanceRows; ++j) {
       const std::size_t js = static_cast<std::size_t>(j);
@@ -116,13 +108,27 @@ void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::V
   BodyClearanceRow(qp.clearance, k, at, v0);
 }
 
+StanceLegRows BodyPlanner::LinearizeLeg(int l, const LegPhase& phase, const BodyPose& at,
+                                        const Eigen::Matrix3d& body_rotation, const Eigen::Vector3d& seed,
+                                        const StanceLegMargins& margins) {
+  // A swing leg's foot is where its swing trajectory has it: its joints and links answer to the
+  // body's motion as a stance leg's do.
+  const Eigen::Vector3d contact = phase.stance ? phase.foot_W : schedule_.SwingFoot(l, phase);
+  const LegKinematics& kin = robot_->kinematics().leg(l);
+  LegWorkspace& ws = stance_ws_->leg(l);
+  // The foot's sphere rests on the contact; its offset from the foot origin turns with the foot.
+  const Eigen::Matrix3d foot_rotation = body_rotation * kin.FootPose(seed, ws).linear();
+  const Eigen::Vector3d origin = FootOriginForContact(kin.model(), contact, foot_rotation);
+  return LinearizeStanceLeg(kin, ws, origin, at, seed, margins);
+}
+
 void BodyPlanner::PassingRows(double now) {
   BodyQp& qp = *qp_;
   if (!qp.has_stance_rows()) return;
   const int n = settings_.knots;
   qp.passing.lo.setConstant(-optim::kInf);
   qp.passing.sigma.setZero();
-  StanceLegMargins margins{settings_.joint_margin, settings_.reach_margin};
+  const StanceLegMargins margins{settings_.joint_margin, settings_.reach_margin};
   const auto near = [&](int k, int l) { return std::isfinite(qp.clearance.lo[BodyQp::ClearanceRow(k, l)]); };
   // From knot 0, the state: the interval the robot executes next.
   for (int k = 0; k + 1 < n; ++k) {
@@ -134,13 +140,8 @@ void BodyPlanner::PassingRows(double now) {
     for (int l = 0; l < kBodyLegs; ++l) {
       if (!near(k, l) && !near(k + 1, l)) continue;
       const LegPhase phase = schedule_.Phase(l, t);
-      const Eigen::Vector3d contact = phase.stance ? phase.foot_W : schedule_.SwingFoot(l, phase);
-      const LegKinematics& kin = robot_->kinematics().leg(l);
-      LegWorkspace& ws = stance_ws_->leg(l);
-      const Eigen::Vector3d& seed = stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)];
-      const Eigen::Matrix3d foot_rotation = body_rotation * kin.FootPose(seed, ws).linear();
-      const Eigen::Vector3d origin = FootOriginForContact(kin.model(), contact, foot_rotation);
-      const StanceLegRows rows = LinearizeStanceLeg(kin, ws, origin, at, seed, margins);
+      const StanceLegRows rows =
+          LinearizeLeg(l, phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)], margins);
       ClearanceRow(qp.passing, k, l, at, v0, rows, !phase.stance);
     }
     if (near(k, kBodyLegs) || near(k + 1, kBodyLegs)) BodyClearanceRow(qp.passing, k, at, v0);
