@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "../kinematics/robot_files.h"
 #include "test_paths.h"
@@ -220,6 +221,16 @@ PipelineResult LegRowClimb(Facing facing, const Staircase& stairs) {
   return result;
 }
 
+// A robot of ../shared/data/robots by file name; none (with a warning) where ../shared is absent.
+std::optional<RobotModel> SharedRobot(const std::string& name) {
+  const std::string path = testing::SharedPath("data/robots/" + name + ".urdf");
+  if (path.empty()) {
+    WARN("shared robots skipped: ../shared not found");
+    return std::nullopt;
+  }
+  return RobotModel::FromUrdfFile(path);
+}
+
 StairSpec LegRowStairs() {
   StairSpec spec;
   spec.steps = testing::FullOrSanitized(spec.steps, 1);
@@ -255,12 +266,9 @@ TEST_CASE("with leg rows every cycle's QP solves on Unitree A1's descent", "[bod
   // active-set solver took the bound's round-off violation (up to 5e-6 after hundreds of
   // changes) for a certificate of infeasibility, cold too, and the cycles kept their previous
   // plans, while Ipopt solved the same QPs.
-  const std::string path = testing::SharedPath("data/robots/unitree_a1.urdf");
-  if (path.empty()) {
-    WARN("shared robots skipped: ../shared not found");
-    return;
-  }
-  const RobotModel robot = RobotModel::FromUrdfFile(path);
+  const std::optional<RobotModel> shared = SharedRobot("unitree_a1");
+  if (!shared) return;
+  const RobotModel& robot = *shared;
   PipelineOptions options = testing::LegRowPipeline();
   options.validate = false;
   StairSpec spec;
@@ -287,12 +295,9 @@ TEST_CASE("with leg rows Unitree A1 climbs low stairs and validates: a clearance
   // for it at most knots of the horizon, and with it the support rows gave way: the body shifted
   // sideways only when the next liftoff was two knots away and the COM crossed into the triangle
   // 3 mm late (t = 5.62 s on the third step).
-  const std::string path = testing::SharedPath("data/robots/unitree_a1.urdf");
-  if (path.empty()) {
-    WARN("shared robots skipped: ../shared not found");
-    return;
-  }
-  const RobotModel robot = RobotModel::FromUrdfFile(path);
+  const std::optional<RobotModel> shared = SharedRobot("unitree_a1");
+  if (!shared) return;
+  const RobotModel& robot = *shared;
   StairSpec spec;
   spec.rise = 0.10;
   spec.run = 0.28;
@@ -329,12 +334,9 @@ TEST_CASE("with leg rows links keep their clearance between the knots: Unitree G
   // Descending, the body pitches at up to 2.4 rad/s as the front feet step down, and a thigh
   // sweeps about 2 cm past a nosing within one knot: the clearance rows held 6 mm at the knots
   // and the validator found the right front leg within 5 mm of a nosing between them (t = 4.88 s).
-  const std::string path = testing::SharedPath("data/robots/unitree_go1.urdf");
-  if (path.empty()) {
-    WARN("shared robots skipped: ../shared not found");
-    return;
-  }
-  const RobotModel robot = RobotModel::FromUrdfFile(path);
+  const std::optional<RobotModel> shared = SharedRobot("unitree_go1");
+  if (!shared) return;
+  const RobotModel& robot = *shared;
   PipelineOptions options = testing::LegRowPipeline();
   options.body_qp.max_lateral_shift = 0.15;
   options.body_qp.acceleration_weight = 1.0;
