@@ -54,7 +54,7 @@ nlohmann::json ValidationToJson(const ValidationReport& report) {
   nlohmann::json violations = nlohmann::json::array();
   for (const Violation& v : report.violations) {
     violations.push_back({{"t", v.t}, {"leg", v.leg}, {"kind", ToString(v.kind)}, {"family", ToString(FamilyOf(v.kind))},
-                          {"value", v.value}, {"detail", v.detail}});
+                          {"value", v.value}, {"worst", v.worst}, {"t_worst", v.t_worst}, {"detail", v.detail}});
   }
   const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   const DynamicsReport& d = report.dynamics;

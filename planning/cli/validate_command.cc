@@ -48,8 +48,9 @@ int RunValidate(const std::vector<std::string>& args) {
                 << " mm, min stability margin " << report.min_stability_margin_m * 1000 << " mm\n";
       std::cout << "  " << DynamicsSummary(report) << "\n";
       for (const Violation& v : report.violations) {
-        std::cout << "  t=" << v.t << " s  " << v.leg << "  " << ToString(v.kind) << "  " << v.value
-                  << (v.detail.empty() ? "" : "  " + v.detail) << "\n";
+        std::cout << "  t=" << v.t << " s  " << v.leg << "  " << ToString(v.kind) << "  " << v.value;
+        if (v.t_worst != v.t) std::cout << "  (worst " << v.worst << " at t=" << v.t_worst << " s)";
+        std::cout << (v.detail.empty() ? "" : "  " + v.detail) << "\n";
       }
     }
     return report.ok ? kExitOk : kExitInfeasible;

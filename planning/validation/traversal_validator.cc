@@ -114,6 +114,33 @@ CheckFamily FamilyOf(ViolationKind kind) {
   return CheckFamily::kDynamics;
 }
 
+bool LargerIsWorse(ViolationKind kind) {
+  switch (kind) {
+    case ViolationKind::kStairCollision:
+    case ViolationKind::kLegCollision:
+    case ViolationKind::kBodyCollision:
+    case ViolationKind::kStability: return false;
+    default: return true;
+  }
+}
+
+namespace {
+
+// One entry per leg and kind: the first time it happens, with the worst value since.
+void Record(const Violation& v, ValidationReport& report) {
+  for (Violation& listed : report.violations) {
+    if (listed.leg != v.leg || listed.kind != v.kind) continue;
+    if (LargerIsWorse(v.kind) ? v.value > listed.worst : v.value < listed.worst) {
+      listed.worst = v.value;
+      listed.t_worst = v.t;
+    }
+    return;
+  }
+  report.violations.push_back(v);
+}
+
+}  // namespace
+
 void ValidationSettings::Validate() const {
   RequireInRange("time_step", time_step, 1e-4, 1.0);
   RequireInRange("min_clearance", min_clearance, -1.0, 1.0);
@@ -190,7 +217,7 @@ void TraversalValidator::CheckTouchdowns(const Plan& plan, ValidationReport& rep
     map_.NearestStepRegion(f.position_W.head<2>(), &distance);
     report.violations.push_back({f.t_touchdown, f.leg, ViolationKind::kFootOutsideStepRegion, distance,
                                  stair < 0 ? "off the stairs" : "stair " + std::to_string(stair),
-                                 LegIdOfName(checker_->kinematics(), f.leg)});
+                                 LegIdOfName(checker_->kinematics(), f.leg), distance, f.t_touchdown});
   }
 }
 
@@ -204,7 +231,7 @@ void TraversalValidator::CheckBodyAcceleration(const Plan& plan, ValidationRepor
     const double peak = a.cwiseAbs().maxCoeff(&axis);
     if (peak <= settings_.max_body_acceleration) continue;
     report.violations.push_back({body[i].t, "body", ViolationKind::kBodyAcceleration, peak,
-                                 std::string("along ") + "xyz"[axis]});
+                                 std::string("along ") + "xyz"[axis], LegId::kNone, peak, body[i].t});
     return;
   }
 }
@@ -223,13 +250,8 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
     stance[l] = down[i];
   }
   const StanceResult r = checker_->Check(body, contacts);
-  // One entry per leg and kind: the first time it happens.
-  std::set<std::pair<std::string, ViolationKind>> seen;
-  for (const Violation& v : report.violations) seen.insert({v.leg, v.kind});
   const auto add = [&](const std::string& leg, ViolationKind kind, double value, const std::string& detail) {
-    if (seen.insert({leg, kind}).second) {
-      report.violations.push_back({t, leg, kind, value, detail, LegIdOfName(kinematics, leg)});
-    }
+    Record({t, leg, kind, value, detail, LegIdOfName(kinematics, leg), value, t}, report);
   };
   for (int l = 0; l < 4; ++l) {
     const LegStance& leg = r.legs[static_cast<std::size_t>(l)];
@@ -303,12 +325,9 @@ void TraversalValidator::CheckDynamics(const Plan& plan, double t, const StanceR
   }
   if (settings_.dynamics.mode != DynamicsCheckMode::kJudge) return;
   const std::string leg = w.leg == LegId::kNone ? std::string("body") : std::string(ToString(w.leg));
-  for (const Violation& v : report.violations) {
-    if (v.kind == kind && v.leg == leg) return;
-  }
   std::string detail = "friction " + std::to_string(settings_.dynamics.friction);
   if (!w.solved) detail += ", the QP did not solve";
-  report.violations.push_back({t, leg, kind, w.residual, detail, w.leg});
+  Record({t, leg, kind, w.residual, detail, w.leg, w.residual, t}, report);
 }
 
 }  // namespace stairplan

@@ -61,7 +61,14 @@ struct Violation {
   double value = 0.0;  ///< clearance, margin or distance that failed [m]; an acceleration [m/s^2]
   std::string detail;  ///< e.g. the link and stair part involved
   LegId leg_id = LegId::kNone;  ///< the leg, when one leg is meant (kNone for the body and leg pairs)
+  /// The worst value of this leg and kind over the replay, in value's unit, and when: a check
+  /// that fails over a stretch lists its first instant, which may be the smallest breach.
+  double worst = 0.0;
+  double t_worst = 0.0;  ///< [s]
 };
+/// True for the kinds whose value grows with the breach (a miss, an excess, a residual); false
+/// for clearances and margins, which shrink.
+bool LargerIsWorse(ViolationKind kind);
 
 /// What the validator checks and with what margins.
 struct ValidationSettings {

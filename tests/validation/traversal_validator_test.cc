@@ -97,6 +97,31 @@ TEST_CASE("the validator passes the default plan and catches planted faults in i
     }
   }
 
+  SECTION("a breach that deepens over a stretch is listed at its first instant with its worst value") {
+    // The body sinks into the stairs deeper and deeper over a second: the first instant that
+    // breaks the clearance is the shallowest; a user judging the plan needs the depth too.
+    Plan plan = s.result.plan;
+    for (BodyState& b : plan.body) {
+      if (b.t > 8.0 && b.t < 9.0) b.z -= 0.3 + 0.2 * (b.t - 8.0);
+    }
+    const ValidationReport r = s.Validate(plan);
+    INFO(Describe(r));
+    int listed = 0;
+    for (const Violation& v : r.violations) {
+      if (v.kind != ViolationKind::kBodyCollision) continue;
+      ++listed;
+      CHECK(v.worst < v.value - 0.05);  // 20 cm deeper by the end, on whichever stair part
+      CHECK(v.t_worst > v.t);
+      CHECK(v.t_worst < 9.0);
+      CHECK(v.worst >= r.min_clearance_m);
+    }
+    CHECK(listed == 1);
+    for (const Violation& v : r.violations) {
+      const bool worst_or_equal = LargerIsWorse(v.kind) ? v.worst >= v.value : v.worst <= v.value;
+      CHECK(worst_or_equal);
+    }
+  }
+
   SECTION("a body that jumps between its samples is caught, though every instant of it is fine") {
     CHECK_FALSE(HasKind(s.result.validation, ViolationKind::kBodyAcceleration, "body"));
     Plan plan = s.result.plan;
