@@ -46,14 +46,11 @@ constexpr double kRefineFloor = 1e-12;
 #define STAIRPLAN_AVX2_CLONE
 #endif
 
-// Givens rotation of columns (i, j) of M: col_i <- c col_i + s col_j, col_j <- -s col_i + c col_j.
+// Givens rotation of two columns' entries: a <- c a + s b, b <- -s a + c b over `rows` of them.
 // On the columns' contiguous storage: the hottest loop of every solve, and element access through
 // Eigen's operator() is a call per element where it is not inlined (the sanitized -O1 build).
-STAIRPLAN_AVX2_CLONE void RotateColumns(Eigen::MatrixXd& M, int i, int j, double c, double s) {
-  double* col_i = M.col(i).data();
-  double* col_j = M.col(j).data();
-  const Eigen::Index rows = M.rows();
-  for (Eigen::Index k = 0; k < rows; ++k) {
+STAIRPLAN_AVX2_CLONE void RotateColumns(double* col_i, double* col_j, int rows, double c, double s) {
+  for (int k = 0; k < rows; ++k) {
     const double a = col_i[k], b = col_j[k];
     col_i[k] = c * a + s * b;
     col_j[k] = -s * a + c * b;
@@ -119,6 +116,10 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     R_.resize(n, n);
     J0_.resize(n, n);
     hessian_reg_.resize(n, n);
+    block_start_.assign(static_cast<std::size_t>(n), 0);
+    j0_first_.assign(static_cast<std::size_t>(n), 0);
+    column_begin_.assign(static_cast<std::size_t>(n), 0);
+    column_end_.assign(static_cast<std::size_t>(n), n);
     active_.assign(n, -1);
     state_.assign(n + m, 0);
     set_aside_.assign(n + m, 0);
@@ -192,8 +193,10 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     } else {
       whole_matrix_revision_ = program.whole_matrix_revision();
       factorization_valid_ = false;
-      for (int k = 0; k < m; ++k) row_norm_[k] = std::max(program.constraint_matrix().row(k).norm(), 1e-300);
       rows_.Assign(program.constraint_matrix());
+      // Over the nonzeros, in the same order as over the dense row: the same sums, not a
+      // strided pass over all of A.
+      for (int k = 0; k < m; ++k) row_norm_[k] = std::max(rows_.RowNorm(k), 1e-300);
     }
     matrix_revision_ = program.matrix_revision();
   }
@@ -221,8 +224,9 @@ bool ActiveSetQpSolver::FactorizeHessian(const Program& program) {
   const Eigen::MatrixXd& H = program.hessian();
   hessian_rows_.Assign(H);
   const double scale = std::max(1.0, H.diagonal().cwiseAbs().maxCoeff());
-  hessian_reg_ = H;
   rho_ = 0.0;
+  FindHessianBlocks(H);
+  hessian_reg_ = H;
   llt_.compute(hessian_reg_);
   bool singular = llt_.info() != Eigen::Success;
   if (!singular) {
@@ -236,22 +240,60 @@ bool ActiveSetQpSolver::FactorizeHessian(const Program& program) {
     if (llt_.info() != Eigen::Success) return false;  // not positive semidefinite
   }
   // J0 = L^{-T}: the factorisation with no active constraint. Upper triangular: column j solves
-  // L(0..j, 0..j)' y = e_j, a third of the work of a triangular solve with the whole identity.
+  // L(s..j, s..j)' y = e_j from the first row s of j's diagonal block of H (L has H's blocks, and
+  // the rows above s would come out exactly zero). Eigen's solve proceeds in panels counted from
+  // the bottom, so rows s..j are computed by the same operations as in a solve from row 0: the
+  // same bits, a fraction of the work when H has several blocks.
   J0_.setZero();
   const Eigen::MatrixXd& llt = llt_.matrixLLT();
   for (int j = 0; j < n_; ++j) {
+    const int s = j0_first_[static_cast<std::size_t>(j)];
     J0_(j, j) = 1.0;
-    llt.topLeftCorner(j + 1, j + 1).triangularView<Eigen::Lower>().transpose().solveInPlace(J0_.col(j).head(j + 1));
+    llt.block(s, s, j + 1 - s, j + 1 - s).triangularView<Eigen::Lower>().transpose().solveInPlace(J0_.col(j).segment(s, j + 1 - s));
   }
   hessian_revision_ = program.hessian_revision();
   return true;
 }
 
+void ActiveSetQpSolver::FindHessianBlocks(const Eigen::MatrixXd& h) {
+  // Row i's first nonzero in the lower triangle (column i's above the diagonal: contiguous), then
+  // from the last row up the smallest of those over rows i..n-1: where that is i itself, no row
+  // from i on couples to a variable before i, and a diagonal block starts at i.
+  int lowest = n_;
+  for (int i = n_ - 1; i >= 0; --i) {
+    const double* column = h.col(i).data();
+    int first = 0;
+    while (first < i && column[first] == 0.0) ++first;
+    lowest = std::min(lowest, first);
+    block_start_[static_cast<std::size_t>(i)] = lowest == i ? 1 : 0;
+  }
+  int start = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (block_start_[static_cast<std::size_t>(i)] != 0) start = i;
+    j0_first_[static_cast<std::size_t>(i)] = start;
+  }
+}
+
 void ActiveSetQpSolver::StartCold() {
   J_ = J0_;
+  for (int j = 0; j < n_; ++j) {
+    column_begin_[static_cast<std::size_t>(j)] = j0_first_[static_cast<std::size_t>(j)];
+    column_end_[static_cast<std::size_t>(j)] = j + 1;  // J0 is upper triangular
+  }
   q_ = 0;
   std::fill(state_.begin(), state_.end(), 0);
   factorization_valid_ = true;
+}
+
+void ActiveSetQpSolver::RotateJ(int i, int j, double c, double s) {
+  // Both columns are exactly zero outside their nonzero ranges, and stay so over the rows
+  // outside the union: rotating there would only rewrite zeros.
+  const std::size_t a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(j);
+  const int begin = std::min(column_begin_[a], column_begin_[b]);
+  const int end = std::max(column_end_[a], column_end_[b]);
+  column_begin_[a] = column_begin_[b] = begin;
+  column_end_[a] = column_end_[b] = end;
+  RotateColumns(J_.col(i).data() + begin, J_.col(j).data() + begin, end - begin, c, s);
 }
 
 void ActiveSetQpSolver::ComputeStepVector(int k, double sigma) {
@@ -272,7 +314,7 @@ bool ActiveSetQpSolver::AddConstraint(int k, int side) {
     const double c = a / h, s = b / h;
     d_[j - 1] = h;
     d_[j] = 0.0;
-    RotateColumns(J_, j - 1, j, c, s);
+    RotateJ(j - 1, j, c, s);
   }
   if (!(std::abs(d_[q_]) > kDependencyTol * norm_d)) return false;
   R_.col(q_).head(q_ + 1) = d_.head(q_ + 1);
@@ -303,7 +345,7 @@ void ActiveSetQpSolver::DropConstraint(int position) {
       R_(j, col) = c * ra + s * rb;
       R_(j + 1, col) = -s * ra + c * rb;
     }
-    RotateColumns(J_, j, j + 1, c, s);
+    RotateJ(j, j + 1, c, s);
     const double ta = tmp_[j], tb = tmp_[j + 1];  // keeps tmp_ = J' g where Restart relies on it
     tmp_[j] = c * ta + s * tb;
     tmp_[j + 1] = -s * ta + c * tb;
@@ -441,12 +483,14 @@ SolveStatus ActiveSetQpSolver::Iterate() {
       if (OverLimits()) return time_exceeded_ ? SolveStatus::kTimeLimit : SolveStatus::kIterationLimit;
       ComputeStepVector(p, sigma);
       const int q = q_;
-      // z = J2 d2 over the columns d reaches: J's last columns often still hold the untouched
+      // z = J2 d2 over the columns d reaches: J's free columns often still hold the untouched
       // block structure of L^{-T} (e.g. variables no active row involves), where d is exactly 0.
       int reach = n_;
       while (reach > q && d_[reach - 1] == 0.0) --reach;
-      if (reach > q) {
-        z_.noalias() = J_.middleCols(q, reach - q) * d_.segment(q, reach - q);
+      int from = q;
+      while (from < reach && d_[from] == 0.0) ++from;
+      if (reach > from) {
+        z_.noalias() = J_.middleCols(from, reach - from) * d_.segment(from, reach - from);
       } else {
         z_.setZero();
       }

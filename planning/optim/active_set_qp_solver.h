@@ -99,6 +99,8 @@ class ActiveSetQpSolver final : public Solver {
   // Workspace sizing and the factorisation of H (+ rho I), reused while H is unchanged.
   void Prepare(const Program& program);
   bool FactorizeHessian(const Program& program);
+  // H's diagonal blocks (block_start_, j0_first_), read from its zeros once per Hessian.
+  void FindHessianBlocks(const Eigen::MatrixXd& h);
   // Whether dropping the active rows `program` changed since the last solve and adding them back
   // takes fewer rotations than rebuilding the factorisation from the whole active set.
   bool ReaddCheaperThanRebuild(const Program& program) const;
@@ -132,6 +134,8 @@ class ActiveSetQpSolver final : public Solver {
   // Factorisation updates.
   void ComputeStepVector(int k, double sigma);  // d_ = J' (sigma n_k)
   bool AddConstraint(int k, int side);
+  // Givens rotation of J's columns i and j over the rows either can be nonzero in.
+  void RotateJ(int i, int j, double c, double s);
   void DropConstraint(int position);
 
   // Constraint k: k < m is row k of A, k >= m bounds variable k - m.
@@ -162,6 +166,10 @@ class ActiveSetQpSolver final : public Solver {
   Eigen::MatrixXd hessian_reg_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
   Eigen::MatrixXd J0_;
+  // Per variable: whether H's diagonal block starts there; per column of J0 (= L^{-T}): the
+  // first row of its block, above which it is zero.
+  std::vector<char> block_start_;
+  std::vector<int> j0_first_;
 
   // Active-set state: J = L^{-T} Q, upper triangular R, active constraints with their multipliers.
   bool factorization_valid_ = false;
@@ -169,6 +177,9 @@ class ActiveSetQpSolver final : public Solver {
   bool has_previous_ = false;  // state_ holds the last solve's active set for this size
   ActiveSet warm_start_;
   Eigen::MatrixXd J_, R_;
+  // Per column of J: the rows [begin, end) outside which it is exactly zero (J0's zeros, kept
+  // through the rotations), so that a rotation skips them.
+  std::vector<int> column_begin_, column_end_;
   std::vector<int> active_;
   std::vector<ActiveSide> state_;  // per constraint: 0, -1 lower active, +1 upper active
   // Per constraint: set aside for the rest of this Iterate() as met (a degenerate vertex's
