@@ -116,7 +116,6 @@ void ActiveSetQpSolver::Prepare(const Program& program) {
     R_.resize(n, n);
     J0_.resize(n, n);
     hessian_reg_.resize(n, n);
-    block_start_.assign(static_cast<std::size_t>(n), 0);
     j0_first_.assign(static_cast<std::size_t>(n), 0);
     column_begin_.assign(static_cast<std::size_t>(n), 0);
     column_end_.assign(static_cast<std::size_t>(n), n);
@@ -259,17 +258,18 @@ void ActiveSetQpSolver::FindHessianBlocks(const Eigen::MatrixXd& h) {
   // Row i's first nonzero in the lower triangle (column i's above the diagonal: contiguous), then
   // from the last row up the smallest of those over rows i..n-1: where that is i itself, no row
   // from i on couples to a variable before i, and a diagonal block starts at i.
+  // j0_first_ holds 1 where a block starts until the second pass turns it into the block's start.
   int lowest = n_;
   for (int i = n_ - 1; i >= 0; --i) {
     const double* column = h.col(i).data();
     int first = 0;
     while (first < i && column[first] == 0.0) ++first;
     lowest = std::min(lowest, first);
-    block_start_[static_cast<std::size_t>(i)] = lowest == i ? 1 : 0;
+    j0_first_[static_cast<std::size_t>(i)] = lowest == i ? 1 : 0;
   }
   int start = 0;
   for (int i = 0; i < n_; ++i) {
-    if (block_start_[static_cast<std::size_t>(i)] != 0) start = i;
+    if (j0_first_[static_cast<std::size_t>(i)] != 0) start = i;
     j0_first_[static_cast<std::size_t>(i)] = start;
   }
 }

@@ -99,7 +99,7 @@ class ActiveSetQpSolver final : public Solver {
   // Workspace sizing and the factorisation of H (+ rho I), reused while H is unchanged.
   void Prepare(const Program& program);
   bool FactorizeHessian(const Program& program);
-  // H's diagonal blocks (block_start_, j0_first_), read from its zeros once per Hessian.
+  // H's diagonal blocks (j0_first_), read from its zeros once per Hessian.
   void FindHessianBlocks(const Eigen::MatrixXd& h);
   // Whether dropping the active rows `program` changed since the last solve and adding them back
   // takes fewer rotations than rebuilding the factorisation from the whole active set.
@@ -166,9 +166,7 @@ class ActiveSetQpSolver final : public Solver {
   Eigen::MatrixXd hessian_reg_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
   Eigen::MatrixXd J0_;
-  // Per variable: whether H's diagonal block starts there; per column of J0 (= L^{-T}): the
-  // first row of its block, above which it is zero.
-  std::vector<char> block_start_;
+  // Per column of J0 (= L^{-T}): the first row of its diagonal block of H, above which it is zero.
   std::vector<int> j0_first_;
 
   // Active-set state: J = L^{-T} Q, upper triangular R, active constraints with their multipliers.

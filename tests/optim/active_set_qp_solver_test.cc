@@ -132,12 +132,19 @@ TEST_CASE("block-diagonal banded Hessians (J0 solved per block) match Ipopt and 
         if (i + 2 < start + b) {  // (x_i - 2 x_{i+1} + x_{i+2})^2
           const int k[3] = {i, i + 1, i + 2};
           const double w[3] = {1.0, -2.0, 1.0};
-          for (int r = 0; r < 3; ++r) for (int c = 0; c < 3; ++c) H(k[r], k[c]) += w[r] * w[c];
+          for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c) H(k[r], k[c]) += w[r] * w[c];
+          }
         }
       }
       start += b;
     }
-    if (singular) for (int i = 3; i < 40; i += 7) { H.row(i).setZero(); H.col(i).setZero(); }
+    if (singular) {
+      for (int i = 3; i < 40; i += 7) {
+        H.row(i).setZero();
+        H.col(i).setZero();
+      }
+    }
     p.MutableHessian() = H;
     ActiveSetQpSolver ours;
     IpoptSolver ipopt;
