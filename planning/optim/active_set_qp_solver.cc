@@ -258,18 +258,18 @@ void ActiveSetQpSolver::FindHessianBlocks(const Eigen::MatrixXd& h) {
   // Row i's first nonzero in the lower triangle (column i's above the diagonal: contiguous), then
   // from the last row up the smallest of those over rows i..n-1: where that is i itself, no row
   // from i on couples to a variable before i, and a diagonal block starts at i.
-  // j0_first_ holds 1 where a block starts until the second pass turns it into the block's start.
+  // j0_first_ holds that smallest first nonzero until the second pass turns it into the block's start.
   int lowest = n_;
   for (int i = n_ - 1; i >= 0; --i) {
     const double* column = h.col(i).data();
     int first = 0;
     while (first < i && column[first] == 0.0) ++first;
     lowest = std::min(lowest, first);
-    j0_first_[static_cast<std::size_t>(i)] = lowest == i ? 1 : 0;
+    j0_first_[static_cast<std::size_t>(i)] = lowest;
   }
   int start = 0;
   for (int i = 0; i < n_; ++i) {
-    if (j0_first_[static_cast<std::size_t>(i)] != 0) start = i;
+    if (j0_first_[static_cast<std::size_t>(i)] == i) start = i;
     j0_first_[static_cast<std::size_t>(i)] = start;
   }
 }
