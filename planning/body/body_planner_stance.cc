@@ -7,6 +7,7 @@
 #include "collision/clearance.h"
 #include "collision/stance_check.h"
 #include "planning/body/body_planner.h"
+#include "planning/body/stance_leg_rows.h"
 
 namespace stairplan {
 namespace {
@@ -72,6 +73,8 @@ std::array<Eigen::Vector3d, 2> BodyPlanner::FootBends(int l, double t) const {
   const Eigen::Vector3d here = foot(t);
   return {foot(t - 0.5 * dt) - 0.5 * (foot(t - dt) + here), foot(t + 0.5 * dt) - 0.5 * (here + foot(t + dt))};
 }
+
+static_assert(BodyQp::kStanceRows == StanceLegRows::kRows, "the QP holds every row a stance leg has");
 
 void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::Vector4d& v0) {
   BodyQp& qp = *qp_;
