@@ -141,7 +141,7 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   SetRow(&rows, 3, grad, kin.extension().lo + margins.reach + bulge.down - length,
          kin.extension().hi - margins.reach - bulge.up - length);
   // The axis distance: at least the leg plane's offset and the reach margin, the swing's bulge
-  // toward the axis further out. Its upper side is the extension row's.
+  // toward the axis further out. Its upper side is loose: the extension row bounds the reach.
   const AxisDistance axis = AxisDistanceOf(kin, ws, ik.q, foot_B);
   if (axis.valid) {
     const Bulge toward = BulgeOf(axis.out.dot(bends_B[0]), axis.out.dot(bends_B[1]));
