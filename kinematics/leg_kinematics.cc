@@ -132,6 +132,13 @@ LegKinematics::JointLine LegKinematics::JointLineFromFrames(const LegWorkspace& 
   return line;
 }
 
+LegKinematics::JointLine LegKinematics::JointLineAt(const Eigen::Vector3d& q, int j, LegWorkspace& ws) const {
+  SegmentFrames(q, ws);
+  JointLine line = JointLineFromFrames(ws, j);
+  line.axis.normalize();
+  return line;
+}
+
 Eigen::Matrix3d LegKinematics::JacobianFromFrames(const LegWorkspace& ws) const {
   const Eigen::Vector3d foot = ToEigen(ws.frames_.back().p);
   Eigen::Matrix3d J;

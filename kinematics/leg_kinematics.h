@@ -89,6 +89,14 @@ class LegKinematics {
   const std::vector<Eigen::Isometry3d>& LinkFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
   /// Segment i's tip frame alone (LinkFrames(q, ws)[i] without converting the others).
   Eigen::Isometry3d LinkFrame(const Eigen::Vector3d& q, int i, LegWorkspace& ws) const;
+  /// A movable joint's line in the base frame.
+  struct JointLine {
+    Eigen::Vector3d origin;  ///< a point on the line
+    Eigen::Vector3d axis;    ///< its direction (unit length from JointLineAt)
+    bool prismatic = false;  ///< the joint slides along the line rather than turning about it
+  };
+  /// Movable joint j's line in the base frame at q.
+  JointLine JointLineAt(const Eigen::Vector3d& q, int j, LegWorkspace& ws) const;
   /// d(foot position)/dq, 3x3.
   Eigen::Matrix3d FootJacobian(const Eigen::Vector3d& q, LegWorkspace& ws) const;
 
@@ -107,10 +115,6 @@ class LegKinematics {
   // at the same q costs a comparison); returns the foot.
   Eigen::Vector3d SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
   // Movable joint j's line in the base frame, from the frames SegmentFrames left in `ws`.
-  struct JointLine {
-    Eigen::Vector3d origin, axis;
-    bool prismatic = false;
-  };
   JointLine JointLineFromFrames(const LegWorkspace& ws, int j) const;
   // The foot Jacobian from the frames SegmentFrames left in `ws`: per joint, its axis crossed with
   // the lever from its origin to the foot (its axis alone for a prismatic joint).

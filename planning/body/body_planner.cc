@@ -302,6 +302,7 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
     const Eigen::Vector4d anchor = v0;
     const bool new_knot = k > 0 && has_previous_ && t > previous_t0_ + (n - 1) * dt + kTimeEpsilon;
     BodyPose at = CentrePose(xy, v0);
+    anchors_.col(k) = anchor;  // the clearance rows read how fast the previous plan moves
     // First the leg rows: the support rows read the legs' joints they solved.
     bool restored = LegRows(k, t, at, v0);
     const bool recentred = new_knot && leg_rows && KnotBreaksRows(k);
@@ -315,7 +316,6 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       output_.reused_knots += restored ? 1 : 0;
     }
     centres_.col(k) = v0;
-    anchors_.col(k) = anchor;
     SupportRows(k, t, pm, at, v0, restored);
     if (recentred) {
       qp.stance.RelaxAt(BodyQp::StanceRow(k, 0, 0), kBodyLegs * BodyQp::kStanceRows, anchor);

@@ -187,19 +187,24 @@ class BodyPlanner {
   // derivative; free when the leg is far from them. A swing leg's foot contact shape is left out
   // (its path is the swing trajectory's).
   void ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyPose& at, const Eigen::Vector4d& v0,
-                    const StanceLegRows& rows, bool swing);
+                    const Eigen::Vector4d& motion, const StanceLegRows& rows, bool swing);
   // The body's clearance row k of `into` at the pose `at`: its closest point's distance to the
   // stairs (FCL).
-  void BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose& at, const Eigen::Vector4d& v0);
+  void BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose& at, const Eigen::Vector4d& v0,
+                        const Eigen::Vector4d& motion);
+  // The body's motion over half of knot interval k0, from v0 at knot k0 to v1 at knot k0 + 1, the
+  // neutral stance's advance included, in the QP's variables.
+  Eigen::Vector4d HalfKnotMotion(int k0, const Eigen::Vector4d& v0, const Eigen::Vector4d& v1) const;
   // The clearance rows half a knot after each knot (BodyQp::passing), linearised at the mean of
   // the two knots' centres, for the legs (and the body) with a clearance row at either knot. Not
   // carried across cycles: every cycle linearises them again.
   void PassingRows(double now);
   // Clearance row `row` from the closest pair `c` and the closest robot point moved by a small
   // step along each body variable (`moved`, one column per variable), kept `inset` beyond the
-  // clearance margin.
-  void SetClearanceRow(BodyQp::KnotRows& into, int row, const Clearance& c, const Eigen::Vector4d& v0, double inset,
-                       const Eigen::Matrix<double, 3, 4>& moved);
+  // clearance margin, and more where the body's `motion` to the next sample (half a knot) sweeps
+  // the point past the stairs.
+  void SetClearanceRow(BodyQp::KnotRows& into, int row, const Clearance& c, const Eigen::Vector4d& v0,
+                       const Eigen::Vector4d& motion, double inset, const Eigen::Matrix<double, 3, 4>& moved);
   // Moves knot k's shift reference to the shift that widens its narrowest stance-leg range.
   void RestoreShift(int k, double neutral_x, double pitch_lo, double pitch_hi, double width);
   // Previous plan's pitch and shift at time t (held beyond its ends).

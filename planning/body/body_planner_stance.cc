@@ -7,6 +7,7 @@
 #include "collision/clearance.h"
 #include "collision/stance_check.h"
 #include "planning/body/body_planner.h"
+#include "planning/body/stance_leg_rows.h"
 
 namespace stairplan {
 namespace {
@@ -73,11 +74,16 @@ std::array<Eigen::Vector3d, 2> BodyPlanner::FootBends(int l, double t) const {
   return {foot(t - 0.5 * dt) - 0.5 * (foot(t - dt) + here), foot(t + 0.5 * dt) - 0.5 * (here + foot(t + dt))};
 }
 
+static_assert(BodyQp::kStanceRows == StanceLegRows::kRows, "the QP holds every row a stance leg has");
+
 void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::Vector4d& v0) {
   BodyQp& qp = *qp_;
   if (!qp.has_stance_rows()) return;
   StanceLegMargins margins{settings_.joint_margin, settings_.reach_margin};
   const Eigen::Matrix3d body_rotation = at.ToIsometry().linear();
+  // Knot k + 1 is not linearised yet: the previous plan's interval before the knot tells how fast
+  // its links sweep.
+  const Eigen::Vector4d motion = k > 0 ? HalfKnotMotion(k - 1, anchors_.col(k - 1), anchors_.col(k)) : Eigen::Vector4d::Zero();
   for (int l = 0; l < kBodyLegs; ++l) {
     const int first = BodyQp::StanceRow(k, l, 0);
     for (int j = 0; j < BodyQp::kStanceRows; ++j) {
@@ -103,9 +109,18 @@ void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::V
       qp.stance.hi[first + j] = hi + at_v0;
       qp.stance.sigma[first + j] = lo > 0.0 ? lo : hi < 0.0 ? hi : 0.0;  // what the centre breaks
     }
-    ClearanceRow(qp.clearance, k, l, at, v0, rows, !phase.stance);
+    ClearanceRow(qp.clearance, k, l, at, v0, motion, rows, !phase.stance);
   }
-  BodyClearanceRow(qp.clearance, k, at, v0);
+  BodyClearanceRow(qp.clearance, k, at, v0, motion);
+}
+
+Eigen::Vector4d BodyPlanner::HalfKnotMotion(int k0, const Eigen::Vector4d& v0, const Eigen::Vector4d& v1) const {
+  // The neutral stance carries the body along with it: its advance is part of the motion.
+  const double heading = schedule_.heading();
+  Eigen::Vector4d motion = v1 - v0;
+  motion[kBodyAlong] += heading * (neutral_x_[k0 + 1] - neutral_x_[k0]);
+  motion[kBodySideways] += heading * (neutral_y_[k0 + 1] - neutral_y_[k0]);
+  return 0.5 * motion;
 }
 
 StanceLegRows BodyPlanner::LinearizeLeg(int l, const LegPhase& phase, const BodyPose& at,
@@ -137,20 +152,22 @@ void BodyPlanner::PassingRows(double now) {
     const BodyPose at =
         CentrePose(Eigen::Vector2d(0.5 * (neutral_x_[k] + neutral_x_[k + 1]), 0.5 * (neutral_y_[k] + neutral_y_[k + 1])), v0);
     const Eigen::Matrix3d body_rotation = at.ToIsometry().linear();
+    const Eigen::Vector4d motion = HalfKnotMotion(k, anchors_.col(k), anchors_.col(k + 1));
     for (int l = 0; l < kBodyLegs; ++l) {
       if (!near(k, l) && !near(k + 1, l)) continue;
       const LegPhase phase = schedule_.Phase(l, t);
       const StanceLegRows rows =
           LinearizeLeg(l, phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)], margins);
-      ClearanceRow(qp.passing, k, l, at, v0, rows, !phase.stance);
+      ClearanceRow(qp.passing, k, l, at, v0, motion, rows, !phase.stance);
     }
-    if (near(k, kBodyLegs) || near(k + 1, kBodyLegs)) BodyClearanceRow(qp.passing, k, at, v0);
+    if (near(k, kBodyLegs) || near(k + 1, kBodyLegs)) BodyClearanceRow(qp.passing, k, at, v0, motion);
     // With knot k's relaxation at 1 the previous plan meets the rows, as every knot row's.
     qp.passing.RelaxAt(BodyQp::ClearanceRow(k, 0), BodyQp::kClearanceRows, 0.5 * (anchors_.col(k) + anchors_.col(k + 1)));
   }
 }
 
-void BodyPlanner::BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose& at, const Eigen::Vector4d& v0) {
+void BodyPlanner::BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose& at, const Eigen::Vector4d& v0,
+                                   const Eigen::Vector4d& motion) {
   const int row = BodyQp::ClearanceRow(k, kBodyLegs);
   into.lo[row] = -optim::kInf;
   into.sigma[row] = 0.0;
@@ -163,11 +180,11 @@ void BodyPlanner::BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose
   const Eigen::Vector3d point_B = at.ToIsometry().inverse() * c.point_robot_W;
   Eigen::Matrix<double, 3, 4> moved;
   for (int v = 0; v < 4; ++v) moved.col(v) = Moved(at, v, kPointStep).ToIsometry() * point_B;
-  SetClearanceRow(into, row, c, v0, kClearanceInset, moved);
+  SetClearanceRow(into, row, c, v0, motion, kClearanceInset, moved);
 }
 
 void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyPose& at, const Eigen::Vector4d& v0,
-                               const StanceLegRows& rows, bool swing) {
+                               const Eigen::Vector4d& motion, const StanceLegRows& rows, bool swing) {
   const RobotKinematics& kinematics = robot_->kinematics();
   ClearanceOptions options;
   options.prune_above = kClearanceRange;
@@ -193,11 +210,11 @@ void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyP
   for (int v = 0; v < 4; ++v) {
     moved.col(v) = point_at(Moved(at, v, kPointStep), rows.q + kPointStep * rows.dq.col(v)) * point_link;
   }
-  SetClearanceRow(into, BodyQp::ClearanceRow(k, l), c, v0, inset, moved);
+  SetClearanceRow(into, BodyQp::ClearanceRow(k, l), c, v0, motion, inset, moved);
 }
 
-void BodyPlanner::SetClearanceRow(BodyQp::KnotRows& into, int row, const Clearance& c, const Eigen::Vector4d& v0, double inset,
-                                  const Eigen::Matrix<double, 3, 4>& moved) {
+void BodyPlanner::SetClearanceRow(BodyQp::KnotRows& into, int row, const Clearance& c, const Eigen::Vector4d& v0,
+                                  const Eigen::Vector4d& motion, double inset, const Eigen::Matrix<double, 3, 4>& moved) {
   Eigen::Vector3d normal = c.point_robot_W - c.point_other_W;
   const double length = normal.norm();
   if (!(length > 1e-9)) return;  // touching: no direction to move away in
@@ -206,8 +223,16 @@ void BodyPlanner::SetClearanceRow(BodyQp::KnotRows& into, int row, const Clearan
   for (int v = 0; v < 4; ++v) grad[v] = normal.dot(moved.col(v) - c.point_robot_W) / kPointStep;
   const double norm = grad.norm();
   if (!(norm >= kMinClearanceGradient)) return;
+  // The rows sample the clearance every half knot (the knots' and the passing rows), and a link
+  // sweeping past a nosing comes nearest between two samples: a point moving straight by 2h
+  // between two instants at which a corner is d away passes at least sqrt(d^2 - h^2) from it.
+  // The row asks d of hypot(margin, h), so the nearest approach keeps the margin.
+  Eigen::Vector3d sweep = Eigen::Vector3d::Zero();
+  for (int v = 0; v < 4; ++v) sweep += (moved.col(v) - c.point_robot_W) * (motion[v] / kPointStep);
+  const double half_sweep = 0.5 * sweep.norm();
+  const double keep = std::hypot(settings_.clearance_margin + inset, half_sweep);
   into.a.row(row) = (grad / norm).transpose();
-  const double lo = (settings_.clearance_margin + inset - c.distance) / norm;
+  const double lo = (keep - c.distance) / norm;
   into.lo[row] = lo + grad.dot(v0) / norm;
   into.sigma[row] = std::max(lo, 0.0);
 }

@@ -100,8 +100,9 @@ class BodyQp {
   std::array<double, 3> ZmpStencil(int k) const;
   /// h / (g dt^2): the weight of a knot's neighbours in the ZMP (0: no ZMP rows).
   double zmp_weight() const { return zmp_weight_; }
-  /// Stance rows per leg and knot: three joints and the extension (StanceLegRows::kRows).
-  static constexpr int kStanceRows = 4;
+  /// Stance rows per leg and knot: three joints, the extension and the first axis's distance
+  /// (StanceLegRows::kRows).
+  static constexpr int kStanceRows = 5;
   /// Index of stance row `j` of leg `leg` at knot `k`.
   static int StanceRow(int k, int leg, int j) { return (k * kBodyLegs + leg) * kStanceRows + j; }
   /// Clearance rows per knot: one per leg and one of the body.

@@ -45,6 +45,33 @@ void SetRow(StanceLegRows* rows, int r, const Eigen::Vector4d& a, double lo, dou
   rows->hi[static_cast<std::size_t>(r)] = hi / norm;
 }
 
+// The flexion and knee joints move the foot in a plane at a fixed offset from the first joint's
+// axis (the flexion joint's axis is its normal): no joint angles put the foot nearer that axis
+// than the offset. A hind foot passes there when the body pitches down a flight travelling
+// backward; at the cylinder's surface the leg is singular and inside it the joint rows have no
+// first-order model, so this row, smooth everywhere but on the axis, keeps the foot out.
+struct AxisDistance {
+  double offset = 0.0;                            // the leg plane's distance from the axis [m]
+  double distance = 0.0;                          // the foot's [m]
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();  // away from the axis, through the foot
+  bool valid = false;                             // a revolute first joint, the foot off its axis
+};
+AxisDistance AxisDistanceOf(const LegKinematics& kin, LegWorkspace& ws, const Eigen::Vector3d& q,
+                            const Eigen::Vector3d& foot_B) {
+  AxisDistance a;
+  const LegKinematics::JointLine first = kin.JointLineAt(q, 0, ws);
+  if (first.prismatic) return a;
+  const Eigen::Vector3d normal = kin.JointLineAt(q, 1, ws).axis;
+  a.offset = std::abs((kin.FootPosition(q, ws) - first.origin).dot(normal));
+  const Eigen::Vector3d lever = foot_B - first.origin;
+  const Eigen::Vector3d radial = lever - lever.dot(first.axis) * first.axis;
+  a.distance = radial.norm();
+  if (!(a.distance > 1e-9)) return a;
+  a.out = radial / a.distance;
+  a.valid = true;
+  return a;
+}
+
 }  // namespace
 
 StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, const Eigen::Vector3d& foot_W,
@@ -113,6 +140,16 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   }
   SetRow(&rows, 3, grad, kin.extension().lo + margins.reach + bulge.down - length,
          kin.extension().hi - margins.reach - bulge.up - length);
+  // The axis distance: at least the leg plane's offset and the reach margin, the swing's bulge
+  // toward the axis further out. Its upper side is loose: the extension row bounds the reach.
+  const AxisDistance axis = AxisDistanceOf(kin, ws, ik.q, foot_B);
+  if (axis.valid) {
+    const Bulge toward = BulgeOf(axis.out.dot(bends_B[0]), axis.out.dot(bends_B[1]));
+    SetRow(&rows, 4, (axis.out.transpose() * d).transpose(), axis.offset + margins.reach + toward.down - axis.distance,
+           kin.reach().hi - axis.distance);
+  } else {
+    SetRow(&rows, 4, Eigen::Vector4d::Zero(), 0.0, 0.0);
+  }
   return rows;
 }
 

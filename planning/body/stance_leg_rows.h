@@ -18,10 +18,11 @@ namespace stairplan {
 enum BodyVariable { kBodyZ = 0, kBodyPitch = 1, kBodyAlong = 2, kBodySideways = 3 };
 
 /// lo <= a . dv <= hi for every row; rows 0-2 are the joints (hip abduction, flexion, knee), row 3
-/// the leg's extension (flexion joint to foot). Each row's coefficients have unit length, so its bounds read as the
+/// the leg's extension (flexion joint to foot), row 4 the foot's distance from the first joint's
+/// axis. Each row's coefficients have unit length, so its bounds read as the
 /// distance dv may move in metres (or radians of pitch) before it binds.
 struct StanceLegRows {
-  static constexpr int kRows = 4;  ///< rows per stance leg: three joints and the extension
+  static constexpr int kRows = 5;  ///< rows per stance leg: three joints, the extension, the axis distance
   std::array<Eigen::Vector4d, kRows> a{};  ///< each row's unit coefficients over (z, pitch, along, sideways)
   ///@{
   std::array<double, kRows> lo{}, hi{};  ///< each row's bounds

@@ -164,3 +164,69 @@ TEST_CASE("margins wider than a joint's range make the row ask for its middle, n
   const StanceLegRows wider = LinearizeStanceLeg(kin, ws.leg(0), foot_W, pose, kin.nominal(), wide);
   for (std::size_t j = 0; j < 3; ++j) CHECK(wider.lo[j] == Approx(rows.lo[j]).margin(1e-12));
 }
+
+TEST_CASE("a foot inside the cylinder about the first joint's axis that no leg pose reaches gets a row that moves it out",
+          "[body][rows]") {
+  // The flexion and knee joints move the foot in a plane at a fixed offset from the first joint's
+  // axis: nearer the axis than that offset there are no joint angles, and near the axis the joint
+  // rows have no first-order model (a hind foot passes there when the body pitches down a flight
+  // backward). The axis-distance row then moves the foot out of that cylinder.
+  FirstLeg f;
+  const LegKinematics& kin = f.kin;
+  LegWorkspace& ws = f.ws.leg(0);
+  const LegKinematics::JointLine first = kin.JointLineAt(kin.nominal(), 0, ws);
+  const Eigen::Vector3d normal = kin.JointLineAt(kin.nominal(), 1, ws).axis;
+  const double offset = std::abs((kin.FootPosition(kin.nominal(), ws) - first.origin).dot(normal));
+  REQUIRE(offset > 0.02);  // the built-in robot's legs stand outside their hips' axes
+  const Eigen::Vector3d across = first.axis.cross(normal).normalized();
+  StanceLegMargins margins;
+  margins.reach = 0.01;
+  const BodyPose pose;
+  constexpr std::size_t kAxisRow = 4;
+  int checked = 0;
+  for (double along : {-0.6, -0.5, 0.5, 0.6}) {
+    for (double share : {0.1, 0.4, 0.7}) {
+      for (int sixth = 0; sixth < 6; ++sixth) {
+        const double turn = sixth * M_PI / 3.0;
+        INFO("along " << along << " share " << share << " turn " << turn);
+        const Eigen::Vector3d radial = std::cos(turn) * normal + std::sin(turn) * across;
+        const Eigen::Vector3d foot_B = first.origin + along * first.axis + share * offset * radial;
+        CHECK_FALSE(kin.SolveFootIk(foot_B, kin.nominal(), ws).ok());
+        const StanceLegRows rows = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), margins);
+        REQUIRE(std::isfinite(rows.lo[kAxisRow]));
+        CHECK(rows.lo[kAxisRow] > 0.0);  // the pose breaks the row
+        // The body moved as the row asks: the foot leaves the cylinder by the margin.
+        const Eigen::Vector4d dv = rows.a[kAxisRow] * rows.lo[kAxisRow];
+        const BodyPose moved = MovedPose(pose, dv);
+        const Eigen::Vector3d lever = moved.ToIsometry().inverse() * foot_B - first.origin;
+        const double distance = (lever - lever.dot(first.axis) * first.axis).norm();
+        CHECK(distance > offset + margins.reach - 2e-3);
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked == 72);
+}
+
+TEST_CASE("the axis-distance row is slack wherever the leg reaches its foot", "[body][rows]") {
+  // Every reachable foot is at least the leg plane's offset from the first joint's axis, so the
+  // row never forbids what IK can do: over random reachable stances its lower bound stays within
+  // the margin (and the row can only bind beyond it).
+  const RobotKinematics kinematics(BuiltinRobot());
+  RobotWorkspace ws(kinematics);
+  std::mt19937 rng(17);
+  StanceLegMargins margins;
+  margins.reach = 0.005;
+  int reached = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const LegCase c = RandomLegCase(kinematics, ws, trial, rng);
+    const StanceLegRows rows = LinearizeStanceLeg(kinematics.leg(c.leg), ws.leg(c.leg), c.foot_W, c.pose,
+                                                  kinematics.leg(c.leg).nominal(), margins);
+    if (!rows.reached) continue;
+    ++reached;
+    INFO("trial " << trial);
+    REQUIRE(std::isfinite(rows.lo[4]));
+    CHECK(rows.lo[4] <= margins.reach + 1e-9);
+  }
+  CHECK(reached > 150);
+}
