@@ -78,6 +78,12 @@ struct BodyCycleStats {
   int iterations = 0;      ///< the QPs' active-set changes
   double solve_us = 0.0;   ///< wall time in the QP solver [us]
   double total_us = 0.0;   ///< wall time of the whole cycle, linearisation included [us]
+  /// The share of its linearisation point's violations the executed knot keeps (with leg rows;
+  /// BodyPlannerOutput::relaxation): above 0 the robot is knowingly sent through a broken row.
+  double relaxation = 0.0;
+  /// True when the executed knot keeps part of a violation (beyond the QP's own tolerance, which
+  /// leaves relaxations of about 1e-15 where every row holds).
+  bool relaxed() const { return relaxation > 1e-6; }
 };
 
 /// How one fixed-cadence controller of the step planner fared over a traversal.

@@ -75,8 +75,9 @@ namespace {
 
 // The receding horizon's cycles: a summary, then one array per statistic (one entry per cycle).
 nlohmann::json BodyCyclesToJson(const std::vector<BodyCycleStats>& cycles) {
-  nlohmann::json t = nlohmann::json::array(), status = t, solves = t, iterations = t, solve_us = t, total_us = t;
-  int stale = 0, infeasible = 0, max_iterations = 0;
+  nlohmann::json t = nlohmann::json::array(), status = t, solves = t, iterations = t, solve_us = t, total_us = t,
+                 relaxation = t;
+  int stale = 0, infeasible = 0, relaxed = 0, max_iterations = 0;
   double iteration_sum = 0.0;
   std::vector<double> solve_times;
   solve_times.reserve(cycles.size());
@@ -87,6 +88,8 @@ nlohmann::json BodyCyclesToJson(const std::vector<BodyCycleStats>& cycles) {
     iterations.push_back(c.iterations);
     solve_us.push_back(c.solve_us);
     total_us.push_back(c.total_us);
+    relaxation.push_back(c.relaxation);
+    relaxed += c.relaxed() ? 1 : 0;
     stale += c.status == BodyPlanStatus::kStale ? 1 : 0;
     infeasible += c.status == BodyPlanStatus::kInfeasible ? 1 : 0;
     max_iterations = std::max(max_iterations, c.iterations);
@@ -101,6 +104,7 @@ nlohmann::json BodyCyclesToJson(const std::vector<BodyCycleStats>& cycles) {
   return {{"count", cycles.size()},
           {"stale", stale},
           {"infeasible", infeasible},
+          {"relaxed", relaxed},
           {"iterations_mean", iteration_sum / n},
           {"iterations_max", max_iterations},
           {"solve_us_p50", quantile(0.5)},
@@ -108,7 +112,7 @@ nlohmann::json BodyCyclesToJson(const std::vector<BodyCycleStats>& cycles) {
           {"solve_us_max", quantile(1.0)},
           {"per_cycle",
            {{"t", t}, {"status", status}, {"solves", solves}, {"iterations", iterations}, {"solve_us", solve_us},
-            {"total_us", total_us}}}};
+            {"total_us", total_us}, {"relaxation", relaxation}}}};
 }
 
 }  // namespace

@@ -757,6 +757,7 @@ const BodyPlannerOutput& BodyPlanner::Update(const BodyState& state, const BodyC
     }
   }
   output_.solve_status = result_.status;
+  output_.relaxation = solved && qp_->relax().size > 0 ? std::clamp(result_.x[qp_->relax().start + 1], 0.0, 1.0) : 0.0;
   if (solved) CountConflicts();
   if (solved) {
     // Conflicts further ahead are the receding horizon's to resolve; the next knot is executed now.

@@ -80,6 +80,10 @@ struct BodyPlannerOutput {
   int conflict_knot = -1, conflict_leg = -1;  ///< the first one
   ///@}
   double next_violation = 0.0;   ///< how far the next knot breaks a stance leg's bound [m]
+  /// With leg rows: the share of its linearisation point's violations knot 1, the one executed
+  /// next, keeps (its relaxation, BodyQp::relax): 0 where every row holds there, 1 where the
+  /// QP could mend none of them (a leg row or the support polygon the body cannot reach in time).
+  double relaxation = 0.0;
   int iterations = 0;            ///< active-set changes
   int solves = 0;                ///< QPs solved in this Update (> 1 only at warm-up)
   /// With leg rows: knots linearised in this Update, and of those how many took their leg rows

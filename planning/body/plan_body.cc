@@ -67,7 +67,8 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
         first_conflict = text;
       }
     }
-    plan.body_cycles.push_back({now, out.status, out.solves, out.iterations, out.timings.solve_us, out.timings.total_us});
+    plan.body_cycles.push_back(
+        {now, out.status, out.solves, out.iterations, out.timings.solve_us, out.timings.total_us, out.relaxation});
     body.push_back(out.knots[0]);
     body.back().t = now;
     if (c >= cycles && AtRest(body)) break;

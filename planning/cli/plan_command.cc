@@ -110,6 +110,20 @@ double MicrosSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The receding horizon's cycles that sent the robot through a row they could not mend in time.
+void PrintRelaxedCycles(const std::vector<BodyCycleStats>& cycles) {
+  int relaxed = 0;
+  double first = 0.0, most = 0.0;
+  for (const BodyCycleStats& c : cycles) {
+    if (!c.relaxed()) continue;
+    if (relaxed++ == 0) first = c.t;
+    most = std::max(most, c.relaxation);
+  }
+  if (relaxed == 0) return;
+  std::cout << "  relaxed:   " << relaxed << " cycles executed a knot keeping part of a broken row (first t=" << first
+            << " s, at most " << most << " of it)\n";
+}
+
 void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& out) {
   int in_region = 0;
   for (const Footstep& f : plan.footsteps) in_region += f.in_step_region ? 1 : 0;
@@ -119,8 +133,9 @@ void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& 
             << "  status:    " << ToString(plan.status) << (plan.status_reason.empty() ? "" : " (" + plan.status_reason + ")") << "\n"
             << "  gait:      " << plan.gait << ", cadence " << plan.cadence_s << " s\n"
             << "  footsteps: " << plan.footsteps.size() << " (" << in_region << " inside step regions)\n"
-            << "  duration:  " << plan.duration() << " s\n"
-            << "  wrote:     " << out << "/plan.json, " << out << "/plan.svg\n";
+            << "  duration:  " << plan.duration() << " s\n";
+  PrintRelaxedCycles(plan.body_cycles);
+  std::cout << "  wrote:     " << out << "/plan.json, " << out << "/plan.svg\n";
 }
 
 void SetBodyOptions(const PlanOptions& o, PipelineOptions& options) {

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "planning/plan.h"
 #include "sanitized.h"
 #include "test_paths.h"
 
@@ -181,10 +182,20 @@ TEST_CASE("plan.json names the body planner and, for the receding horizon, carri
   // One cycle per body sample, as a control loop would have run it.
   REQUIRE(cycles["count"] == plan["body"].size());
   const json& per = cycles["per_cycle"];
-  for (const char* key : {"t", "status", "solves", "iterations", "solve_us", "total_us"}) {
+  for (const char* key : {"t", "status", "solves", "iterations", "solve_us", "total_us", "relaxation"}) {
     INFO(key);
     CHECK(per[key].size() == plan["body"].size());
   }
+  // The executed knot's relaxation is a share of violations; `relaxed` counts the cycles with any.
+  int relaxed = 0;
+  for (const json& r : per["relaxation"]) {
+    CHECK(r.get<double>() >= 0.0);
+    CHECK(r.get<double>() <= 1.0);
+    stairplan::BodyCycleStats cycle;
+    cycle.relaxation = r.get<double>();
+    relaxed += cycle.relaxed() ? 1 : 0;
+  }
+  CHECK(cycles["relaxed"] == relaxed);
   for (std::size_t i = 0; i < plan["body"].size(); ++i) CHECK(per["t"][i] == plan["body"][i]["t"]);
   // The first cycle converges the linearisation (several QPs); nearly all later ones solve one warm QP.
   CHECK(per["solves"][0].get<int>() > 1);
