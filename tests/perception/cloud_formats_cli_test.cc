@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -145,7 +146,11 @@ TEST_CASE("map --stairs-out: plans on the perceived stairs keep the fit's uncert
   const StairSpec seen = StairSpecFromYamlFile(dir + "/stairs.yaml");
   CHECK(seen.uncertainty > 0.0);
   CHECK(seen.uncertainty < 0.03);
-  for (const std::string& body : {std::string(), std::string(kBodyOptimisation)}) {
+  // Under the sanitizers the default only (the body optimisation's run through the same files is
+  // "footfalls --stairs-out, plan --stairs: ...", which there runs that one only).
+  std::vector<std::string> bodies = {std::string()};
+  if (!kSanitized) bodies.push_back(std::string(kBodyOptimisation));
+  for (const std::string& body : bodies) {
     INFO((body.empty() ? "default" : "body optimisation"));
     const std::string out = dir + (body.empty() ? "/plan" : "/plan_qp");
     const StairplanRun plan = RunStairplan(dir, "plan --stairs " + dir + "/stairs.yaml " + body + " --out " + out);
