@@ -72,6 +72,15 @@ AxisDistance AxisDistanceOf(const LegKinematics& kin, LegWorkspace& ws, const Ei
   return a;
 }
 
+// The judges (the stance check, the validator) solve IK from the nominal angles; a seed carried
+// from cycle to cycle can slide onto another branch, where the leg's links, and so its clearance
+// and limits, are not the ones they will check (ANYmal B's hind knee bent the other way, 11 cm
+// from the tread in the rows and on it in the check; or its abduction turned by 4 rad). True
+// while q is on the nominal's branch: the knee bent the same way, no joint half a turn from it.
+bool OnNominalBranch(const Eigen::Vector3d& q, const Eigen::Vector3d& nominal) {
+  return q[2] * nominal[2] >= 0.0 && (q - nominal).cwiseAbs().maxCoeff() < 0.5 * M_PI;
+}
+
 }  // namespace
 
 StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, const Eigen::Vector3d& foot_W,
@@ -97,7 +106,8 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   d.col(kBodySideways) = -ry_t.col(1);
 
   StanceLegRows rows;
-  const IkResult ik = kin.SolveFootIk(foot_B, seed, ws);
+  IkResult ik = kin.SolveFootIk(foot_B, seed, ws);
+  if (!OnNominalBranch(ik.q, kin.nominal())) ik = kin.SolveFootIk(foot_B, ws);
   rows.q = ik.q;
   rows.reached = ik.ok();
   // Joints: q(dv) = q + J^-1 (residual + D dv), the residual being what IK left (nonzero when the
