@@ -1,5 +1,7 @@
 #include "planning/plan.h"
 
+#include <algorithm>
+
 namespace stairplan {
 
 const char* ToString(PlanStatus status) { return status == PlanStatus::kOk ? "ok" : "infeasible"; }
@@ -20,6 +22,16 @@ const char* ToString(BodyPlanStatus status) {
     case BodyPlanStatus::kInfeasible: return "infeasible";
   }
   return "unknown";
+}
+
+RelaxedCycles SummariseRelaxed(const std::vector<BodyCycleStats>& cycles) {
+  RelaxedCycles summary;
+  for (const BodyCycleStats& c : cycles) {
+    if (!c.relaxed()) continue;
+    if (summary.count++ == 0) summary.first_t = c.t;
+    summary.most = std::max(summary.most, c.relaxation);
+  }
+  return summary;
 }
 
 }  // namespace stairplan

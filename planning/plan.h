@@ -86,6 +86,15 @@ struct BodyCycleStats {
   bool relaxed() const { return relaxation > 1e-6; }
 };
 
+/// The cycles of a traversal that executed a relaxed knot (BodyCycleStats::relaxed()).
+struct RelaxedCycles {
+  int count = 0;         ///< how many
+  double first_t = 0.0;  ///< the first one's time [s] (0 when none)
+  double most = 0.0;     ///< the largest relaxation among them
+};
+/// Counts the relaxed cycles among `cycles`.
+RelaxedCycles SummariseRelaxed(const std::vector<BodyCycleStats>& cycles);
+
 /// How one fixed-cadence controller of the step planner fared over a traversal.
 struct ControllerScore {
   double cadence_s = 0.0;         ///< swing duration [s]

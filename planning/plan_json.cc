@@ -77,7 +77,7 @@ namespace {
 nlohmann::json BodyCyclesToJson(const std::vector<BodyCycleStats>& cycles) {
   nlohmann::json t = nlohmann::json::array(), status = t, solves = t, iterations = t, solve_us = t, total_us = t,
                  relaxation = t;
-  int stale = 0, infeasible = 0, relaxed = 0, max_iterations = 0;
+  int stale = 0, infeasible = 0, max_iterations = 0;
   double iteration_sum = 0.0;
   std::vector<double> solve_times;
   solve_times.reserve(cycles.size());
@@ -89,7 +89,6 @@ nlohmann::json BodyCyclesToJson(const std::vector<BodyCycleStats>& cycles) {
     solve_us.push_back(c.solve_us);
     total_us.push_back(c.total_us);
     relaxation.push_back(c.relaxation);
-    relaxed += c.relaxed() ? 1 : 0;
     stale += c.status == BodyPlanStatus::kStale ? 1 : 0;
     infeasible += c.status == BodyPlanStatus::kInfeasible ? 1 : 0;
     max_iterations = std::max(max_iterations, c.iterations);
@@ -104,7 +103,7 @@ nlohmann::json BodyCyclesToJson(const std::vector<BodyCycleStats>& cycles) {
   return {{"count", cycles.size()},
           {"stale", stale},
           {"infeasible", infeasible},
-          {"relaxed", relaxed},
+          {"relaxed", SummariseRelaxed(cycles).count},
           {"iterations_mean", iteration_sum / n},
           {"iterations_max", max_iterations},
           {"solve_us_p50", quantile(0.5)},

@@ -112,16 +112,10 @@ double MicrosSince(std::chrono::steady_clock::time_point start) {
 
 // The receding horizon's cycles that sent the robot through a row they could not mend in time.
 void PrintRelaxedCycles(const std::vector<BodyCycleStats>& cycles) {
-  int relaxed = 0;
-  double first = 0.0, most = 0.0;
-  for (const BodyCycleStats& c : cycles) {
-    if (!c.relaxed()) continue;
-    if (relaxed++ == 0) first = c.t;
-    most = std::max(most, c.relaxation);
-  }
-  if (relaxed == 0) return;
-  std::cout << "  relaxed:   " << relaxed << " cycles executed a knot keeping part of a broken row (first t=" << first
-            << " s, at most " << most << " of it)\n";
+  const RelaxedCycles relaxed = SummariseRelaxed(cycles);
+  if (relaxed.count == 0) return;
+  std::cout << "  relaxed:   " << relaxed.count << " cycles executed a knot keeping part of a broken row (first t="
+            << relaxed.first_t << " s, at most " << relaxed.most << " of it)\n";
 }
 
 void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& out) {

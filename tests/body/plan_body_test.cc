@@ -397,6 +397,15 @@ TEST_CASE("with leg rows the plan says where it crosses the support polygon's ma
     CHECK(c.relaxation >= 0.0);
     CHECK(c.relaxation <= 1.0);
   }
+  // The summary `plan` prints and plan.json counts: the relaxed cycles, the first, the largest.
+  const RelaxedCycles summary = SummariseRelaxed(cycles);
+  const auto first = std::find_if(cycles.begin(), cycles.end(), [](const BodyCycleStats& c) { return c.relaxed(); });
+  REQUIRE(first != cycles.end());
+  CHECK(summary.count == std::count_if(cycles.begin(), cycles.end(), [](const BodyCycleStats& c) { return c.relaxed(); }));
+  CHECK(summary.first_t == first->t);
+  CHECK(summary.most == std::max_element(cycles.begin(), cycles.end(), [](const BodyCycleStats& a, const BodyCycleStats& b) {
+                          return a.relaxation < b.relaxation;
+                        })->relaxation);
 }
 
 TEST_CASE("the body optimisation's plan starts where the robot stands: at the alignment pose", "[body][alignment]") {
