@@ -73,10 +73,10 @@ AxisDistance AxisDistanceOf(const LegKinematics& kin, LegWorkspace& ws, const Ei
 }
 
 // The judges (the stance check, the validator) solve IK from the nominal angles; a seed carried
-// from cycle to cycle can slide onto another branch, where the leg's links, and so its clearance
-// and limits, are not the ones they will check (ANYmal B's hind knee bent the other way, 11 cm
-// from the tread in the rows and on it in the check; or its abduction turned by 4 rad). True
-// while q is on the nominal's branch: the knee bent the same way, no joint half a turn from it.
+// from cycle to cycle can slide onto another branch (the knee bent the other way, the abduction
+// turned over), where the leg's links, and so its clearance and limits, are not the ones they
+// check. True while q is on the nominal's branch: the knee bent the same way, no joint a quarter
+// turn or more from it.
 bool OnNominalBranch(const Eigen::Vector3d& q, const Eigen::Vector3d& nominal) {
   return q[2] * nominal[2] >= 0.0 && (q - nominal).cwiseAbs().maxCoeff() < 0.5 * M_PI;
 }
