@@ -146,8 +146,8 @@ TEST_CASE("map --stairs-out: plans on the perceived stairs keep the fit's uncert
   const StairSpec seen = StairSpecFromYamlFile(dir + "/stairs.yaml");
   CHECK(seen.uncertainty > 0.0);
   CHECK(seen.uncertainty < 0.03);
-  // Under the sanitizers the default only (the body optimisation's run through the same files is
-  // "footfalls --stairs-out, plan --stairs: ...", which there runs that one only).
+  // Under the sanitizers the default only (as "footfalls --stairs-out, plan --stairs: ..."): the
+  // body optimisation's uncertainty is one margin added to rows every sanitized body test runs.
   std::vector<std::string> bodies = {std::string()};
   if (!kSanitized) bodies.push_back(std::string(kBodyOptimisation));
   for (const std::string& body : bodies) {
