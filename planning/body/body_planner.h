@@ -200,8 +200,8 @@ class BodyPlanner {
   // neutral stance's advance included, in the QP's variables.
   Eigen::Vector4d HalfKnotMotion(int k0, const Eigen::Vector4d& v0, const Eigen::Vector4d& v1) const;
   // The clearance rows half a knot after each knot (BodyQp::passing), linearised at the mean of
-  // the two knots' centres, for the legs (and the body) with a clearance row at either knot. Not
-  // carried across cycles: every cycle linearises them again.
+  // the two knots' centres, for the legs (and the body) with a clearance row at either knot;
+  // carried across cycles as the knots' rows are (KnotRowCache).
   void PassingRows(double now);
   // Clearance row `row` from the closest pair `c` and the closest robot point moved by a small
   // step along each body variable (`moved`, one column per variable), kept `inset` beyond the

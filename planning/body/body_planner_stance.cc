@@ -151,16 +151,22 @@ void BodyPlanner::PassingRows(double now) {
     const Eigen::Vector4d v0 = 0.5 * (centres_.col(k) + centres_.col(k + 1));
     const BodyPose at =
         CentrePose(Eigen::Vector2d(0.5 * (neutral_x_[k] + neutral_x_[k + 1]), 0.5 * (neutral_y_[k] + neutral_y_[k + 1])), v0);
-    const Eigen::Matrix3d body_rotation = at.ToIsometry().linear();
-    const Eigen::Vector4d motion = HalfKnotMotion(k, anchors_.col(k), anchors_.col(k + 1));
-    for (int l = 0; l < kBodyLegs; ++l) {
-      if (!near(k, l) && !near(k + 1, l)) continue;
-      const LegPhase phase = schedule_.Phase(l, t);
-      const StanceLegRows rows =
-          LinearizeLeg(l, phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)], margins);
-      ClearanceRow(qp.passing, k, l, at, v0, motion, rows, !phase.stance);
+    unsigned parts = 0;  // bit l: leg l (the body: kBodyLegs) has a clearance row at either knot
+    for (int part = 0; part <= kBodyLegs; ++part) parts |= near(k, part) || near(k + 1, part) ? 1u << part : 0u;
+    const double start = now + k * settings_.knot_dt;
+    if (parts != 0 && !(row_cache_ != nullptr && row_cache_->RestorePassing(start, v0, parts, k, qp))) {
+      const Eigen::Matrix3d body_rotation = at.ToIsometry().linear();
+      const Eigen::Vector4d motion = HalfKnotMotion(k, anchors_.col(k), anchors_.col(k + 1));
+      for (int l = 0; l < kBodyLegs; ++l) {
+        if ((parts & (1u << l)) == 0) continue;
+        const LegPhase phase = schedule_.Phase(l, t);
+        const StanceLegRows rows =
+            LinearizeLeg(l, phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)], margins);
+        ClearanceRow(qp.passing, k, l, at, v0, motion, rows, !phase.stance);
+      }
+      if ((parts & (1u << kBodyLegs)) != 0) BodyClearanceRow(qp.passing, k, at, v0, motion);
+      if (row_cache_ != nullptr) row_cache_->StorePassing(start, v0, parts, k, qp);
     }
-    if (near(k, kBodyLegs) || near(k + 1, kBodyLegs)) BodyClearanceRow(qp.passing, k, at, v0, motion);
     // With knot k's relaxation at 1 the previous plan meets the rows, as every knot row's.
     qp.passing.RelaxAt(BodyQp::ClearanceRow(k, 0), BodyQp::kClearanceRows, 0.5 * (anchors_.col(k) + anchors_.col(k + 1)));
   }

@@ -27,7 +27,10 @@ void KnotRowCache::WriteRows(const Rows<N>& kept, int first, const Eigen::Vector
 }
 
 KnotRowCache::KnotRowCache(int knots, double dt, const Eigen::Vector4d& max_move)
-    : dt_(dt), max_move_(max_move), slots_(static_cast<std::size_t>(knots + 1)) {}
+    : dt_(dt),
+      max_move_(max_move),
+      slots_(static_cast<std::size_t>(knots + 1)),
+      passing_(static_cast<std::size_t>(knots + 1)) {}
 
 std::size_t KnotRowCache::Index(double t) const {
   const long n = static_cast<long>(slots_.size());
@@ -39,9 +42,13 @@ const KnotRowCache::Slot* KnotRowCache::Find(double t) const {
   return slot.used && std::abs(slot.t - t) <= kSameInstant ? &slot : nullptr;
 }
 
+bool KnotRowCache::Near(const Eigen::Vector4d& kept, const Eigen::Vector4d& v0) const {
+  return ((kept - v0).cwiseAbs().array() <= max_move_.array()).all();
+}
+
 bool KnotRowCache::Restore(double t, const Eigen::Vector4d& v0, int k, BodyQp& qp, Eigen::Vector3d* q) const {
   const Slot* slot = Find(t);
-  if (slot == nullptr || ((slot->v0 - v0).cwiseAbs().array() > max_move_.array()).any()) return false;
+  if (slot == nullptr || !Near(slot->v0, v0)) return false;
   WriteRows(slot->stance, BodyQp::StanceRow(k, 0, 0), v0, qp.stance);
   WriteRows(slot->clearance, BodyQp::ClearanceRow(k, 0), v0, qp.clearance);
   for (int l = 0; l < kBodyLegs; ++l) q[l] = slot->q[static_cast<std::size_t>(l)];
@@ -71,6 +78,29 @@ void KnotRowCache::StoreComBase(double t, const Eigen::Vector2d& com_base) {
   if (!slot.used || std::abs(slot.t - t) > kSameInstant) return;
   slot.com_base = com_base;
   slot.has_com = true;
+}
+
+bool KnotRowCache::RestorePassing(double t, const Eigen::Vector4d& v0, unsigned parts, int k, BodyQp& qp) const {
+  const PassingSlot& slot = passing_[Index(t)];
+  if (!slot.used || std::abs(slot.t - t) > kSameInstant || (parts & ~slot.parts) != 0 || !Near(slot.v0, v0)) {
+    return false;
+  }
+  const int first = BodyQp::ClearanceRow(k, 0);
+  WriteRows(slot.rows, first, v0, qp.passing);
+  // The parts linearised then but not asked for now have no row, as when linearised afresh.
+  for (int part = 0; part < BodyQp::kClearanceRows; ++part) {
+    if ((parts & (1u << part)) == 0) qp.passing.lo[first + part] = -optim::kInf, qp.passing.sigma[first + part] = 0.0;
+  }
+  return true;
+}
+
+void KnotRowCache::StorePassing(double t, const Eigen::Vector4d& v0, unsigned parts, int k, const BodyQp& qp) {
+  PassingSlot& slot = passing_[Index(t)];
+  slot.t = t;
+  slot.used = true;
+  slot.parts = parts;
+  slot.v0 = v0;
+  ReadRows(qp.passing, BodyQp::ClearanceRow(k, 0), slot.rows);
 }
 
 }  // namespace stairplan

@@ -6,7 +6,8 @@
 // taken over instead of solved again: linearised at a centre this near they differ by
 // second-order terms, which the rows' clearance inset and joint margin cover. Where the centre
 // moved more, or the cycle's instants fall between the last cycle's (a control loop whose period
-// is not the knot spacing), the knot is linearised afresh.
+// is not the knot spacing), the knot is linearised afresh. The clearance rows half a knot later
+// (BodyQp::passing) are carried the same way, keyed by the instant their interval starts.
 #pragma once
 
 #include <array>
@@ -37,6 +38,15 @@ class KnotRowCache {
   /// Keeps instant `t`'s centre of mass, computed at the centre its rows were stored with.
   void StoreComBase(double t, const Eigen::Vector2d& com_base);
 
+  /// Copies the passing rows linearised for the interval starting at instant `t`, at a centre
+  /// within max_move of `v0` and for at least the parts in `parts` (bit l: leg l's row, bit
+  /// kBodyLegs: the body's), into interval `k` of `qp.passing`, their relaxation re-evaluated at
+  /// `v0`; false, with nothing written, when there are none.
+  bool RestorePassing(double t, const Eigen::Vector4d& v0, unsigned parts, int k, BodyQp& qp) const;
+  /// Keeps interval `k`'s passing rows of `qp`, linearised for the parts in `parts` of the interval
+  /// starting at instant `t`, at centre `v0`.
+  void StorePassing(double t, const Eigen::Vector4d& v0, unsigned parts, int k, const BodyQp& qp);
+
  private:
   // One knot's N rows of a BodyQp::KnotRows family.
   template <int N>
@@ -54,6 +64,15 @@ class KnotRowCache {
     std::array<Eigen::Vector3d, kBodyLegs> q;
     Eigen::Vector2d com_base = Eigen::Vector2d::Zero();
   };
+  // One interval's passing rows, in a ring of their own: they are taken over or linearised again
+  // independently of the rows of the knot the interval starts at.
+  struct PassingSlot {
+    double t = 0.0;
+    bool used = false;
+    unsigned parts = 0;  // the legs (bit l) and the body (bit kBodyLegs) linearised
+    Eigen::Vector4d v0 = Eigen::Vector4d::Zero();
+    Rows<BodyQp::kClearanceRows> rows;
+  };
   // Rows first .. first + N - 1 of `rows` into `kept`, and back (with the relaxation at `v0`).
   template <int N>
   static void ReadRows(const BodyQp::KnotRows& rows, int first, Rows<N>& kept);
@@ -63,10 +82,13 @@ class KnotRowCache {
   // holds instant t.
   std::size_t Index(double t) const;
   const Slot* Find(double t) const;
+  // Whether `v0` is within max_move of `kept`.
+  bool Near(const Eigen::Vector4d& kept, const Eigen::Vector4d& v0) const;
 
   double dt_;
   Eigen::Vector4d max_move_;
   std::vector<Slot> slots_;
+  std::vector<PassingSlot> passing_;
 };
 
 }  // namespace stairplan

@@ -1,6 +1,7 @@
 // The leg rows carried from one cycle to the next (planning/body/knot_row_cache.h): taken over only
-// at the same instant and near the same centre, their relaxation re-evaluated there; and over a
-// climb, plans made with them are the plans made without, at a fraction of the linearisations.
+// at the same instant (the passing rows: the same interval, for the same legs) and near the same
+// centre, their relaxation re-evaluated there; and over a climb, plans made with them are the plans
+// made without, at a fraction of the linearisations.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -100,6 +101,52 @@ TEST_CASE("leg rows are taken over at the same instant near the same centre, the
   CHECK_FALSE(cache.ComBase(t + (kKnots + 1) * kDt, &com));
   cache.Store(t, v0, 12, qp, q.data());
   CHECK_FALSE(cache.ComBase(t, &com));
+}
+
+TEST_CASE("passing rows are taken over for the same interval near the same centre when they cover the legs asked for",
+          "[body][row_cache]") {
+  const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
+  BodyPlannerSettings settings;
+  BodyQp qp(settings, c, /*stance_rows=*/true);
+  const Eigen::Vector4d max_move(0.001, 0.005, 0.001, 0.0015);
+  KnotRowCache cache(kKnots, kDt, max_move);
+  // Interval 7's clearance rows 0-4 (row 1 free).
+  const int p7 = BodyQp::ClearanceRow(7, 0), p6 = BodyQp::ClearanceRow(6, 0);
+  for (int r = 0; r < BodyQp::kClearanceRows; ++r) {
+    qp.passing.a.row(p7 + r) << 0.0, 0.1 * r, 1.0, 0.0;
+    qp.passing.lo[p7 + r] = r == 1 ? -optim::kInf : 0.01 * r;
+    qp.passing.hi[p7 + r] = optim::kInf;
+  }
+  const Eigen::Vector4d v0(0.45, -0.2, 0.01, 0.0);
+  const unsigned legs_0_2_3 = 1u << 0 | 1u << 2 | 1u << 3, body = 1u << kBodyLegs;
+  // Stored with rows for legs 0, 2, 3 and the body, for the interval from knot 7 at t = 2 s; the
+  // next cycle asks for it as interval 6, with rows for leg 2 and the body.
+  const double t = 80 * kDt;
+  cache.StorePassing(t, v0, legs_0_2_3 | body, 7, qp);
+  const Eigen::Vector4d near = v0 + Eigen::Vector4d(0.0, 0.0, 0.0009, 0.0);
+  REQUIRE(cache.RestorePassing(79 * kDt + kDt, near, 1u << 2 | body, 6, qp));
+  for (int r = 0; r < BodyQp::kClearanceRows; ++r) {
+    INFO("passing row " << r);
+    if (r == 2 || r == kBodyLegs) {
+      CHECK(qp.passing.a.row(p6 + r) == qp.passing.a.row(p7 + r));
+      CHECK(qp.passing.lo[p6 + r] == qp.passing.lo[p7 + r]);
+      // Relaxed by what the new centre breaks (a . near = near[2] + 0.1 r near[1]).
+      CHECK(qp.passing.sigma[p6 + r] == Approx(0.01 * r - (near[2] + 0.1 * r * near[1])));
+    } else {
+      // Not asked for: no row, as when linearised afresh.
+      CHECK(qp.passing.lo[p6 + r] == -optim::kInf);
+      CHECK(qp.passing.sigma[p6 + r] == 0.0);
+    }
+  }
+  // Not taken over: a leg that had no row then (leg 1), a centre moved too far, another interval.
+  qp.passing.lo[p6] = 123.0;
+  CHECK_FALSE(cache.RestorePassing(t, v0, 1u << 1 | 1u << 2, 6, qp));
+  Eigen::Vector4d far = v0;
+  far[2] += 1.01 * max_move[2];
+  CHECK_FALSE(cache.RestorePassing(t, far, 1u << 2, 6, qp));
+  CHECK_FALSE(cache.RestorePassing(t + kDt, v0, 1u << 2, 6, qp));
+  CHECK_FALSE(cache.RestorePassing(t + (kKnots + 1) * kDt, v0, 1u << 2, 6, qp));
+  CHECK(qp.passing.lo[p6] == 123.0);  // nothing written
 }
 
 TEST_CASE("over a climb the rows carried across cycles give the plan of fresh ones, from a third of the linearisations",
