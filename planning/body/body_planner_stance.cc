@@ -21,6 +21,14 @@ constexpr double kClearanceInset = 0.006;
 // A swing leg's links sweep past the stairs between knots (its foot moves up to a centimetre per
 // knot near a nosing): they keep this much more [m].
 constexpr double kSwingClearanceInset = 0.006;
+// How far a swing foot keeps from the cylinder about its leg's first joint axis (the leg plane's
+// offset from it) [m]. Near that cylinder the leg is near its singularity: the abduction turns
+// by about 1 / sqrt(d^2 - offset^2) radians per metre the foot moves at distance d from the axis,
+// and IK from the nominal angles, the judges', lands on either branch. A swing foot crossing
+// there between two knots put a leg past its abduction limit at an instant where both knots
+// kept it (a hind foot when the body pitches down a flight); a stance foot keeps the reach
+// margin.
+constexpr double kSwingAxisMargin = 0.03;
 // Step of the finite differences of the closest point's motion [m or rad].
 constexpr double kPointStep = 1e-5;
 // A clearance the body moves less than this per unit of its own motion gets no row: a link
@@ -134,7 +142,9 @@ StanceLegRows BodyPlanner::LinearizeLeg(int l, const LegPhase& phase, const Body
   // The foot's sphere rests on the contact; its offset from the foot origin turns with the foot.
   const Eigen::Matrix3d foot_rotation = body_rotation * kin.FootPose(seed, ws).linear();
   const Eigen::Vector3d origin = FootOriginForContact(kin.model(), contact, foot_rotation);
-  return LinearizeStanceLeg(kin, ws, origin, at, seed, margins);
+  StanceLegMargins with = margins;
+  if (!phase.stance) with.axis = kSwingAxisMargin;
+  return LinearizeStanceLeg(kin, ws, origin, at, seed, with);
 }
 
 void BodyPlanner::PassingRows(double now) {

@@ -150,12 +150,13 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   }
   SetRow(&rows, 3, grad, kin.extension().lo + margins.reach + bulge.down - length,
          kin.extension().hi - margins.reach - bulge.up - length);
-  // The axis distance: at least the leg plane's offset and the reach margin, the swing's bulge
-  // toward the axis further out. Its upper side is loose: the extension row bounds the reach.
+  // The axis distance: at least the leg plane's offset and the reach (or axis) margin, the swing's
+  // bulge toward the axis further out. Its upper side is loose: the extension row bounds the reach.
   const AxisDistance axis = AxisDistanceOf(kin, ws, ik.q, foot_B);
   if (axis.valid) {
     const Bulge toward = BulgeOf(axis.out.dot(bends_B[0]), axis.out.dot(bends_B[1]));
-    SetRow(&rows, 4, (axis.out.transpose() * d).transpose(), axis.offset + margins.reach + toward.down - axis.distance,
+    const double keep = std::max(margins.reach, margins.axis);
+    SetRow(&rows, 4, (axis.out.transpose() * d).transpose(), axis.offset + keep + toward.down - axis.distance,
            kin.reach().hi - axis.distance);
   } else {
     SetRow(&rows, 4, Eigen::Vector4d::Zero(), 0.0, 0.0);

@@ -38,6 +38,9 @@ struct StanceLegRows {
 struct StanceLegMargins {
   double joint = 0.0;  ///< [rad]
   double reach = 0.0;  ///< extension (flexion joint to foot distance) [m]
+  /// How far beyond the leg plane's offset the foot keeps from the first joint's axis, where more
+  /// than `reach` [m].
+  double axis = 0.0;
   /// How far a moving foot's path strays from its chords to the knots before and after, at their
   /// middles (world frame; zero for a foot that stays put) [m]. Between knots the body moves
   /// linearly while a swing foot follows its curve (it slows to touch down), so the joints and

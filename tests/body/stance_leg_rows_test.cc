@@ -210,6 +210,53 @@ TEST_CASE("a foot inside the cylinder about the first joint's axis that no leg p
   CHECK(checked == 72);
 }
 
+TEST_CASE("the axis margin keeps a reachable foot farther from the first joint's axis than the reach margin does",
+          "[body][rows]") {
+  // Near the cylinder of the leg plane's offset the leg is near its singularity: the abduction
+  // turns fast as the foot moves, and IK from the nominal angles can land on either branch. A
+  // swing foot keeps the axis margin there; the row then binds on feet IK reaches, and the body
+  // moved as it asks puts the foot out by that margin.
+  FirstLeg f;
+  const LegKinematics& kin = f.kin;
+  LegWorkspace& ws = f.ws.leg(0);
+  const LegKinematics::JointLine first = kin.JointLineAt(kin.nominal(), 0, ws);
+  const Eigen::Vector3d normal = kin.JointLineAt(kin.nominal(), 1, ws).axis;
+  const double offset = std::abs((kin.FootPosition(kin.nominal(), ws) - first.origin).dot(normal));
+  const BodyPose pose;
+  constexpr std::size_t kAxisRow = 4;
+  StanceLegMargins reach_only, with_axis;
+  reach_only.reach = with_axis.reach = 0.01;
+  with_axis.axis = 0.03;
+  // The leg plane's side of the axis, and the way down from the hip within that plane.
+  const double side = (kin.FootPosition(kin.nominal(), ws) - first.origin).dot(normal) > 0.0 ? 1.0 : -1.0;
+  const Eigen::Vector3d down = normal.cross(first.axis).dot(kin.FootPosition(kin.nominal(), ws) - first.origin) > 0.0
+                                   ? normal.cross(first.axis).normalized()
+                                   : first.axis.cross(normal).normalized();
+  int checked = 0;
+  // Feet ahead of and behind the hip, the leg stretched along the axis (a hind foot there when the
+  // body pitches down a flight backward), `beyond` outside the offset's cylinder.
+  for (double along : {-0.3, -0.25, -0.2, 0.2, 0.25, 0.3}) {
+    for (double beyond : {0.015, 0.02, 0.025}) {
+      INFO("along " << along << " beyond " << beyond);
+      const double d = offset + beyond;
+      const Eigen::Vector3d foot_B =
+          first.origin + along * first.axis + side * offset * normal + std::sqrt(d * d - offset * offset) * down;
+      if (!kin.SolveFootIk(foot_B, kin.nominal(), ws).ok()) continue;
+      const StanceLegRows loose = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), reach_only);
+      const StanceLegRows tight = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), with_axis);
+      REQUIRE(std::isfinite(tight.lo[kAxisRow]));
+      CHECK(loose.lo[kAxisRow] <= 0.0);  // beyond the reach margin: slack
+      CHECK(tight.lo[kAxisRow] > 0.0);   // within the axis margin: the pose breaks it
+      const BodyPose moved = MovedPose(pose, tight.a[kAxisRow] * tight.lo[kAxisRow]);
+      const Eigen::Vector3d lever = moved.ToIsometry().inverse() * foot_B - first.origin;
+      const double distance = (lever - lever.dot(first.axis) * first.axis).norm();
+      CHECK(distance > offset + with_axis.axis - 2e-3);
+      ++checked;
+    }
+  }
+  CHECK(checked >= 9);
+}
+
 TEST_CASE("the axis-distance row is slack wherever the leg reaches its foot", "[body][rows]") {
   // Every reachable foot is at least the leg plane's offset from the first joint's axis, so the
   // row never forbids what IK can do: over random reachable stances its lower bound stays within
