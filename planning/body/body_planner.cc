@@ -532,13 +532,15 @@ void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at,
       support_edge_[row] = normal.dot(pi);
       support_side_[static_cast<std::size_t>(row)] = below > 0 ? 1 : -1;
       if (zmp_only) continue;
+      // The relaxation pays only for what the margin the knot may give cannot: with both at
+      // their most the point meets the row, and a point within the margin given relaxes nothing.
       const double value = qp.support_cx[row] * v0[2] + qp.support_cy[row] * v0[3];
       if (below > 0) {
         qp.support_hi[row] = edge - settings_.stability_margin;
-        qp.support_sigma[row] = std::min(qp.support_hi[row] - value, 0.0);
+        qp.support_sigma[row] = std::min(qp.support_hi[row] + qp.max_give() - value, 0.0);
       } else {
         qp.support_lo[row] = edge + settings_.stability_margin;
-        qp.support_sigma[row] = std::max(qp.support_lo[row] - value, 0.0);
+        qp.support_sigma[row] = std::max(qp.support_lo[row] - qp.max_give() - value, 0.0);
       }
       continue;
     }

@@ -132,8 +132,8 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
     program_.AddQuadraticCost(retreat_, 2.0 * kRelaxCurvature * Eigen::MatrixXd::Identity(n - 1, n - 1),
                               Eigen::VectorXd::Constant(n - 1, kRetreatPenalty));
     give_ = program_.AddVariables("margin_given", n);
-    const double most = std::max(settings_.stability_margin - settings_.min_stability_margin, 0.0);
-    program_.SetVariableBounds(give_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, most));
+    max_give_ = std::max(settings_.stability_margin - settings_.min_stability_margin, 0.0);
+    program_.SetVariableBounds(give_, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, max_give_));
     program_.AddQuadraticCost(give_, 2.0 * kRelaxCurvature * identity,
                               Eigen::VectorXd::Constant(n, kMarginGivePenalty));
     if (zmp_weight_ > 0.0) {

@@ -100,6 +100,8 @@ class BodyQp {
   std::array<double, 3> ZmpStencil(int k) const;
   /// h / (g dt^2): the weight of a knot's neighbours in the ZMP (0: no ZMP rows).
   double zmp_weight() const { return zmp_weight_; }
+  /// The most stability margin a knot may give up (with stance rows) [m].
+  double max_give() const { return max_give_; }
   /// Stance rows per leg and knot: three joints, the extension and the first axis's distance
   /// (StanceLegRows::kRows).
   static constexpr int kStanceRows = 5;
@@ -266,6 +268,7 @@ class BodyQp {
     Eigen::MatrixXd pushed;  // a and sigma
   };
   PushedRows stance_, clearance_, passing_;
+  double max_give_ = 0.0;
   optim::ActiveSetQpSolver solver_;
   Eigen::VectorXd g_z_, g_pitch_, g_shift_, g_lateral_;
   optim::ConstraintRows progress_rows_;
