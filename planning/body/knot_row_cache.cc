@@ -37,8 +37,9 @@ std::size_t KnotRowCache::Index(double t) const {
   return static_cast<std::size_t>(((std::lround(t / dt_) % n) + n) % n);
 }
 
-const KnotRowCache::Slot* KnotRowCache::Find(double t) const {
-  const Slot& slot = slots_[Index(t)];
+template <class S>
+const S* KnotRowCache::Find(const std::vector<S>& ring, double t) const {
+  const S& slot = ring[Index(t)];
   return slot.used && std::abs(slot.t - t) <= kSameInstant ? &slot : nullptr;
 }
 
@@ -47,7 +48,7 @@ bool KnotRowCache::Near(const Eigen::Vector4d& kept, const Eigen::Vector4d& v0) 
 }
 
 bool KnotRowCache::Restore(double t, const Eigen::Vector4d& v0, int k, BodyQp& qp, Eigen::Vector3d* q) const {
-  const Slot* slot = Find(t);
+  const Slot* slot = Find(slots_, t);
   if (slot == nullptr || !Near(slot->v0, v0)) return false;
   WriteRows(slot->stance, BodyQp::StanceRow(k, 0, 0), v0, qp.stance);
   WriteRows(slot->clearance, BodyQp::ClearanceRow(k, 0), v0, qp.clearance);
@@ -67,7 +68,7 @@ void KnotRowCache::Store(double t, const Eigen::Vector4d& v0, int k, const BodyQ
 }
 
 bool KnotRowCache::ComBase(double t, Eigen::Vector2d* com_base) const {
-  const Slot* slot = Find(t);
+  const Slot* slot = Find(slots_, t);
   if (slot == nullptr || !slot->has_com) return false;
   *com_base = slot->com_base;
   return true;
@@ -81,15 +82,15 @@ void KnotRowCache::StoreComBase(double t, const Eigen::Vector2d& com_base) {
 }
 
 bool KnotRowCache::RestorePassing(double t, const Eigen::Vector4d& v0, unsigned parts, int k, BodyQp& qp) const {
-  const PassingSlot& slot = passing_[Index(t)];
-  if (!slot.used || std::abs(slot.t - t) > kSameInstant || (parts & ~slot.parts) != 0 || !Near(slot.v0, v0)) {
-    return false;
-  }
+  const PassingSlot* slot = Find(passing_, t);
+  if (slot == nullptr || (parts & ~slot->parts) != 0 || !Near(slot->v0, v0)) return false;
   const int first = BodyQp::ClearanceRow(k, 0);
-  WriteRows(slot.rows, first, v0, qp.passing);
+  WriteRows(slot->rows, first, v0, qp.passing);
   // The parts linearised then but not asked for now have no row, as when linearised afresh.
   for (int part = 0; part < BodyQp::kClearanceRows; ++part) {
-    if ((parts & (1u << part)) == 0) qp.passing.lo[first + part] = -optim::kInf, qp.passing.sigma[first + part] = 0.0;
+    if ((parts & (1u << part)) != 0) continue;
+    qp.passing.lo[first + part] = -optim::kInf;
+    qp.passing.sigma[first + part] = 0.0;
   }
   return true;
 }

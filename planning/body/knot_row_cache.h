@@ -78,10 +78,11 @@ class KnotRowCache {
   static void ReadRows(const BodyQp::KnotRows& rows, int first, Rows<N>& kept);
   template <int N>
   static void WriteRows(const Rows<N>& kept, int first, const Eigen::Vector4d& v0, BodyQp::KnotRows& rows);
-  // The slot of instant t (by its knot number t / dt, modulo the slots), and that slot when it
-  // holds instant t.
+  // The slot of instant t (by its knot number t / dt, modulo the slots), and that slot of `ring`
+  // when it holds instant t.
   std::size_t Index(double t) const;
-  const Slot* Find(double t) const;
+  template <class S>
+  const S* Find(const std::vector<S>& ring, double t) const;
   // Whether `v0` is within max_move of `kept`.
   bool Near(const Eigen::Vector4d& kept, const Eigen::Vector4d& v0) const;
 

@@ -42,15 +42,22 @@ void FillKnot(BodyQp& qp, int k) {
   qp.clearance.lo[c + 4] = 0.5;
 }
 
+// A body QP with leg rows and a cache of its rows, taken over within max_move of their centre.
+struct CacheCase {
+  BodyPlannerSettings settings;
+  BodyQp qp{settings, std::array<double, kBodyLegs>{-0.3, -0.3, 0.3, 0.3}, /*stance_rows=*/true};
+  Eigen::Vector4d max_move{0.001, 0.005, 0.001, 0.0015};
+  KnotRowCache cache{kKnots, kDt, max_move};
+};
+
 }  // namespace
 
 TEST_CASE("leg rows are taken over at the same instant near the same centre, their relaxation re-evaluated",
           "[body][row_cache]") {
-  const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
-  BodyPlannerSettings settings;
-  BodyQp qp(settings, c, /*stance_rows=*/true);
-  const Eigen::Vector4d max_move(0.001, 0.005, 0.001, 0.0015);
-  KnotRowCache cache(kKnots, kDt, max_move);
+  CacheCase f;
+  BodyQp& qp = f.qp;
+  KnotRowCache& cache = f.cache;
+  const Eigen::Vector4d& max_move = f.max_move;
   const std::array<Eigen::Vector3d, kBodyLegs> q{Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d(0.4, 0.5, 0.6),
                                                  Eigen::Vector3d(0.7, 0.8, 0.9), Eigen::Vector3d(1.0, 1.1, 1.2)};
   const Eigen::Vector4d v0(0.45, -0.2, 0.01, 0.0);
@@ -105,11 +112,10 @@ TEST_CASE("leg rows are taken over at the same instant near the same centre, the
 
 TEST_CASE("passing rows are taken over for the same interval near the same centre when they cover the legs asked for",
           "[body][row_cache]") {
-  const std::array<double, kBodyLegs> c{-0.3, -0.3, 0.3, 0.3};
-  BodyPlannerSettings settings;
-  BodyQp qp(settings, c, /*stance_rows=*/true);
-  const Eigen::Vector4d max_move(0.001, 0.005, 0.001, 0.0015);
-  KnotRowCache cache(kKnots, kDt, max_move);
+  CacheCase f;
+  BodyQp& qp = f.qp;
+  KnotRowCache& cache = f.cache;
+  const Eigen::Vector4d& max_move = f.max_move;
   // Interval 7's clearance rows 0-4 (row 1 free).
   const int p7 = BodyQp::ClearanceRow(7, 0), p6 = BodyQp::ClearanceRow(6, 0);
   for (int r = 0; r < BodyQp::kClearanceRows; ++r) {

@@ -46,11 +46,21 @@ LegCase RandomLegCase(const RobotKinematics& kinematics, RobotWorkspace& ws, int
   return c;
 }
 
-// The built-in robot's first leg with its kinematics and workspace.
+// The built-in robot's first leg with its kinematics and workspace; at its nominal angles, its
+// first joint's axis line, the flexion axis (the normal of the plane the foot moves in) and that
+// plane's offset from the first axis.
 struct FirstLeg {
   RobotKinematics kinematics{BuiltinRobot()};
   RobotWorkspace ws{kinematics};
   const LegKinematics& kin = kinematics.leg(0);
+  const LegKinematics::JointLine first = kin.JointLineAt(kin.nominal(), 0, ws.leg(0));
+  const Eigen::Vector3d normal = kin.JointLineAt(kin.nominal(), 1, ws.leg(0)).axis;
+  const double offset = std::abs((kin.FootPosition(kin.nominal(), ws.leg(0)) - first.origin).dot(normal));
+  // The distance from the first joint's axis of `foot_W` seen from the body at `pose`.
+  double AxisDistance(const BodyPose& pose, const Eigen::Vector3d& foot_W) const {
+    const Eigen::Vector3d lever = pose.ToIsometry().inverse() * foot_W - first.origin;
+    return (lever - lever.dot(first.axis) * first.axis).norm();
+  }
 };
 
 }  // namespace
@@ -176,11 +186,10 @@ TEST_CASE("a foot inside the cylinder about the first joint's axis that no leg p
   FirstLeg f;
   const LegKinematics& kin = f.kin;
   LegWorkspace& ws = f.ws.leg(0);
-  const LegKinematics::JointLine first = kin.JointLineAt(kin.nominal(), 0, ws);
-  const Eigen::Vector3d normal = kin.JointLineAt(kin.nominal(), 1, ws).axis;
-  const double offset = std::abs((kin.FootPosition(kin.nominal(), ws) - first.origin).dot(normal));
+  const LegKinematics::JointLine& first = f.first;
+  const double offset = f.offset;
   REQUIRE(offset > 0.02);  // the built-in robot's legs stand outside their hips' axes
-  const Eigen::Vector3d across = first.axis.cross(normal).normalized();
+  const Eigen::Vector3d across = first.axis.cross(f.normal).normalized();
   StanceLegMargins margins;
   margins.reach = 0.01;
   const BodyPose pose;
@@ -191,7 +200,7 @@ TEST_CASE("a foot inside the cylinder about the first joint's axis that no leg p
       for (int sixth = 0; sixth < 6; ++sixth) {
         const double turn = sixth * M_PI / 3.0;
         INFO("along " << along << " share " << share << " turn " << turn);
-        const Eigen::Vector3d radial = std::cos(turn) * normal + std::sin(turn) * across;
+        const Eigen::Vector3d radial = std::cos(turn) * f.normal + std::sin(turn) * across;
         const Eigen::Vector3d foot_B = first.origin + along * first.axis + share * offset * radial;
         CHECK_FALSE(kin.SolveFootIk(foot_B, kin.nominal(), ws).ok());
         const StanceLegRows rows = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), margins);
@@ -199,10 +208,7 @@ TEST_CASE("a foot inside the cylinder about the first joint's axis that no leg p
         CHECK(rows.lo[kAxisRow] > 0.0);  // the pose breaks the row
         // The body moved as the row asks: the foot leaves the cylinder by the margin.
         const Eigen::Vector4d dv = rows.a[kAxisRow] * rows.lo[kAxisRow];
-        const BodyPose moved = MovedPose(pose, dv);
-        const Eigen::Vector3d lever = moved.ToIsometry().inverse() * foot_B - first.origin;
-        const double distance = (lever - lever.dot(first.axis) * first.axis).norm();
-        CHECK(distance > offset + margins.reach - 2e-3);
+        CHECK(f.AxisDistance(MovedPose(pose, dv), foot_B) > offset + margins.reach - 2e-3);
         ++checked;
       }
     }
@@ -219,19 +225,18 @@ TEST_CASE("the axis margin keeps a reachable foot farther from the first joint's
   FirstLeg f;
   const LegKinematics& kin = f.kin;
   LegWorkspace& ws = f.ws.leg(0);
-  const LegKinematics::JointLine first = kin.JointLineAt(kin.nominal(), 0, ws);
-  const Eigen::Vector3d normal = kin.JointLineAt(kin.nominal(), 1, ws).axis;
-  const double offset = std::abs((kin.FootPosition(kin.nominal(), ws) - first.origin).dot(normal));
+  const LegKinematics::JointLine& first = f.first;
+  const double offset = f.offset;
   const BodyPose pose;
   constexpr std::size_t kAxisRow = 4;
   StanceLegMargins reach_only, with_axis;
   reach_only.reach = with_axis.reach = 0.01;
   with_axis.axis = 0.03;
   // The leg plane's side of the axis, and the way down from the hip within that plane.
-  const double side = (kin.FootPosition(kin.nominal(), ws) - first.origin).dot(normal) > 0.0 ? 1.0 : -1.0;
-  const Eigen::Vector3d down = normal.cross(first.axis).dot(kin.FootPosition(kin.nominal(), ws) - first.origin) > 0.0
-                                   ? normal.cross(first.axis).normalized()
-                                   : first.axis.cross(normal).normalized();
+  const double side = (kin.FootPosition(kin.nominal(), ws) - first.origin).dot(f.normal) > 0.0 ? 1.0 : -1.0;
+  const Eigen::Vector3d down = f.normal.cross(first.axis).dot(kin.FootPosition(kin.nominal(), ws) - first.origin) > 0.0
+                                   ? f.normal.cross(first.axis).normalized()
+                                   : first.axis.cross(f.normal).normalized();
   int checked = 0;
   // Feet ahead of and behind the hip, the leg stretched along the axis (a hind foot there when the
   // body pitches down a flight backward), `beyond` outside the offset's cylinder.
@@ -240,7 +245,7 @@ TEST_CASE("the axis margin keeps a reachable foot farther from the first joint's
       INFO("along " << along << " beyond " << beyond);
       const double d = offset + beyond;
       const Eigen::Vector3d foot_B =
-          first.origin + along * first.axis + side * offset * normal + std::sqrt(d * d - offset * offset) * down;
+          first.origin + along * first.axis + side * offset * f.normal + std::sqrt(d * d - offset * offset) * down;
       if (!kin.SolveFootIk(foot_B, kin.nominal(), ws).ok()) continue;
       const StanceLegRows loose = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), reach_only);
       const StanceLegRows tight = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), with_axis);
@@ -248,9 +253,7 @@ TEST_CASE("the axis margin keeps a reachable foot farther from the first joint's
       CHECK(loose.lo[kAxisRow] <= 0.0);  // beyond the reach margin: slack
       CHECK(tight.lo[kAxisRow] > 0.0);   // within the axis margin: the pose breaks it
       const BodyPose moved = MovedPose(pose, tight.a[kAxisRow] * tight.lo[kAxisRow]);
-      const Eigen::Vector3d lever = moved.ToIsometry().inverse() * foot_B - first.origin;
-      const double distance = (lever - lever.dot(first.axis) * first.axis).norm();
-      CHECK(distance > offset + with_axis.axis - 2e-3);
+      CHECK(f.AxisDistance(moved, foot_B) > offset + with_axis.axis - 2e-3);
       ++checked;
     }
   }
