@@ -12,6 +12,7 @@
 #include "planning/body_path.h"
 #include "planning/step/ik_reach_model.h"
 #include "planning/step/paper_crawl.h"
+#include "planning/step/step_height.h"
 #include "planning/step/step_planner_driver.h"
 #include "planning/swing_trajectory.h"
 
@@ -57,6 +58,8 @@ Plan StepPlannerPlan(const RobotModel& robot, const Staircase& stairs, const Con
 Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                        const PipelineOptions& options) {
   const Plan selection = PlanWithStepPlanner(robot, stairs, map, options.step, std::make_shared<IkReachModel>(robot));
+  // A rise no leg can step rules out every controller whatever its cadence, and any crawl with them.
+  if (FirstRiseTooHigh(robot.legs(), map, options.step)) return selection;
   CrawlSettings crawl = options.crawl;
   if (selection.status == PlanStatus::kOk && selection.cadence_s > 0.0) crawl.swing_duration = selection.cadence_s;
   Plan plan = PlanCrawl(robot, stairs, map, crawl);

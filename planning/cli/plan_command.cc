@@ -124,8 +124,13 @@ void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& 
   std::cout << "stairplan plan: " << plan.robot_name << " " << ToString(stairs.direction()) << " "
             << stairs.steps() << " steps (rise " << stairs.spec().rise << " m, run " << stairs.spec().run
             << " m), facing " << ToString(plan.facing) << "\n"
-            << "  status:    " << ToString(plan.status) << (plan.status_reason.empty() ? "" : " (" + plan.status_reason + ")") << "\n"
-            << "  gait:      " << plan.gait << ", cadence " << plan.cadence_s << " s\n"
+            << "  status:    " << ToString(plan.status) << (plan.status_reason.empty() ? "" : " (" + plan.status_reason + ")") << "\n";
+  // Refused before any footstep (a rise no leg can step): nothing was planned to describe.
+  if (plan.status != PlanStatus::kOk && plan.footsteps.empty()) {
+    std::cout << "  wrote:     " << out << "/plan.json, " << out << "/plan.svg\n";
+    return;
+  }
+  std::cout << "  gait:      " << plan.gait << ", cadence " << plan.cadence_s << " s\n"
             << "  footsteps: " << plan.footsteps.size() << " (" << in_region << " inside step regions)\n"
             << "  duration:  " << plan.duration() << " s\n";
   PrintRelaxedCycles(plan.body_cycles);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "geometry/field_error.h"
+#include "planning/step/step_height.h"
 
 namespace stairplan {
 namespace {
@@ -81,7 +82,7 @@ StepPlanner::StepPlanner(const RobotModel& robot, const ConstrainedMap& map, con
     leg_of_role_[static_cast<std::size_t>(role)] = static_cast<int>(i);
     role_of_leg_[i] = static_cast<int>(role);
     neutral_offset_W_[i] = Eigen::Rotation2Dd(yaw_) * Eigen::Vector2d(leg.hip_B.x(), leg.foot_zero_B.y());
-    max_step_height_[i] = settings_.max_step_height_fraction * leg.max_reach;
+    max_step_height_[i] = MaxStepHeight(leg, settings_);
     reach_sum += leg.max_reach;
     mean_hip_z_ += leg.hip_B.z() / 4.0;
     mean_foot_radius_ += leg.foot_radius / 4.0;

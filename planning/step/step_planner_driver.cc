@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "planning/step/step_height.h"
 #include "planning/step/step_planner.h"
 
 namespace stairplan {
@@ -58,6 +59,7 @@ Plan PlanWithStepPlanner(const RobotModel& robot, const Staircase& stairs, const
   };
 
   const int last = map.size() - 1;
+  if (const auto rise = FirstRiseTooHigh(planner.legs(), map, settings)) return MarkInfeasible(plan, ToString(*rise));
   if (map.stair(0).step_region.empty()) return MarkInfeasible(plan, "the first surface has no step region to start on");
   // Start with the feet under the hips, the leading feet start_gap before the end of the first
   // step region.
