@@ -147,12 +147,16 @@ TEST_CASE("a map where only one cadence lands every footstep in a step region se
 }
 
 TEST_CASE("no admissible controller: a status with the reason per controller, not a crash", "[step]") {
-  SECTION("risers higher than the robot can step: refused before any cycle") {
+  // Three steps of `rise` and 0.35 m runs.
+  const auto three_steps = [](double rise) {
     StairSpec spec;
     spec.steps = 3;
-    spec.rise = 0.45;
+    spec.rise = rise;
     spec.run = 0.35;
-    const Staircase stairs(spec);
+    return Staircase(spec);
+  };
+  SECTION("risers higher than the robot can step: refused before any cycle") {
+    const Staircase stairs = three_steps(0.45);
     const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
     const Plan plan = PlanWithStepPlanner(BuiltinRobot(), stairs, map);
     CHECK(plan.status == PlanStatus::kInfeasible);
@@ -164,11 +168,7 @@ TEST_CASE("no admissible controller: a status with the reason per controller, no
   SECTION("a tread with no step region: every controller ruled out in a cycle") {
     // Risers the legs can step, but the middle tread is all collision region: the controllers
     // plan the first footsteps, then a foot would have to step two risers (0.4 m) or stay behind.
-    StairSpec spec;
-    spec.steps = 3;
-    spec.rise = 0.2;
-    spec.run = 0.35;
-    const Staircase stairs(spec);
+    const Staircase stairs = three_steps(0.2);
     ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
     map.AddCollisionBand(2, stairs.surface(2).x_begin - 0.1, stairs.surface(2).x_end + 0.1, RegionKind::kData);
     const Plan plan = PlanWithStepPlanner(BuiltinRobot(), stairs, map);
