@@ -94,12 +94,19 @@ StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollision
   }
   result.body = BodyStairClearance(robot, stairs, body, settings.clearance);
   bool collision = !(result.min_clearance > settings.min_clearance) || !(result.body.distance > settings.min_clearance);
+  const double prune = settings.clearance.prune_above;
+  const auto pair = [&](int a, int b, Clearance& out) {
+    out = LegLegClearance(kinematics, robot, a, result.legs[static_cast<std::size_t>(a)].ik.q, b,
+                          result.legs[static_cast<std::size_t>(b)].ik.q, ws, prune);
+    collision = collision || !(out.distance > settings.min_clearance);
+  };
   if (settings.check_contralateral) {
-    const double prune = settings.clearance.prune_above;
-    result.front_pair = LegLegClearance(kinematics, robot, 0, result.legs[0].ik.q, 1, result.legs[1].ik.q, ws, prune);
-    result.hind_pair = LegLegClearance(kinematics, robot, 2, result.legs[2].ik.q, 3, result.legs[3].ik.q, ws, prune);
-    collision = collision || !(result.front_pair.distance > settings.min_clearance) ||
-                !(result.hind_pair.distance > settings.min_clearance);
+    pair(0, 1, result.front_pair);
+    pair(2, 3, result.hind_pair);
+  }
+  if (settings.check_ipsilateral) {
+    pair(0, 2, result.left_pair);
+    pair(1, 3, result.right_pair);
   }
   result.status = out_of_reach ? StanceStatus::kOutOfReach
                   : limits     ? StanceStatus::kJointLimits

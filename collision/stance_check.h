@@ -1,5 +1,5 @@
 // Is a stance feasible? For a body pose and four foot contact points: IK of every foot within
-// the joint limits, and every leg's clearance to the stairs (and between contralateral legs).
+// the joint limits, and every leg's clearance to the stairs (and between neighbouring legs).
 // This is what the planners and the validator ask at every touchdown.
 #pragma once
 
@@ -16,6 +16,9 @@ struct StanceSettings {
   IkSettings ik;                ///< IK of each foot (from the leg's nominal seed)
   double min_clearance = 0.0;   ///< every leg link must be farther than this from the stairs [m]
   bool check_contralateral = true;  ///< also LF-RF and LH-RH clearances
+  /// Also LF-LH and RF-RH clearances: on a tread shorter than the body, a hind foot can land where
+  /// its front foot still stands.
+  bool check_ipsilateral = true;
   /// Return at the first failing leg or pair (searches that need only the verdict); the figures
   /// of the legs not reached are then left at their defaults.
   bool stop_at_first_failure = false;
@@ -30,7 +33,7 @@ enum class StanceStatus {
   kOk,
   kOutOfReach,   ///< some foot cannot be reached
   kJointLimits,  ///< some foot is reachable only beyond a joint limit
-  kCollision,    ///< a leg (or the body) is within min_clearance of the stairs, or of the contralateral leg
+  kCollision,    ///< a leg (or the body) is within min_clearance of the stairs, or of another leg
 };
 /// Returns "ok", "out_of_reach", "joint_limits" or "collision".
 const char* ToString(StanceStatus status);
@@ -49,6 +52,8 @@ struct StanceResult {
   int worst_leg = -1;              ///< the leg with that clearance
   Clearance front_pair;            ///< LF-RF (legs 0, 1) when checked
   Clearance hind_pair;             ///< LH-RH (legs 2, 3) when checked
+  Clearance left_pair;             ///< LF-LH (legs 0, 2) when checked
+  Clearance right_pair;            ///< RF-RH (legs 1, 3) when checked
   Clearance body;                  ///< the body's shapes to the stairs
   /// True when every check passed.
   bool ok() const { return status == StanceStatus::kOk; }

@@ -1,9 +1,11 @@
 #include "planning/validation/traversal_validator.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
+#include <utility>
 
 #include "geometry/field_error.h"
 #include "planning/validation/body_rates.h"
@@ -269,11 +271,11 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
           (shape != nullptr ? shape->link : std::string("?")) + " against " + ToString(leg.stairs.part));
     }
   }
-  for (const Clearance* pair : {&r.front_pair, &r.hind_pair}) {
+  const std::array<std::pair<const char*, const Clearance*>, 4> pairs = {
+      {{"LF/RF", &r.front_pair}, {"LH/RH", &r.hind_pair}, {"LF/LH", &r.left_pair}, {"RF/RH", &r.right_pair}}};
+  for (const auto& [name, pair] : pairs) {
     report.min_clearance_m = std::min(report.min_clearance_m, pair->distance);
-    if (!(pair->distance > settings_.min_clearance)) {
-      add(pair == &r.front_pair ? "LF/RF" : "LH/RH", ViolationKind::kLegCollision, pair->distance, "");
-    }
+    if (!(pair->distance > settings_.min_clearance)) add(name, ViolationKind::kLegCollision, pair->distance, "");
   }
   const Clearance body_clearance = BodyStairClearance(checker_->collision_model(), checker_->stairs(), body);
   report.min_clearance_m = std::min(report.min_clearance_m, body_clearance.distance);

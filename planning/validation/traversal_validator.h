@@ -28,7 +28,7 @@ enum class ViolationKind {
   kOutOfReach,             ///< a foot no leg configuration reaches
   kJointLimits,            ///< a foot reachable only beyond a joint limit
   kStairCollision,         ///< a leg link closer to the stairs than the margin
-  kLegCollision,           ///< contralateral legs closer than the margin
+  kLegCollision,           ///< two neighbouring legs (LF/RF, LH/RH, LF/LH, RF/RH) closer than the margin
   kBodyCollision,          ///< the body closer to the stairs than the margin
   kStability,              ///< the centre of mass outside the support polygon (by less than the margin)
   kBodyAcceleration,       ///< a quasi-static plan's body accelerating faster than a robot can (value in m/s^2)

@@ -168,6 +168,36 @@ TEST_CASE("the validator passes the default plan and catches planted faults in i
     CHECK(hind_link_hit);
   }
 
+  SECTION("a hind foot landing where its front foot stands is caught as a leg collision") {
+    // On a tread shorter than the body a crawl's hind foot can be sent to the foothold its front
+    // foot has not lifted from yet: a foothold inside the step region, which only the same side's
+    // pair of legs shows to be taken.
+    Plan plan = s.result.plan;
+    Footstep* hind = nullptr;
+    for (Footstep& f : plan.footsteps) {
+      if (f.leg == "RH" && f.t_touchdown > 6.0) {
+        hind = &f;
+        break;
+      }
+    }
+    REQUIRE(hind != nullptr);
+    const Footstep* front = nullptr;  // RF's foothold when RH lands
+    for (const Footstep& f : plan.footsteps) {
+      if (f.leg == "RF" && f.t_touchdown < hind->t_touchdown) front = &f;
+    }
+    REQUIRE(front != nullptr);
+    hind->position_W = front->position_W;
+    hind->stair_index = front->stair_index;
+    const ValidationReport r = s.Validate(plan);
+    INFO(Describe(r));
+    CHECK_FALSE(r.ok);
+    bool same_side = false;
+    for (const Violation& v : r.violations) {
+      if (v.kind == ViolationKind::kLegCollision && v.leg == "RF/RH") same_side = v.value < 0.0;
+    }
+    CHECK(same_side);
+  }
+
   SECTION("a swing too low to clear a nosing is caught") {
     Plan plan = s.result.plan;
     Footstep& step = plan.footsteps.at(12);
