@@ -4,8 +4,11 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "collision/stance_check.h"
 #include "geometry/field_error.h"
@@ -306,7 +309,29 @@ double Inradius(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
 class TouchdownChecker {
  public:
   TouchdownChecker(const RobotModel& robot, const Staircase& stairs, const CrawlSettings& settings)
-      : checker_(robot, stairs), body_(settings.body), min_inradius_(settings.min_support_inradius) {}
+      : checker_(robot, stairs), body_(settings.body), min_inradius_(settings.min_support_inradius) {
+    for (const LegModel& leg : robot.legs()) foot_radius_[leg.name] = leg.foot_radius;
+  }
+
+  // Touchdowns on a foothold another foot still stands on (their feet overlap seen from above):
+  // a short robot's hind foot landing where its front foot has not lifted from yet.
+  int Crowded(const Plan& plan) const {
+    std::map<std::string, Eigen::Vector3d> feet;
+    for (std::size_t i = 0; i < plan.legs.size() && i < plan.initial_feet_W.size(); ++i) feet[plan.legs[i]] = plan.initial_feet_W[i];
+    int crowded = 0;
+    for (const Footstep& step : plan.footsteps) {
+      for (const auto& [leg, foot] : feet) {
+        if (leg == step.leg) continue;
+        const double apart = RadiusOf(leg) + RadiusOf(step.leg);
+        if ((foot - step.position_W).head<2>().norm() < apart) {
+          ++crowded;
+          break;
+        }
+      }
+      feet[step.leg] = step.position_W;
+    }
+    return crowded;
+  }
 
   // Touchdowns whose stance, with the plan's own body pose, fails the stance check, swings whose
   // support triangle is too thin to stand over, plus one when the body jumps (accelerates faster
@@ -374,9 +399,15 @@ class TouchdownChecker {
     return failed;
   }
 
+  double RadiusOf(const std::string& leg) const {
+    const auto it = foot_radius_.find(leg);
+    return it == foot_radius_.end() ? 0.0 : it->second;
+  }
+
   StanceChecker checker_;
   BodyPathSettings body_;
   double min_inradius_ = 0.0;
+  std::map<std::string, double> foot_radius_;
 };
 
 }  // namespace
@@ -389,6 +420,10 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
   const double jump = settings.refit_body_acceleration;
   int failed = checker.Failed(best, jump);
   if (failed == 0) return best;
+  // Feet landing on one another are no plan at all: a first layout with such touchdowns gives way
+  // to the least unstandable layout whose feet keep apart, even one failing other touchdowns.
+  const bool crowded = checker.Crowded(best) > 0;
+  std::optional<std::pair<int, CrawlSettings>> apart;
   // Other layouts, in CandidateLayouts' order: each is sketched (no posture fit) and screened, and
   // one whose every touchdown some posture can stand on is planned in full at once; when none
   // screens clean, the least unstandable ones are, up to fit_footholds full plans in all. Only a
@@ -408,16 +443,18 @@ Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const Constrain
     const CrawlSettings candidate = layout.Apply(settings);
     const Plan sketch = PlanCrawlLayout(robot, stairs, map, candidate, nullptr);
     if (sketch.status != PlanStatus::kOk) continue;
-    const int unstandable = checker.Unstandable(sketch, least);
+    const int unstandable = checker.Unstandable(sketch, crowded ? failed : least);
     least = std::min(least, unstandable);
+    if (crowded && checker.Crowded(sketch) == 0 && (!apart || unstandable < apart->first)) apart.emplace(unstandable, candidate);
     if (unstandable == 0 && passes_in_full(candidate)) return best;
-    if (full >= settings.fit_footholds) return best;
+    if (full >= settings.fit_footholds) break;
     if (unstandable > 0 && unstandable < failed) screened.emplace_back(unstandable, candidate);
   }
   std::stable_sort(screened.begin(), screened.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (std::size_t i = 0; i < screened.size() && full < settings.fit_footholds; ++i) {
     if (passes_in_full(screened[i].second)) return best;
   }
+  if (crowded && apart) return PlanCrawlLayout(robot, stairs, map, apart->second, &stairs);
   return best;
 }
 

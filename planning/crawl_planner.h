@@ -43,7 +43,9 @@ struct CrawlSettings {
   /// When a touchdown of the plan fails the stance check (a leg out of reach, beyond its limits or
   /// against the stairs), other foothold layouts fitted to the robot's hip spacing are screened
   /// (stance checks at their touchdowns) and up to this many of them planned in full; the first
-  /// whose every touchdown passes is returned, else the layout given. 0: no search.
+  /// whose every touchdown passes is returned, else the layout given, or, when a foot of that one
+  /// lands where another still stands, the least unstandable layout whose feet keep apart.
+  /// 0: no search.
   int fit_footholds = 1;
   /// Every swing's support triangle (the other three feet, seen from above) holds a circle this
   /// large, so that the centre of mass can stand inside it with the validator's stability margin
