@@ -190,8 +190,16 @@ class BodyPlanner {
   // closest link point's distance to the stairs (FCL), linearised through `rows`' joint
   // derivative; free when the leg is far from them. A swing leg's foot contact shape is left out
   // (its path is the swing trajectory's).
+  // A swing leg's row is its same-side neighbour's instead (`neighbour`, standing), when that leg
+  // is nearer than the stairs: a hind foot swinging in under its front leg's shank.
   void ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyPose& at, const Eigen::Vector4d& v0,
-                    const Eigen::Vector4d& motion, const StanceLegRows& rows, bool swing);
+                    const Eigen::Vector4d& motion, const StanceLegRows& rows, bool swing,
+                    const StanceLegRows* neighbour = nullptr);
+  // Leg l's distance to leg n (rows and rows_n at the pose), linearised in the base frame: both
+  // legs' joints turn as the body moves with their feet held. False when farther than the range
+  // or when `than` is nearer.
+  bool LegPairRow(BodyQp::KnotRows& into, int row, int l, const StanceLegRows& rows, int n, const StanceLegRows& rows_n,
+                  const Eigen::Vector4d& v0, const Eigen::Vector4d& motion, double inset, double than);
   // The body's clearance row k of `into` at the pose `at`: its closest point's distance to the
   // stairs (FCL).
   void BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose& at, const Eigen::Vector4d& v0,

@@ -3,6 +3,7 @@
 // the stairs (FCL's closest points, moved with the body and the joints), as rows of the QP.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "collision/clearance.h"
 #include "collision/stance_check.h"
@@ -40,6 +41,9 @@ constexpr double kPointStep = 1e-5;
 constexpr double kMinClearanceGradient = 0.1;
 
 // `at` moved by `step` along body variable v (z, pitch, along, sideways of the heading).
+// The leg on the same side at the other end of the body (legs in LF, RF, LH, RH order).
+int SameSideLeg(int l) { return l ^ 2; }
+
 BodyPose Moved(const BodyPose& at, int v, double step) {
   BodyPose moved = at;
   const double c = std::cos(at.yaw), s = std::sin(at.yaw);
@@ -92,6 +96,7 @@ void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::V
   // Knot k + 1 is not linearised yet: the previous plan's interval before the knot tells how fast
   // its links sweep.
   const Eigen::Vector4d motion = k > 0 ? HalfKnotMotion(k - 1, anchors_.col(k - 1), anchors_.col(k)) : Eigen::Vector4d::Zero();
+  std::array<StanceLegRows, kBodyLegs> legs;
   for (int l = 0; l < kBodyLegs; ++l) {
     const int first = BodyQp::StanceRow(k, l, 0);
     for (int j = 0; j < BodyQp::kStanceRows; ++j) {
@@ -105,7 +110,8 @@ void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::V
     const LegPhase& phase = phases_[static_cast<std::size_t>(k * kBodyLegs + l)];
     Eigen::Vector3d& q = stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)];
     margins.foot_bends_W = FootBends(l, t);
-    const StanceLegRows rows = LinearizeLeg(l, phase, at, body_rotation, q, margins);
+    legs[static_cast<std::size_t>(l)] = LinearizeLeg(l, phase, at, body_rotation, q, margins);
+    const StanceLegRows& rows = legs[static_cast<std::size_t>(l)];
     q = rows.q;
     for (int j = 0; j < BodyQp::kStanceRows; ++j) {
       const std::size_t js = static_cast<std::size_t>(j);
@@ -117,7 +123,13 @@ void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::V
       qp.stance.hi[first + j] = hi + at_v0;
       qp.stance.sigma[first + j] = lo > 0.0 ? lo : hi < 0.0 ? hi : 0.0;  // what the centre breaks
     }
-    ClearanceRow(qp.clearance, k, l, at, v0, motion, rows, !phase.stance);
+  }
+  for (int l = 0; k > 0 && l < kBodyLegs; ++l) {
+    const int n = SameSideLeg(l);
+    const bool swing = !phases_[static_cast<std::size_t>(k * kBodyLegs + l)].stance;
+    const bool n_stands = phases_[static_cast<std::size_t>(k * kBodyLegs + n)].stance;
+    ClearanceRow(qp.clearance, k, l, at, v0, motion, legs[static_cast<std::size_t>(l)], swing,
+                 swing && n_stands ? &legs[static_cast<std::size_t>(n)] : nullptr);
   }
   BodyClearanceRow(qp.clearance, k, at, v0, motion);
 }
@@ -172,7 +184,14 @@ void BodyPlanner::PassingRows(double now) {
         const LegPhase phase = schedule_.Phase(l, t);
         const StanceLegRows rows =
             LinearizeLeg(l, phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)], margins);
-        ClearanceRow(qp.passing, k, l, at, v0, motion, rows, !phase.stance);
+        // A swing leg passes its standing same-side neighbour too.
+        const int mate = SameSideLeg(l);
+        const LegPhase n_phase = schedule_.Phase(mate, t);
+        std::optional<StanceLegRows> n_rows;
+        if (!phase.stance && n_phase.stance) {
+          n_rows = LinearizeLeg(mate, n_phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + mate)], margins);
+        }
+        ClearanceRow(qp.passing, k, l, at, v0, motion, rows, !phase.stance, n_rows ? &*n_rows : nullptr);
       }
       if ((parts & (1u << kBodyLegs)) != 0) BodyClearanceRow(qp.passing, k, at, v0, motion);
       if (row_cache_ != nullptr) row_cache_->StorePassing(start, v0, parts, k, qp);
@@ -200,7 +219,8 @@ void BodyPlanner::BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose
 }
 
 void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyPose& at, const Eigen::Vector4d& v0,
-                               const Eigen::Vector4d& motion, const StanceLegRows& rows, bool swing) {
+                               const Eigen::Vector4d& motion, const StanceLegRows& rows, bool swing,
+                               const StanceLegRows* neighbour) {
   const RobotKinematics& kinematics = robot_->kinematics();
   ClearanceOptions options;
   options.prune_above = kClearanceRange;
@@ -210,7 +230,14 @@ void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyP
   options.skip_foot_contact = swing || !rows.reached;
   const Clearance c =
       LegStairClearance(kinematics, robot_->collision_model(), robot_->stair_model(), l, rows.q, at, *stance_ws_, options);
-  if (!(c.distance < kClearanceRange) || c.shape < 0 || c.leg != l) return;
+  const double inset = kClearanceInset + (swing ? kSwingClearanceInset : 0.0);
+  const bool stairs_row = c.distance < kClearanceRange && c.shape >= 0 && c.leg == l;
+  if (neighbour != nullptr && neighbour->reached &&
+      LegPairRow(into, BodyQp::ClearanceRow(k, l), l, rows, SameSideLeg(l), *neighbour, v0, motion, inset,
+                 stairs_row ? c.distance : kClearanceRange)) {
+    return;
+  }
+  if (!stairs_row) return;
   // The closest point, fixed on its link, moves with the body and with the joints, which turn
   // to keep the foot on its contact.
   const LegKinematics& kin = kinematics.leg(l);
@@ -221,12 +248,36 @@ void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyP
     return segment < 0 ? body_W : body_W * kin.LinkFrame(q, segment, ws);
   };
   const Eigen::Vector3d point_link = point_at(at, rows.q).inverse() * c.point_robot_W;
-  const double inset = kClearanceInset + (swing ? kSwingClearanceInset : 0.0);
   Eigen::Matrix<double, 3, 4> moved;
   for (int v = 0; v < 4; ++v) {
     moved.col(v) = point_at(Moved(at, v, kPointStep), rows.q + kPointStep * rows.dq.col(v)) * point_link;
   }
   SetClearanceRow(into, BodyQp::ClearanceRow(k, l), c, v0, motion, inset, moved);
+}
+
+bool BodyPlanner::LegPairRow(BodyQp::KnotRows& into, int row, int l, const StanceLegRows& rows, int n,
+                             const StanceLegRows& rows_n, const Eigen::Vector4d& v0, const Eigen::Vector4d& motion,
+                             double inset, double than) {
+  const RobotKinematics& kinematics = robot_->kinematics();
+  const RobotCollisionModel& model = robot_->collision_model();
+  const Clearance c = LegLegClearance(kinematics, model, l, rows.q, n, rows_n.q, *stance_ws_, kClearanceRange);
+  if (!(c.distance < std::min(than, kClearanceRange)) || c.shape < 0 || c.other < 0) return false;
+  // In the base frame each closest point, fixed on its link, moves only as its leg's joints turn
+  // to hold the foot while the body moves: the row is their relative motion.
+  const auto frame = [&](int leg, int shape, const Eigen::Vector3d& q) -> Eigen::Isometry3d {
+    const int segment = model.leg_shapes(leg)[static_cast<std::size_t>(shape)].segment;
+    return segment < 0 ? Eigen::Isometry3d::Identity() : kinematics.leg(leg).LinkFrame(q, segment, stance_ws_->leg(leg));
+  };
+  const Eigen::Vector3d on_l = frame(l, c.shape, rows.q).inverse() * c.point_robot_W;
+  const Eigen::Vector3d on_n = frame(n, c.other, rows_n.q).inverse() * c.point_other_W;
+  Eigen::Matrix<double, 3, 4> moved;
+  for (int v = 0; v < 4; ++v) {
+    const Eigen::Vector3d dl = frame(l, c.shape, rows.q + kPointStep * rows.dq.col(v)) * on_l - c.point_robot_W;
+    const Eigen::Vector3d dn = frame(n, c.other, rows_n.q + kPointStep * rows_n.dq.col(v)) * on_n - c.point_other_W;
+    moved.col(v) = c.point_robot_W + dl - dn;
+  }
+  SetClearanceRow(into, row, c, v0, motion, inset, moved);
+  return std::isfinite(into.lo[row]);
 }
 
 void BodyPlanner::SetClearanceRow(BodyQp::KnotRows& into, int row, const Clearance& c, const Eigen::Vector4d& v0,
