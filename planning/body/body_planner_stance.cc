@@ -40,10 +40,10 @@ constexpr double kPointStep = 1e-5;
 // support rows with it. Such a clearance is the footholds' and the swing trajectory's to keep.
 constexpr double kMinClearanceGradient = 0.1;
 
-// `at` moved by `step` along body variable v (z, pitch, along, sideways of the heading).
 // The leg on the same side at the other end of the body (legs in LF, RF, LH, RH order).
 int SameSideLeg(int l) { return l ^ 2; }
 
+// `at` moved by `step` along body variable v (z, pitch, along, sideways of the heading).
 BodyPose Moved(const BodyPose& at, int v, double step) {
   BodyPose moved = at;
   const double c = std::cos(at.yaw), s = std::sin(at.yaw);
