@@ -111,7 +111,7 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
   plan.robot_source = robot.source();
   plan.facing = map.facing();
   plan.cadence_s = settings.swing_duration;
-  plan.gait = "crawl";
+  plan.gait = Gait::kCrawl;
   for (const LegModel& leg : robot.legs()) plan.legs.push_back(leg.name);
 
   const std::vector<double> lattice = FootholdLattice(stairs, map);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +12,7 @@
 
 #include "geometry/constrained_map.h"
 #include "geometry/staircase.h"
+#include "planning/plan_gait.h"
 
 namespace stairplan {
 
@@ -98,7 +100,7 @@ RelaxedCycles SummariseRelaxed(const std::vector<BodyCycleStats>& cycles);
 /// How one fixed-cadence controller of the step planner fared over a traversal.
 struct ControllerScore {
   double cadence_s = 0.0;         ///< swing duration [s]
-  std::string gait;               ///< "crawl", "crawl_alt" or "trot"
+  Gait gait = Gait::kCrawl;       ///< the controller's gait
   double score = 0.0;             ///< mean score over the cycles where it was admissible (inf: never)
   std::string ruled_out_reason;   ///< why it was first ruled out, "" when never
   int cycles_selected = 0;        ///< cycles in which it was chosen
@@ -112,7 +114,7 @@ struct Plan {
   std::vector<std::string> legs;              ///< leg names in the robot's order
   Facing facing = Facing::kForward;  ///< which way the body faces relative to the travel
   double cadence_s = 0.0;                     ///< swing duration of the chosen controller [s]
-  std::string gait;                           ///< e.g. "crawl"
+  std::optional<Gait> gait;  ///< the gait walked; none when no controller was chosen
   /// The hip height (share of the leg's reach) the pipeline's robot-aware map and body path were
   /// built for; validate and simulate rebuild that map from it. NaN: the pipeline's default.
   double hip_height_fraction = std::numeric_limits<double>::quiet_NaN();

@@ -138,7 +138,7 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
   }
   nlohmann::json controllers = nlohmann::json::array();
   for (const ControllerScore& c : plan.controllers) {
-    controllers.push_back({{"cadence_s", c.cadence_s}, {"gait", c.gait},
+    controllers.push_back({{"cadence_s", c.cadence_s}, {"gait", ToString(c.gait)},
                            {"score", std::isfinite(c.score) ? nlohmann::json(c.score) : nlohmann::json(nullptr)},
                            {"ruled_out_reason", c.ruled_out_reason}, {"cycles_selected", c.cycles_selected},
                            {"cycles_ruled_out", c.cycles_ruled_out}});
@@ -149,7 +149,7 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
                          {"stairs", StairsToJson(stairs)},
                          {"facing", ToString(plan.facing)},
                          {"map", MapToJson(map)},
-                         {"gait", plan.gait},
+                         {"gait", GaitName(plan.gait)},
                          {"cadence_s", plan.cadence_s},
                          {"hip_height_fraction", std::isfinite(plan.hip_height_fraction) ? nlohmann::json(plan.hip_height_fraction)
                                                                                          : nlohmann::json(nullptr)},

@@ -139,7 +139,16 @@ PlanFile ReadPlanJson(const std::string& text, const std::string& source) {
   if (facing != "forward" && facing != "backward") r.Fail("facing", "must be 'forward' or 'backward'");
   file.facing = facing == "forward" ? Facing::kForward : Facing::kBackward;
   plan.facing = file.facing;
-  plan.gait = root.contains("gait") ? r.Text(root, "gait", "") : "crawl";
+  // Files from before the gait was written walked the crawl; an empty name: no controller chosen.
+  const std::string gait = root.contains("gait") ? r.Text(root, "gait", "") : ToString(Gait::kCrawl);
+  if (!gait.empty()) {
+    plan.gait = ParseGait(gait);
+    if (!plan.gait) {
+      std::string names;
+      for (const Gait g : kAllGaits) names += (names.empty() ? "" : ", ") + std::string(ToString(g));
+      r.Fail("gait", "must be one of " + names + " (got '" + gait + "')");
+    }
+  }
   plan.cadence_s = r.Number(root, "cadence_s", "");
   if (root.contains("hip_height_fraction") && !root["hip_height_fraction"].is_null()) {
     plan.hip_height_fraction = r.Number(root, "hip_height_fraction", "");

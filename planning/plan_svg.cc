@@ -83,7 +83,7 @@ void DrawUpAxis(std::ostringstream& svg, const View& v, double lo, double hi, do
 
 std::string Title(const Plan& plan, const ValidationReport* validation) {
   std::ostringstream title;
-  title << plan.robot_name << ", " << plan.gait << ", cadence " << plan.cadence_s << " s: ";
+  title << plan.robot_name << ", " << GaitName(plan.gait) << ", cadence " << plan.cadence_s << " s: ";
   if (plan.status != PlanStatus::kOk) {
     title << "INVALID: " << (plan.status_reason.empty() ? ToString(plan.status) : plan.status_reason);
   } else if (validation == nullptr) {

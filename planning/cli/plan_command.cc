@@ -130,7 +130,7 @@ void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& 
     std::cout << "  wrote:     " << out << "/plan.json, " << out << "/plan.svg\n";
     return;
   }
-  std::cout << "  gait:      " << plan.gait << ", cadence " << plan.cadence_s << " s\n"
+  std::cout << "  gait:      " << GaitName(plan.gait) << ", cadence " << plan.cadence_s << " s\n"
             << "  footsteps: " << plan.footsteps.size() << " (" << in_region << " inside step regions)\n"
             << "  duration:  " << plan.duration() << " s\n";
   PrintRelaxedCycles(plan.body_cycles);

@@ -113,7 +113,7 @@ void BindPlanClass(py::module_& m) {
       .def_property_readonly("ok", [](const PlanResult& p) {
         return PlanOf(p).status == PlanStatus::kOk && (!p.result->validated || p.result->validation.ok);
       }, "Planned, and valid when validated: what makes the CLI exit 0.")
-      .def_property_readonly("gait", [](const PlanResult& p) { return PlanOf(p).gait; })
+      .def_property_readonly("gait", [](const PlanResult& p) { return GaitName(PlanOf(p).gait); })
       .def_property_readonly("cadence_s", [](const PlanResult& p) { return PlanOf(p).cadence_s; })
       .def_property_readonly("duration", [](const PlanResult& p) { return PlanOf(p).duration(); })
       .def_property_readonly("legs", [](const PlanResult& p) { return PlanOf(p).legs; })

@@ -1,15 +1,9 @@
 #include "planning/step/gait_pattern.h"
 
-namespace stairplan {
+#include <stdexcept>
+#include <string>
 
-const char* ToString(Gait gait) {
-  switch (gait) {
-    case Gait::kCrawl: return "crawl";
-    case Gait::kCrawlAlternate: return "crawl_alt";
-    case Gait::kTrot: return "trot";
-  }
-  return "unknown";
-}
+namespace stairplan {
 
 const GaitPattern& PatternOf(Gait gait) {
   using R = TravelRole;
@@ -23,8 +17,10 @@ const GaitPattern& PatternOf(Gait gait) {
     case Gait::kCrawl: return kCrawl;
     case Gait::kCrawlAlternate: return kCrawlAlternate;
     case Gait::kTrot: return kTrot;
+    case Gait::kPaperCrawl:
+    case Gait::kPaperCrawlAlternate: break;
   }
-  return kCrawl;
+  throw std::invalid_argument(std::string("gait ") + ToString(gait) + ": the paper's crawls order their swings by their contact offsets, not by a controller's pattern");
 }
 
 }  // namespace stairplan

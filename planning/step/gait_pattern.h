@@ -5,15 +5,9 @@
 
 #include <array>
 
+#include "planning/plan_gait.h"
+
 namespace stairplan {
-
-/// The crawl of Chen, Ko, Li, Lin 2012, "Stair Climbing in a Quadruped Robot": one leg at a time,
-/// rear right, rear left, fore right, fore left; its alternative with the fore pair switched; and a
-/// trot-like gait with diagonal pairs.
-enum class Gait { kCrawl, kCrawlAlternate, kTrot };
-
-/// "crawl", "crawl_alt" or "trot".
-const char* ToString(Gait gait);
 
 /// A leg's place relative to travel.
 enum class TravelRole { kRearRight = 0, kRearLeft = 1, kForeRight = 2, kForeLeft = 3 };
@@ -31,7 +25,8 @@ struct GaitPattern {
   double stance_in_swings() const { return static_cast<double>(phases - 1); }
 };
 
-/// The pattern of `gait`.
+/// The pattern of a controller's `gait`; throws std::invalid_argument for the paper's crawls, which
+/// no controller walks (StepPlannerSettings::Validate refuses them).
 const GaitPattern& PatternOf(Gait gait);
 
 }  // namespace stairplan

@@ -93,7 +93,7 @@ Plan PlanPaperCrawl(const RobotModel& robot, const Staircase& stairs, const Cons
   plan.robot_source = robot.source();
   plan.facing = map.facing();
   plan.cadence_s = settings.swing_duration;
-  plan.gait = switched ? "paper_crawl_alt" : "paper_crawl";
+  plan.gait = switched ? Gait::kPaperCrawlAlternate : Gait::kPaperCrawl;
   plan.hip_height_fraction = settings.body.hip_height_fraction;
   for (const LegModel& leg : robot.legs()) plan.legs.push_back(leg.name);
   if (stairs.direction() != TravelDirection::kUp || map.facing() != Facing::kForward) {

@@ -38,7 +38,7 @@ Plan PlanWithStepPlanner(const RobotModel& robot, const Staircase& stairs, const
   for (const FixedCadenceController& c : controllers) {
     ControllerScore score;
     score.cadence_s = c.cadence_s;
-    score.gait = ToString(c.gait);
+    score.gait = c.gait;
     plan.controllers.push_back(score);
   }
   std::vector<double> score_sum(controllers.size(), 0.0);
@@ -55,7 +55,7 @@ Plan PlanWithStepPlanner(const RobotModel& robot, const Staircase& stairs, const
     p.selected = best;
     const FixedCadenceController& shown = controllers[static_cast<std::size_t>(std::max(0, best))];
     p.cadence_s = best >= 0 ? shown.cadence_s : 0.0;
-    p.gait = best >= 0 ? ToString(shown.gait) : "";
+    p.gait = best >= 0 ? std::optional<Gait>(shown.gait) : std::nullopt;
   };
 
   const int last = map.size() - 1;

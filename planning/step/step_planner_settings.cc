@@ -26,6 +26,11 @@ void StepPlannerSettings::Validate() const {
   }
   if (gaits.empty()) throw FieldError("gaits", "needs at least one gait");
   if (gaits.size() > 8) throw FieldError("gaits", "at most 8 gaits");
+  for (const Gait g : gaits) {
+    if (g == Gait::kPaperCrawl || g == Gait::kPaperCrawlAlternate) {
+      throw FieldError("gaits", std::string(ToString(g)) + " is the paper's crawl, planned by its own footstep planner, not a controller");
+    }
+  }
   if (horizon_steps < 1 || horizon_steps > 64) {
     throw FieldError("horizon_steps", "must be between 1 and 64 (got " + std::to_string(horizon_steps) + ")");
   }

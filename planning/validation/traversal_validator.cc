@@ -42,7 +42,7 @@ std::set<double> ReplayInstants(const Plan& plan, double time_step) {
   return times;
 }
 
-bool QuasiStatic(const std::string& gait) { return gait.rfind("crawl", 0) == 0; }
+bool QuasiStatic(const std::optional<Gait>& gait) { return gait && IsQuasiStatic(*gait); }
 
 // The leg a violation's leg name means, kNone for the body, leg pairs and unknown names.
 LegId LegIdOfName(const RobotKinematics& kinematics, const std::string& name) {

@@ -247,7 +247,7 @@ json SimFrames(ViewerRobot& robot, const json& sim, const std::string& source) {
 std::string Title(const Plan& plan, const StairSpec& spec, bool valid, const json& violations) {
   std::ostringstream title;
   title << plan.robot_name << ", " << spec.steps << " steps (rise " << spec.rise << " m, run " << spec.run << " m, "
-        << ToString(spec.direction) << "), " << plan.gait << ": ";
+        << ToString(spec.direction) << "), " << GaitName(plan.gait) << ": ";
   if (valid) {
     title << "valid";
   } else if (!violations.empty()) {

@@ -90,6 +90,9 @@ TEST_CASE("validate rejects broken plan files naming the field", "[cli][validate
   json bad_stairs = plan;
   bad_stairs["stairs"]["run"] = -0.2;
   expect(bad_stairs, "stairs.run");
+  json bad_gait = plan;
+  bad_gait["gait"] = "gallop";  // the validator's checks depend on the gait: no guessing
+  expect(bad_gait, "gait");
   std::ofstream(dir + "/truncated.json") << plan.dump().substr(0, 200);
   CHECK(Validate(dir + "/truncated.json", dir, &out, &err) == 2);
   CHECK_THAT(err, Catch::Contains("truncated.json"));

@@ -244,7 +244,7 @@ TEST_CASE("the pipeline runs the paper crawl at the paper's posture, validated, 
   const Plan direct = PlanPaperCrawl(robot, stairs, map, paper);
   REQUIRE(direct.status == PlanStatus::kOk);
   REQUIRE(r.plan.status == PlanStatus::kOk);
-  CHECK(r.plan.gait == "paper_crawl_alt");
+  CHECK(r.plan.gait == Gait::kPaperCrawlAlternate);
   CHECK(r.plan.hip_height_fraction == paper.body.hip_height_fraction);
   REQUIRE(r.plan.footsteps.size() == direct.footsteps.size());
   for (std::size_t i = 0; i < direct.footsteps.size(); ++i) {

@@ -176,10 +176,10 @@ TEST_CASE("no admissible controller: a status with the reason per controller, no
     CHECK_THAT(plan.status_reason, Catch::Contains("no admissible controller"));
     REQUIRE(plan.controllers.size() == 15u);
     for (const ControllerScore& c : plan.controllers) {
-      CAPTURE(c.gait, c.cadence_s);
+      CAPTURE(ToString(c.gait), c.cadence_s);
       CHECK_FALSE(c.ruled_out_reason.empty());
       CHECK(c.cycles_ruled_out > 0);
-      CHECK_THAT(plan.status_reason, Catch::Contains(c.gait));
+      CHECK_THAT(plan.status_reason, Catch::Contains(ToString(c.gait)));
     }
   }
   SECTION("a map without step regions") {

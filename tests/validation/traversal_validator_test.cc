@@ -149,6 +149,27 @@ TEST_CASE("the validator passes the default plan and catches planted faults in i
     }
   }
 
+  SECTION("the crawls, the paper's among them, are judged quasi-static; a trot or no gait is not") {
+    // 25 cm sideways from t = 8 s on: the COM leaves the support triangles, and the body jumps.
+    Plan plan = s.result.plan;
+    for (BodyState& b : plan.body) {
+      if (b.t > 8.02) b.y += 0.25;
+    }
+    const auto judged_quasi_static = [&](std::optional<Gait> gait) {
+      plan.gait = gait;
+      const ValidationReport r = s.Validate(plan);
+      INFO(GaitName(gait) << ": " << Describe(r));
+      const bool stability = HasKind(r, ViolationKind::kStability, "body");
+      CHECK(stability == HasKind(r, ViolationKind::kBodyAcceleration, "body"));
+      return stability;
+    };
+    for (const Gait g : {Gait::kCrawl, Gait::kCrawlAlternate, Gait::kPaperCrawl, Gait::kPaperCrawlAlternate}) {
+      CHECK(judged_quasi_static(g));
+    }
+    CHECK_FALSE(judged_quasi_static(Gait::kTrot));
+    CHECK_FALSE(judged_quasi_static(std::nullopt));
+  }
+
   SECTION("a hind knee driven into a riser is caught") {
     // The hind knees point back; pitching the body nose-up lowers the hips behind and drives the
     // hind shanks' tops (the knees) into the nosing of the riser below them.
