@@ -305,6 +305,22 @@ double Inradius(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
   return perimeter > 0.0 ? 2.0 * area / perimeter : 0.0;
 }
 
+// Calls visit(step, swinging, feet) for the plan's footsteps in order: `feet` where the plan's
+// feet stand just before that touchdown (in plan.legs order), `swinging` the stepping leg's index
+// there. Steps of a leg the plan does not name are skipped; visit returns false to stop.
+template <typename Visit>
+void ReplayTouchdowns(const Plan& plan, Visit visit) {
+  std::vector<Eigen::Vector3d> feet = plan.initial_feet_W;
+  if (feet.size() != plan.legs.size()) return;
+  for (const Footstep& step : plan.footsteps) {
+    const auto leg = std::find(plan.legs.begin(), plan.legs.end(), step.leg);
+    if (leg == plan.legs.end()) continue;
+    const auto swinging = static_cast<std::size_t>(leg - plan.legs.begin());
+    if (!visit(step, swinging, feet)) return;
+    feet[swinging] = step.position_W;
+  }
+}
+
 // Touchdown stances of crawl plans through the stance check, and the support of every swing.
 class TouchdownChecker {
  public:
@@ -316,20 +332,17 @@ class TouchdownChecker {
   // Touchdowns on a foothold another foot still stands on (their feet overlap seen from above):
   // a short robot's hind foot landing where its front foot has not lifted from yet.
   int Crowded(const Plan& plan) const {
-    std::map<std::string, Eigen::Vector3d> feet;
-    for (std::size_t i = 0; i < plan.legs.size() && i < plan.initial_feet_W.size(); ++i) feet[plan.legs[i]] = plan.initial_feet_W[i];
     int crowded = 0;
-    for (const Footstep& step : plan.footsteps) {
-      for (const auto& [leg, foot] : feet) {
-        if (leg == step.leg) continue;
-        const double apart = RadiusOf(leg) + RadiusOf(step.leg);
-        if ((foot - step.position_W).head<2>().norm() < apart) {
+    ReplayTouchdowns(plan, [&](const Footstep& step, std::size_t swinging, const std::vector<Eigen::Vector3d>& feet) {
+      for (std::size_t i = 0; i < feet.size(); ++i) {
+        const double apart = RadiusOf(plan.legs[i]) + RadiusOf(step.leg);
+        if (i != swinging && (feet[i] - step.position_W).head<2>().norm() < apart) {
           ++crowded;
           break;
         }
       }
-      feet[step.leg] = step.position_W;
-    }
+      return true;
+    });
     return crowded;
   }
 
@@ -346,20 +359,16 @@ class TouchdownChecker {
   // Swings whose three stance feet hold no circle of min_support_inradius: no body motion keeps
   // the centre of mass over them with a margin.
   int ThinSupports(const Plan& plan) const {
-    std::vector<Eigen::Vector3d> feet = plan.initial_feet_W;
     int thin = 0;
-    for (const Footstep& step : plan.footsteps) {
-      const auto leg = std::find(plan.legs.begin(), plan.legs.end(), step.leg);
-      if (leg == plan.legs.end() || feet.size() != 4) continue;
-      const std::size_t swinging = static_cast<std::size_t>(leg - plan.legs.begin());
+    ReplayTouchdowns(plan, [&](const Footstep&, std::size_t swinging, const std::vector<Eigen::Vector3d>& feet) {
       std::array<Eigen::Vector3d, 3> stance;
       std::size_t n = 0;
-      for (std::size_t i = 0; i < feet.size(); ++i) {
+      for (std::size_t i = 0; i < feet.size() && n < stance.size(); ++i) {
         if (i != swinging) stance[n++] = feet[i];
       }
-      if (Inradius(stance[0], stance[1], stance[2]) < min_inradius_) ++thin;
-      feet[swinging] = step.position_W;
-    }
+      if (n == stance.size() && Inradius(stance[0], stance[1], stance[2]) < min_inradius_) ++thin;
+      return true;
+    });
     return thin;
   }
 
@@ -387,15 +396,14 @@ class TouchdownChecker {
 
   template <typename Passes>
   int Count(const Plan& plan, int limit, Passes passes) {
-    Contacts feet;
-    for (std::size_t i = 0; i < plan.legs.size() && i < 4; ++i) {
-      feet[static_cast<std::size_t>(checker_.kinematics().LegIndex(plan.legs[i]))] = plan.initial_feet_W[i];
-    }
     int failed = 0;
-    for (const Footstep& step : plan.footsteps) {
-      feet[static_cast<std::size_t>(checker_.kinematics().LegIndex(step.leg))] = step.position_W;
-      if (!passes(BodyPoseAt(plan.body, step.t_touchdown), feet) && ++failed >= limit) break;
-    }
+    ReplayTouchdowns(plan, [&](const Footstep& step, std::size_t swinging, const std::vector<Eigen::Vector3d>& feet) {
+      Contacts contacts;  // the feet just after the touchdown, in the kinematics' leg order
+      for (std::size_t i = 0; i < feet.size() && i < contacts.size(); ++i) {
+        contacts[static_cast<std::size_t>(checker_.kinematics().LegIndex(plan.legs[i]))] = i == swinging ? step.position_W : feet[i];
+      }
+      return passes(BodyPoseAt(plan.body, step.t_touchdown), contacts) || ++failed < limit;
+    });
     return failed;
   }
 
