@@ -52,12 +52,8 @@ struct CacheCase {
 
 }  // namespace
 
-TEST_CASE("leg rows are taken over at the same instant near the same centre, their relaxation re-evaluated",
+TEST_CASE_METHOD(CacheCase, "leg rows are taken over at the same instant near the same centre, their relaxation re-evaluated",
           "[body][row_cache]") {
-  CacheCase f;
-  BodyQp& qp = f.qp;
-  KnotRowCache& cache = f.cache;
-  const Eigen::Vector4d& max_move = f.max_move;
   const std::array<Eigen::Vector3d, kBodyLegs> q{Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d(0.4, 0.5, 0.6),
                                                  Eigen::Vector3d(0.7, 0.8, 0.9), Eigen::Vector3d(1.0, 1.1, 1.2)};
   const Eigen::Vector4d v0(0.45, -0.2, 0.01, 0.0);
@@ -110,12 +106,8 @@ TEST_CASE("leg rows are taken over at the same instant near the same centre, the
   CHECK_FALSE(cache.ComBase(t, &com));
 }
 
-TEST_CASE("passing rows are taken over for the same interval near the same centre when they cover the legs asked for",
+TEST_CASE_METHOD(CacheCase, "passing rows are taken over for the same interval near the same centre when they cover the legs asked for",
           "[body][row_cache]") {
-  CacheCase f;
-  BodyQp& qp = f.qp;
-  KnotRowCache& cache = f.cache;
-  const Eigen::Vector4d& max_move = f.max_move;
   // Interval 7's clearance rows 0-4 (row 1 free).
   const int p7 = BodyQp::ClearanceRow(7, 0), p6 = BodyQp::ClearanceRow(6, 0);
   for (int r = 0; r < BodyQp::kClearanceRows; ++r) {

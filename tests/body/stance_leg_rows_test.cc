@@ -46,6 +46,9 @@ LegCase RandomLegCase(const RobotKinematics& kinematics, RobotWorkspace& ws, int
   return c;
 }
 
+// The row of the foot's distance from the first joint's axis among a stance leg's rows.
+constexpr std::size_t kAxisRow = 4;
+
 // The built-in robot's first leg with its kinematics and workspace; at its nominal angles, its
 // first joint's axis line, the flexion axis (the normal of the plane the foot moves in) and that
 // plane's offset from the first axis.
@@ -56,6 +59,7 @@ struct FirstLeg {
   const LegKinematics::JointLine first = kin.JointLineAt(kin.nominal(), 0, ws.leg(0));
   const Eigen::Vector3d normal = kin.JointLineAt(kin.nominal(), 1, ws.leg(0)).axis;
   const double offset = std::abs((kin.FootPosition(kin.nominal(), ws.leg(0)) - first.origin).dot(normal));
+  LegWorkspace& leg_ws = ws.leg(0);
   // The distance from the first joint's axis of `foot_W` seen from the body at `pose`.
   double AxisDistance(const BodyPose& pose, const Eigen::Vector3d& foot_W) const {
     const Eigen::Vector3d lever = pose.ToIsometry().inverse() * foot_W - first.origin;
@@ -184,16 +188,11 @@ TEST_CASE("a foot inside the cylinder about the first joint's axis that no leg p
   // rows have no first-order model (a hind foot passes there when the body pitches down a flight
   // backward). The axis-distance row then moves the foot out of that cylinder.
   FirstLeg f;
-  const LegKinematics& kin = f.kin;
-  LegWorkspace& ws = f.ws.leg(0);
-  const LegKinematics::JointLine& first = f.first;
-  const double offset = f.offset;
-  REQUIRE(offset > 0.02);  // the built-in robot's legs stand outside their hips' axes
-  const Eigen::Vector3d across = first.axis.cross(f.normal).normalized();
+  REQUIRE(f.offset > 0.02);  // the built-in robot's legs stand outside their hips' axes
+  const Eigen::Vector3d across = f.first.axis.cross(f.normal).normalized();
   StanceLegMargins margins;
   margins.reach = 0.01;
   const BodyPose pose;
-  constexpr std::size_t kAxisRow = 4;
   int checked = 0;
   for (double along : {-0.6, -0.5, 0.5, 0.6}) {
     for (double share : {0.1, 0.4, 0.7}) {
@@ -201,14 +200,14 @@ TEST_CASE("a foot inside the cylinder about the first joint's axis that no leg p
         const double turn = sixth * M_PI / 3.0;
         INFO("along " << along << " share " << share << " turn " << turn);
         const Eigen::Vector3d radial = std::cos(turn) * f.normal + std::sin(turn) * across;
-        const Eigen::Vector3d foot_B = first.origin + along * first.axis + share * offset * radial;
-        CHECK_FALSE(kin.SolveFootIk(foot_B, kin.nominal(), ws).ok());
-        const StanceLegRows rows = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), margins);
+        const Eigen::Vector3d foot_B = f.first.origin + along * f.first.axis + share * f.offset * radial;
+        CHECK_FALSE(f.kin.SolveFootIk(foot_B, f.kin.nominal(), f.leg_ws).ok());
+        const StanceLegRows rows = LinearizeStanceLeg(f.kin, f.leg_ws, foot_B, pose, f.kin.nominal(), margins);
         REQUIRE(std::isfinite(rows.lo[kAxisRow]));
         CHECK(rows.lo[kAxisRow] > 0.0);  // the pose breaks the row
         // The body moved as the row asks: the foot leaves the cylinder by the margin.
         const Eigen::Vector4d dv = rows.a[kAxisRow] * rows.lo[kAxisRow];
-        CHECK(f.AxisDistance(MovedPose(pose, dv), foot_B) > offset + margins.reach - 2e-3);
+        CHECK(f.AxisDistance(MovedPose(pose, dv), foot_B) > f.offset + margins.reach - 2e-3);
         ++checked;
       }
     }
@@ -223,37 +222,32 @@ TEST_CASE("the axis margin keeps a reachable foot farther from the first joint's
   // swing foot keeps the axis margin there; the row then binds on feet IK reaches, and the body
   // moved as it asks puts the foot out by that margin.
   FirstLeg f;
-  const LegKinematics& kin = f.kin;
-  LegWorkspace& ws = f.ws.leg(0);
-  const LegKinematics::JointLine& first = f.first;
-  const double offset = f.offset;
   const BodyPose pose;
-  constexpr std::size_t kAxisRow = 4;
   StanceLegMargins reach_only, with_axis;
   reach_only.reach = with_axis.reach = 0.01;
   with_axis.axis = 0.03;
   // The leg plane's side of the axis, and the way down from the hip within that plane.
-  const double side = (kin.FootPosition(kin.nominal(), ws) - first.origin).dot(f.normal) > 0.0 ? 1.0 : -1.0;
-  const Eigen::Vector3d down = f.normal.cross(first.axis).dot(kin.FootPosition(kin.nominal(), ws) - first.origin) > 0.0
-                                   ? f.normal.cross(first.axis).normalized()
-                                   : first.axis.cross(f.normal).normalized();
+  const double side = (f.kin.FootPosition(f.kin.nominal(), f.leg_ws) - f.first.origin).dot(f.normal) > 0.0 ? 1.0 : -1.0;
+  const Eigen::Vector3d down = f.normal.cross(f.first.axis).dot(f.kin.FootPosition(f.kin.nominal(), f.leg_ws) - f.first.origin) > 0.0
+                                   ? f.normal.cross(f.first.axis).normalized()
+                                   : f.first.axis.cross(f.normal).normalized();
   int checked = 0;
   // Feet ahead of and behind the hip, the leg stretched along the axis (a hind foot there when the
   // body pitches down a flight backward), `beyond` outside the offset's cylinder.
   for (double along : {-0.3, -0.25, -0.2, 0.2, 0.25, 0.3}) {
     for (double beyond : {0.015, 0.02, 0.025}) {
       INFO("along " << along << " beyond " << beyond);
-      const double d = offset + beyond;
+      const double d = f.offset + beyond;
       const Eigen::Vector3d foot_B =
-          first.origin + along * first.axis + side * offset * f.normal + std::sqrt(d * d - offset * offset) * down;
-      if (!kin.SolveFootIk(foot_B, kin.nominal(), ws).ok()) continue;
-      const StanceLegRows loose = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), reach_only);
-      const StanceLegRows tight = LinearizeStanceLeg(kin, ws, foot_B, pose, kin.nominal(), with_axis);
+          f.first.origin + along * f.first.axis + side * f.offset * f.normal + std::sqrt(d * d - f.offset * f.offset) * down;
+      if (!f.kin.SolveFootIk(foot_B, f.kin.nominal(), f.leg_ws).ok()) continue;
+      const StanceLegRows loose = LinearizeStanceLeg(f.kin, f.leg_ws, foot_B, pose, f.kin.nominal(), reach_only);
+      const StanceLegRows tight = LinearizeStanceLeg(f.kin, f.leg_ws, foot_B, pose, f.kin.nominal(), with_axis);
       REQUIRE(std::isfinite(tight.lo[kAxisRow]));
       CHECK(loose.lo[kAxisRow] <= 0.0);  // beyond the reach margin: slack
       CHECK(tight.lo[kAxisRow] > 0.0);   // within the axis margin: the pose breaks it
       const BodyPose moved = MovedPose(pose, tight.a[kAxisRow] * tight.lo[kAxisRow]);
-      CHECK(f.AxisDistance(moved, foot_B) > offset + with_axis.axis - 2e-3);
+      CHECK(f.AxisDistance(moved, foot_B) > f.offset + with_axis.axis - 2e-3);
       ++checked;
     }
   }
@@ -277,8 +271,8 @@ TEST_CASE("the axis-distance row is slack wherever the leg reaches its foot", "[
     if (!rows.reached) continue;
     ++reached;
     INFO("trial " << trial);
-    REQUIRE(std::isfinite(rows.lo[4]));
-    CHECK(rows.lo[4] <= margins.reach + 1e-9);
+    REQUIRE(std::isfinite(rows.lo[kAxisRow]));
+    CHECK(rows.lo[kAxisRow] <= margins.reach + 1e-9);
   }
   CHECK(reached > 150);
 }
