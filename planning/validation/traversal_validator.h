@@ -128,9 +128,12 @@ struct ValidationReport {
 class TraversalValidator {
  public:
   /// Builds the robot's kinematics and collision model and the stairs' solids. Throws
-  /// std::invalid_argument naming the field for bad settings.
+  /// std::invalid_argument naming the field for bad settings. Keeps references to `stairs` and
+  /// `map`, which must outlive it (temporaries are refused at compile time).
   TraversalValidator(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                      const ValidationSettings& settings = {});
+  TraversalValidator(const RobotModel&, Staircase&&, const ConstrainedMap&, const ValidationSettings& = {}) = delete;
+  TraversalValidator(const RobotModel&, const Staircase&, ConstrainedMap&&, const ValidationSettings& = {}) = delete;
 
   /// Replays `plan` every time_step, checks each touchdown, and reports what it breaks.
   ValidationReport Validate(const Plan& plan);

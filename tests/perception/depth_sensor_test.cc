@@ -61,9 +61,7 @@ TEST_CASE("looking down the stairs, the tread just below each nosing is hidden",
   StairSpec spec;
   spec.direction = TravelDirection::kDown;
   const Staircase stairs(spec);
-  SensorPose pose;
-  pose.position = Eigen::Vector3d(-0.3, 0.0, stairs.total_rise() + 0.6);  // on the top landing, near the edge
-  pose.pitch = -0.7;
+  const SensorPose pose = stairplan::testing::CameraOnTopLanding(stairs);
   SensorNoise noise;
   noise.range_sigma = 0.0;
   const PointCloud cloud = ScanStairs(stairs, stairplan::testing::SmallCamera(), pose, noise);

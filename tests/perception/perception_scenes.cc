@@ -10,6 +10,20 @@ SensorPose CameraOnBottomLanding() {
   return pose;
 }
 
+SensorPose CameraOnTopLanding(const Staircase& stairs) {
+  SensorPose pose;
+  pose.position = Eigen::Vector3d(-0.3, 0.0, stairs.total_rise() + 0.6);
+  pose.pitch = -0.7;
+  return pose;
+}
+
+PinholeCamera VgaCamera() {
+  PinholeCamera camera;
+  camera.width_px = 640;
+  camera.height_px = 480;
+  return camera;
+}
+
 PinholeCamera SmallCamera() {
   PinholeCamera camera;
   camera.width_px = 128;

@@ -12,8 +12,14 @@ namespace stairplan::testing {
 
 /// A camera 0.5 m above the bottom landing, 0.8 m before the first riser, looking up the flight.
 SensorPose CameraOnBottomLanding();
+/// A camera 0.6 m above the top landing of `stairs` (a descent), 0.3 m before its edge, looking
+/// down the flight.
+SensorPose CameraOnTopLanding(const Staircase& stairs);
 /// The test camera: 128 x 96 rays, so a hundred scans stay fast.
 PinholeCamera SmallCamera();
+/// A depth camera's VGA mode, 640 x 480 rays. Looking down a flight from its top, coarser images
+/// leave the bottom landing's cells more than 20 cm from any return: poor data, no step region.
+PinholeCamera VgaCamera();
 
 /// A scan of `stairs` (in its own frame) moved into the world by yaw and offset.
 struct Scene {
