@@ -20,7 +20,8 @@ const GaitPattern& PatternOf(Gait gait) {
     case Gait::kPaperCrawl:
     case Gait::kPaperCrawlAlternate: break;
   }
-  throw std::invalid_argument(std::string("gait ") + ToString(gait) + ": the paper's crawls order their swings by their contact offsets, not by a controller's pattern");
+  throw std::invalid_argument(std::string("gait ") + ToString(gait) +
+                              ": the paper's crawls order their swings by their contact offsets, not by a controller's pattern");
 }
 
 }  // namespace stairplan
