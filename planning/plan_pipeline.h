@@ -39,8 +39,9 @@ enum class FootstepSource {
 enum class BodySource {
   /// The quasi-static path: COM over the stance triangle while a leg swings (validates today).
   kQuasiStaticPath,
-  /// The receding-horizon body QP (height, pitch, forward COM shift), optionally refined by the
-  /// NLP. It does not shift the COM sideways, so crawls fail the validator's stability check.
+  /// The receding-horizon body optimisation run forward over the flight, one cycle per knot, as a
+  /// control loop would run it (planning/body/plan_body.h), with body_qp's rows; optionally
+  /// refined by the NLP.
   kRecedingHorizonQp,
 };
 
@@ -83,7 +84,7 @@ struct PipelineOptions {
   /// The step planner's controllers; the executed gait is quasi-static, so crawls only by default.
   StepPlannerSettings step = CrawlControllers();
   BodySource body = BodySource::kQuasiStaticPath;  ///< which planner makes the body trajectory
-  BodyPlannerSettings body_qp;   ///< for kRecedingHorizonQp (knots = the horizon)
+  BodyPlannerSettings body_qp = LegRowBodySettings();  ///< for kRecedingHorizonQp (knots = the horizon)
   std::string body_nlp;          ///< "", "ipopt" or "nlopt": refine the QP body with the NLP
   BodyNlpSettings nlp;  ///< the NLP's solver settings, with body_nlp
   ConstrainedMapSettings map;  ///< the analytic map's margins

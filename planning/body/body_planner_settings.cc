@@ -87,4 +87,20 @@ void BodyPlannerSettings::Set(const std::string& name, double value) {
   *it->second = value;
 }
 
+BodyPlannerSettings LegRowBodySettings() {
+  BodyPlannerSettings s;
+  s.stance_rows = true;
+  s.stability_margin = 0.03;
+  s.hip_height_fraction = 0.6;
+  s.max_shift = 0.15;
+  s.max_lateral_shift = 0.15;
+  s.acceleration_weight = 1.0;
+  s.knots = 20;
+  s.knot_dt = 0.05;
+  s.trust_shift *= 2.0;
+  s.trust_lateral *= 2.0;
+  s.trust_pitch *= 2.0;
+  return s;
+}
+
 }  // namespace stairplan

@@ -41,9 +41,9 @@ struct BodyPlannerSettings {
   // support polygon of the legs that stand through each knot and its neighbours, shifting the
   // weight sideways (com_shift_y) and fore-aft (com_shift) over the support triangle.
   /// How far inside [m]; the validator asks for 1 cm, the rest covers the QP's COM estimate
-  /// (com_estimate.h) and the swing legs' own motion. Negative: no stability rows. Off by
-  /// default for now: with 0.03 the default stairs up-forward pass the stability check (27 mm),
-  /// but the sideways shift costs the swing legs joint range and descending plans their reach.
+  /// (com_estimate.h) and the swing legs' own motion. Negative: no stability rows. Off in these
+  /// defaults, which have no leg rows to pay the sideways shift's cost in joint range and reach;
+  /// LegRowBodySettings() has both.
   double stability_margin = -1.0;
   /// With stance rows, where the polygon leaves no room for stability_margin (a narrow support
   /// triangle against the sideways-shift bound), the support rows give up margin down to this one,
@@ -57,8 +57,8 @@ struct BodyPlannerSettings {
   double reach_margin = 0.01;      ///< hip height kept this far inside the IK-feasible range [m]
   /// Rows of every stance leg in the QP: its joints within their limits, its extension within
   /// the knee's range and its links clear of the stairs, linearised through KDL and FCL each
-  /// cycle (body_qp.h). Off until plans made with them validate at least as often as without
-  /// (today they do not: the CHANGELOG's entry has the numbers). Set(): 0 or 1.
+  /// cycle (body_qp.h). Off in these defaults (a QP without a robot's legs in it, the fastest
+  /// cycle); on in LegRowBodySettings(), the pipeline's body optimisation. Set(): 0 or 1.
   bool stance_rows = false;
   /// Stance legs' joints kept this far inside their limits (the linearised stance rows) [rad].
   double joint_margin = 0.02;
@@ -94,5 +94,14 @@ struct BodyPlannerSettings {
   /// for an unknown name. Call Validate() after the last one.
   void Set(const std::string& name, double value);
 };
+
+/// The settings the planning pipeline's body optimisation plans a whole flight with
+/// (PipelineOptions::body_qp; `stairplan plan --body qp`): the defaults above with every leg's
+/// rows (stance_rows), the support rows 3 cm inside the polygon, hips at 0.6 of the legs' reach,
+/// shift boxes of 0.15 m (the leg rows hold the reach, so the boxes only keep out of their way),
+/// acceleration priced at 1 (the pendulum turns it into the ZMP's distance from the COM), and a
+/// knot every 50 ms over a 1 s horizon, the trust regions doubled with the cycle so the body may
+/// move as fast per second as with knots 25 ms apart.
+BodyPlannerSettings LegRowBodySettings();
 
 }  // namespace stairplan

@@ -49,8 +49,9 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
   AddStairFlags(app, o.stairs);
   app.add_option("--facing", o.facing, "forward or backward, default forward");
   app.add_option("--body", o.body,
-                 "path: quasi-static COM path (default); qp: the receding-horizon body QP");
-  app.add_option("--horizon", o.horizon, "Knots of the body QP's horizon, 25 ms apart (implies --body qp; default 40)");
+                 "path: quasi-static COM path (default); qp: the receding-horizon body optimisation with its leg, "
+                 "support and clearance rows (--set body.stance_rows=0: without the leg rows)");
+  app.add_option("--horizon", o.horizon, "Knots of the body QP's horizon, 50 ms apart (implies --body qp; default 20)");
   app.add_option("--nlp", o.nlp, "Refine the QP body with the exact NLP: ipopt or nlopt (implies --body qp)");
   app.add_option("--cloud", o.cloud,
                  "Plan on the stairs perceived in this point cloud (PLY, PCD or XYZ; the stairs flags are ignored)");

@@ -350,9 +350,7 @@ TEST_CASE("with leg rows links keep their clearance between the knots: Unitree G
   const std::optional<RobotModel> shared = SharedRobot("unitree_go1");
   if (!shared) return;
   const RobotModel& robot = *shared;
-  PipelineOptions options = testing::LegRowPipeline();
-  options.body_qp.max_lateral_shift = 0.15;
-  options.body_qp.acceleration_weight = 1.0;
+  PipelineOptions options = testing::FineKnotLegRowPipeline();
   options.validation.time_step = 0.005;
   StairSpec spec;
   spec.direction = TravelDirection::kDown;
@@ -379,9 +377,7 @@ TEST_CASE("with leg rows the plan says where it crosses the support polygon's ma
   if (testing::kSanitized) return;
   const std::optional<RobotModel> shared = SharedRobot("unitree_go1");
   if (!shared) return;
-  PipelineOptions options = testing::LegRowPipeline();
-  options.body_qp.max_lateral_shift = 0.15;
-  options.body_qp.acceleration_weight = 1.0;
+  const PipelineOptions options = testing::FineKnotLegRowPipeline();
   StairSpec spec;
   spec.direction = TravelDirection::kDown;
   spec.rise = 0.10;
