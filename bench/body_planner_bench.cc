@@ -136,6 +136,17 @@ void BM_UpdateLatencyLegRows(benchmark::State& state) {
 }
 BENCHMARK(BM_UpdateLatencyLegRows)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
 
+// The same over one traversal with the settings `plan --body qp` plans with (LegRowBodySettings:
+// 20 knots 50 ms apart, the shift boxes and trust regions that go with them), one cycle per knot.
+void BM_UpdateLatencyPlanBodySettings(benchmark::State& state) {
+  static std::unique_ptr<Fixture> fixture;
+  const BodyPlannerSettings settings = LegRowBodySettings();
+  if (!fixture) fixture = std::make_unique<Fixture>(settings, settings.knot_dt);
+  ReportLatency(state, *fixture, 1);
+  state.SetLabel("LegRowBodySettings (plan --body qp), cycle = knot spacing (rows carried)");
+}
+BENCHMARK(BM_UpdateLatencyPlanBodySettings)->Iterations(1)->Unit(benchmark::kMillisecond);
+
 // The body QP of the planner's own cycles along the flight (the program Update() built, solved
 // again by each solver beside the planner), 200 consecutive cycles from t = 2 s, in two regimes:
 // cold (a fresh solver per cycle, no guess) and warm sequence (one solver, each cycle from the
