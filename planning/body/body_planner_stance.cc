@@ -2,6 +2,7 @@
 // trust region's centre through the leg's KDL Jacobian (stance_leg_rows.h), and its clearance to
 // the stairs (FCL's closest points, moved with the body and the joints), as rows of the QP.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -179,19 +180,21 @@ void BodyPlanner::PassingRows(double now) {
     if (parts != 0 && !(row_cache_ != nullptr && row_cache_->RestorePassing(start, v0, parts, k, qp))) {
       const Eigen::Matrix3d body_rotation = at.ToIsometry().linear();
       const Eigen::Vector4d motion = HalfKnotMotion(k, anchors_.col(k), anchors_.col(k + 1));
+      // Each leg linearised at most once per interval: a swing leg's row may need its neighbour's.
+      std::array<std::optional<StanceLegRows>, kBodyLegs> linearised;
+      const auto rows_of = [&](int leg, const LegPhase& phase) -> const StanceLegRows& {
+        std::optional<StanceLegRows>& rows = linearised[static_cast<std::size_t>(leg)];
+        if (!rows) rows = LinearizeLeg(leg, phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + leg)], margins);
+        return *rows;
+      };
       for (int l = 0; l < kBodyLegs; ++l) {
         if ((parts & (1u << l)) == 0) continue;
         const LegPhase phase = schedule_.Phase(l, t);
-        const StanceLegRows rows =
-            LinearizeLeg(l, phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + l)], margins);
         // A swing leg passes its standing same-side neighbour too.
         const int mate = SameSideLeg(l);
-        const LegPhase n_phase = schedule_.Phase(mate, t);
-        std::optional<StanceLegRows> n_rows;
-        if (!phase.stance && n_phase.stance) {
-          n_rows = LinearizeLeg(mate, n_phase, at, body_rotation, stance_q_[static_cast<std::size_t>(k * kBodyLegs + mate)], margins);
-        }
-        ClearanceRow(qp.passing, k, l, at, v0, motion, rows, !phase.stance, n_rows ? &*n_rows : nullptr);
+        const LegPhase mate_phase = schedule_.Phase(mate, t);
+        const StanceLegRows* mate_rows = !phase.stance && mate_phase.stance ? &rows_of(mate, mate_phase) : nullptr;
+        ClearanceRow(qp.passing, k, l, at, v0, motion, rows_of(l, phase), !phase.stance, mate_rows);
       }
       if ((parts & (1u << kBodyLegs)) != 0) BodyClearanceRow(qp.passing, k, at, v0, motion);
       if (row_cache_ != nullptr) row_cache_->StorePassing(start, v0, parts, k, qp);
