@@ -186,13 +186,16 @@ class BodyPlanner {
   // How far leg l's foot strays at the middles of the knot intervals before and after instant t
   // from the chords between the knots (StanceLegMargins::foot_bends_W).
   std::array<Eigen::Vector3d, 2> FootBends(int l, double t) const;
+  // Where leg l's foot contact point is at time t (on its foothold, or along its swing).
+  Eigen::Vector3d FootAt(int l, double t) const;
   // Leg l's clearance row k of `into` (the knots' or the half-knots' rows) at the pose `at`: its
   // closest link point's distance to the stairs (FCL), linearised through `rows`' joint
   // derivative; free when the leg is far from them. A swing leg's foot contact shape is left out
-  // (its path is the swing trajectory's).
+  // (its path is the swing trajectory's), and its links keep more as its foot moves at time t
+  // (the row's instant) along the swing trajectory.
   // A swing leg's row is its same-side neighbour's instead (`neighbour`, standing), when that leg
   // is nearer than the stairs: a hind foot swinging in under its front leg's shank.
-  void ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyPose& at, const Eigen::Vector4d& v0,
+  void ClearanceRow(BodyQp::KnotRows& into, int k, int l, double t, const BodyPose& at, const Eigen::Vector4d& v0,
                     const Eigen::Vector4d& motion, const StanceLegRows& rows, bool swing,
                     const StanceLegRows* neighbour = nullptr);
   // Leg l's distance to leg n (rows and rows_n at the pose), linearised in the base frame: both

@@ -20,8 +20,10 @@ constexpr double kClearanceRange = 0.05;
 // Clearance the rows keep beyond clearance_margin: the validator asks 5 mm of every leg link,
 // and a millimetre covers the linearisation between cycles [m].
 constexpr double kClearanceInset = 0.006;
-// A swing leg's links sweep past the stairs between knots (its foot moves up to a centimetre per
-// knot near a nosing): they keep this much more [m].
+// A swing leg's links sweep past the stairs between samples as its foot moves: they keep what its
+// foot moves over half a knot, up to this much more (a foot near a nosing moves about a
+// centimetre per knot) [m]. A foot slowing to touch down asks less, one on its foothold no more
+// than a stance leg.
 constexpr double kSwingClearanceInset = 0.006;
 // How far a swing foot keeps from the cylinder about its leg's first joint axis (the leg plane's
 // offset from it) [m]. Near that cylinder the leg is near its singularity: the abduction turns
@@ -80,11 +82,13 @@ double BodyPlanner::StandingHeight(const BodyState& start) const {
   return start.z;
 }
 
+Eigen::Vector3d BodyPlanner::FootAt(int l, double t) const { return schedule_.SwingFoot(l, schedule_.Phase(l, t)); }
+
 std::array<Eigen::Vector3d, 2> BodyPlanner::FootBends(int l, double t) const {
   const double dt = settings_.knot_dt;
-  const auto foot = [&](double at_t) { return schedule_.SwingFoot(l, schedule_.Phase(l, at_t)); };
-  const Eigen::Vector3d here = foot(t);
-  return {foot(t - 0.5 * dt) - 0.5 * (foot(t - dt) + here), foot(t + 0.5 * dt) - 0.5 * (here + foot(t + dt))};
+  const Eigen::Vector3d here = FootAt(l, t);
+  return {FootAt(l, t - 0.5 * dt) - 0.5 * (FootAt(l, t - dt) + here),
+          FootAt(l, t + 0.5 * dt) - 0.5 * (here + FootAt(l, t + dt))};
 }
 
 static_assert(BodyQp::kStanceRows == StanceLegRows::kRows, "the QP holds every row a stance leg has");
@@ -129,7 +133,7 @@ void BodyPlanner::StanceRows(int k, double t, const BodyPose& at, const Eigen::V
     const int n = SameSideLeg(l);
     const bool swing = !phases_[static_cast<std::size_t>(k * kBodyLegs + l)].stance;
     const bool n_stands = phases_[static_cast<std::size_t>(k * kBodyLegs + n)].stance;
-    ClearanceRow(qp.clearance, k, l, at, v0, motion, legs[static_cast<std::size_t>(l)], swing,
+    ClearanceRow(qp.clearance, k, l, t, at, v0, motion, legs[static_cast<std::size_t>(l)], swing,
                  swing && n_stands ? &legs[static_cast<std::size_t>(n)] : nullptr);
   }
   BodyClearanceRow(qp.clearance, k, at, v0, motion);
@@ -194,7 +198,7 @@ void BodyPlanner::PassingRows(double now) {
         const int mate = SameSideLeg(l);
         const LegPhase mate_phase = schedule_.Phase(mate, t);
         const StanceLegRows* mate_rows = !phase.stance && mate_phase.stance ? &rows_of(mate, mate_phase) : nullptr;
-        ClearanceRow(qp.passing, k, l, at, v0, motion, rows_of(l, phase), !phase.stance, mate_rows);
+        ClearanceRow(qp.passing, k, l, t, at, v0, motion, rows_of(l, phase), !phase.stance, mate_rows);
       }
       if ((parts & (1u << kBodyLegs)) != 0) BodyClearanceRow(qp.passing, k, at, v0, motion);
       if (row_cache_ != nullptr) row_cache_->StorePassing(start, v0, parts, k, qp);
@@ -221,7 +225,7 @@ void BodyPlanner::BodyClearanceRow(BodyQp::KnotRows& into, int k, const BodyPose
   SetClearanceRow(into, row, c, v0, motion, kClearanceInset, moved);
 }
 
-void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyPose& at, const Eigen::Vector4d& v0,
+void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, double t, const BodyPose& at, const Eigen::Vector4d& v0,
                                const Eigen::Vector4d& motion, const StanceLegRows& rows, bool swing,
                                const StanceLegRows* neighbour) {
   const RobotKinematics& kinematics = robot_->kinematics();
@@ -233,7 +237,10 @@ void BodyPlanner::ClearanceRow(BodyQp::KnotRows& into, int k, int l, const BodyP
   options.skip_foot_contact = swing || !rows.reached;
   const Clearance c =
       LegStairClearance(kinematics, robot_->collision_model(), robot_->stair_model(), l, rows.q, at, *stance_ws_, options);
-  const double inset = kClearanceInset + (swing ? kSwingClearanceInset : 0.0);
+  // The foot's motion over the half knot about the row's instant.
+  const double quarter = 0.25 * settings_.knot_dt;
+  const double foot_sweep = swing ? (FootAt(l, t + quarter) - FootAt(l, t - quarter)).norm() : 0.0;
+  const double inset = kClearanceInset + std::min(kSwingClearanceInset, foot_sweep);
   const bool stairs_row = c.distance < kClearanceRange && c.shape >= 0 && c.leg == l;
   if (neighbour != nullptr && neighbour->reached &&
       LegPairRow(into, BodyQp::ClearanceRow(k, l), l, rows, SameSideLeg(l), *neighbour, v0, motion, inset,
