@@ -89,7 +89,9 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
   hip_height_ = bounds_->NominalHipHeight();
   // With leg rows the ZMP has support rows too, the pendulum as high as the hips (the COM rides
   // within centimetres of them).
-  qp_ = std::make_unique<BodyQp>(settings_, c_, robot_ != nullptr, robot_ != nullptr ? hip_height_ : 0.0);
+  travel_ = schedule_.NeutralBodyXY(schedule_.end_time()).x() >= schedule_.NeutralBodyXY(0.0).x() ? 1.0 : -1.0;
+  qp_ = std::make_unique<BodyQp>(settings_, c_, robot_ != nullptr, robot_ != nullptr ? hip_height_ : 0.0,
+                                 schedule_.heading() * travel_);
   const int n = settings_.knots;
   if (robot_ != nullptr) {
     const RobotKinematics& kinematics = robot_->kinematics();
@@ -407,11 +409,11 @@ double BodyPlanner::ReferenceHeight(int k, double pitch) const {
 
 void BodyPlanner::ProgressRows() {
   BodyQp& qp = *qp_;
-  const double heading = schedule_.heading();
   for (int k = 0; k + 1 < settings_.knots; ++k) {
-    // x = neutral_x + heading shift: its advance along the heading is the neutral body's plus
-    // the shift's change, which may not be negative.
-    qp.progress_lo[k] = -heading * (neutral_x_[k + 1] - neutral_x_[k]);
+    // x = neutral_x + heading shift: its advance along the travel is the neutral body's plus the
+    // shift's change times heading * travel (the rows' sign), which may not be negative. Facing
+    // against the travel, a shift growing along the heading takes the body back.
+    qp.progress_lo[k] = -travel_ * (neutral_x_[k + 1] - neutral_x_[k]);
   }
 }
 

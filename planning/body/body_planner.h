@@ -157,7 +157,7 @@ class BodyPlanner {
   bool KnotBreaksRows(int k) const;
   // The body height at knot k and `pitch` that meets the legs' height references on average.
   double ReferenceHeight(int k, double pitch) const;
-  // The progress rows (with leg rows): the body's advance along the heading, knot to knot, is
+  // The progress rows (with leg rows): the body's advance along the travel, knot to knot, is
   // negative only by what the QP's retreat variables pay for.
   void ProgressRows();
   // Bounds knot 1 so that the body executed a cycle ago, the state and knot 1 keep within the
@@ -247,6 +247,7 @@ class BodyPlanner {
   std::array<Eigen::Vector3d, kBodyLegs> hips_B_{};
   std::array<double, kBodyLegs> c_{};
   double hip_height_ = 0.0;
+  double travel_ = 1.0;  // +1 where the flight goes along world x, -1 against it
   double stairs_pitch_ = 0.0;  // |pitch| of the flight's slope line
 
   bool has_previous_ = false;

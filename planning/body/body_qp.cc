@@ -27,7 +27,7 @@ void ShiftKnots(std::vector<optim::ActiveSide>* states, int start, int size, int
 }  // namespace
 
 BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients,
-               bool stance_rows, double zmp_height)
+               bool stance_rows, double zmp_height, double shift_along_travel)
     : knots_(settings.knots),
       settings_(settings),
       c_(row_coefficients),
@@ -37,6 +37,9 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   settings_.Validate();
   if (!(zmp_height >= 0.0 && zmp_height < 10.0)) throw std::invalid_argument("BodyQp: zmp_height must be in [0, 10) m");
   zmp_weight_ = zmp_height / (kZmpGravity * settings_.knot_dt * settings_.knot_dt);
+  if (shift_along_travel != 1.0 && shift_along_travel != -1.0) {
+    throw std::invalid_argument("BodyQp: shift_along_travel must be 1 or -1");
+  }
   const int n = knots_;
   for (int l = 0; l < kBodyLegs; ++l) {
     int g = 0;
@@ -143,7 +146,7 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
                                 Eigen::VectorXd::Constant(n, kZmpExcursionPenalty));
     }
     const Eigen::VectorXd free = Eigen::VectorXd::Constant(n - 1, optim::kInf);
-    progress_rows_ = program_.AddLinearConstraint({{shift_, d1}, {retreat_, Eigen::MatrixXd::Identity(n - 1, n - 1)}},
+    progress_rows_ = program_.AddLinearConstraint({{shift_, shift_along_travel * d1}, {retreat_, Eigen::MatrixXd::Identity(n - 1, n - 1)}},
                                                   -free, free, "progress");
   }
   progress_lo.setConstant(n - 1, -optim::kInf);

@@ -74,8 +74,10 @@ class BodyQp {
   /// coefficient). Throws std::invalid_argument naming the field for bad settings.
   /// `stance_rows`: with the stance legs' kinematic rows (the planner has the robot's kinematics).
   /// `zmp_height` > 0 (with stance rows): ZMP rows beside the COM's, for a pendulum that high [m].
+  /// `shift_along_travel`: +1 where a growing shift moves the body along its travel (it faces
+  /// where it goes), -1 where against it (it walks backwards); the progress rows' sign.
   BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBodyLegs>& row_coefficients,
-         bool stance_rows = false, double zmp_height = 0.0);
+         bool stance_rows = false, double zmp_height = 0.0, double shift_along_travel = 1.0);
 
   /// Coefficients closer than this share one row [m/rad].
   static constexpr double kRowMergeTolerance = 1e-3;
@@ -153,9 +155,10 @@ class BodyQp {
   /// (kZmpExcursionPenalty per metre). Unused without.
   Eigen::VectorXd zmp_lo, zmp_hi;
   ///@}
-  /// With stance rows, progress row k: shift_{k+1} - shift_k + retreat_k >= progress_lo_k (knots - 1
-  /// rows; the planner puts minus the neutral body's advance there, so that the body moves
-  /// against the travel only by the retreat, which costs kRetreatPenalty per metre). Unused without.
+  /// With stance rows, progress row k: s (shift_{k+1} - shift_k) + retreat_k >= progress_lo_k,
+  /// s the constructor's shift_along_travel (knots - 1 rows; the planner puts minus the neutral
+  /// body's advance along the travel there, so that the body moves against the travel only by the
+  /// retreat, which costs kRetreatPenalty per metre). Unused without.
   Eigen::VectorXd progress_lo;
   /// Rows of one family over one knot's (z, pitch, shift, lateral) each, softened by its relaxation.
   struct KnotRows {

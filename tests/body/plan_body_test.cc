@@ -231,6 +231,17 @@ std::optional<RobotModel> SharedRobot(const std::string& name) {
   return RobotModel::FromUrdfFile(path);
 }
 
+// How far the body ever moves back against the travel (+x) [m]: its largest drop below the
+// farthest x it reached.
+double LargestBackwardMove(const std::vector<BodyState>& body) {
+  double farthest = -std::numeric_limits<double>::infinity(), worst = 0.0;
+  for (const BodyState& s : body) {
+    farthest = std::max(farthest, s.x);
+    worst = std::max(worst, farthest - s.x);
+  }
+  return worst;
+}
+
 StairSpec LegRowStairs() {
   StairSpec spec;
   spec.steps = testing::FullOrSanitized(spec.steps, 1);
@@ -261,7 +272,10 @@ TEST_CASE("with leg rows the robot starts standing clear of the stairs, and a ba
   // Knot 0 is the state, which no row moves. Climbing backward, the hind knees point at the first
   // riser, and at the nominal hip height the leading shanks stood on the first nosing: every
   // plan failed its re-check at t = 0.
-  LegRowClimb(Facing::kBackward, Staircase(LegRowStairs()));
+  const PipelineResult result = LegRowClimb(Facing::kBackward, Staircase(LegRowStairs()));
+  // Facing against the travel, a shift along the heading takes the body back: the progress rows
+  // held its advance along the heading, and the body moved 3.3 cm back at the first swing.
+  CHECK(LargestBackwardMove(result.plan.body) < 0.01);
 }
 
 TEST_CASE("with leg rows every cycle's QP solves on Unitree A1's descent", "[body][stance_rows]") {
