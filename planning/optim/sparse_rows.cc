@@ -36,6 +36,44 @@ void SparseRows::Assign(const Eigen::MatrixXd& a) {
   start_[static_cast<std::size_t>(m_)] = e;
 }
 
+void SparseRows::AssignPacked(const Eigen::MatrixXd& a) {
+  // One pass over the column-major matrix collects each column's nonzeros (into the spare
+  // halves of the storage); a pass over the nonzeros then sorts them into rows.
+  ++builds_;
+  m_ = static_cast<int>(a.rows());
+  n_ = static_cast<int>(a.cols());
+  std::size_t count = 0;
+  std::vector<int>& row_of = scratch_row_;
+  std::vector<int>& column_end = scratch_column_end_;
+  column_end.resize(static_cast<std::size_t>(n_));
+  for (int j = 0; j < n_; ++j) {
+    const double* col = a.data() + static_cast<std::ptrdiff_t>(j) * m_;
+    for (int k = 0; k < m_; ++k) {
+      if (col[k] == 0.0) continue;
+      if (count == row_of.size()) row_of.resize(std::max<std::size_t>(64, 2 * count));
+      if (count == value_.size()) value_.resize(row_of.size());
+      row_of[count] = k;
+      value_[count++] = col[k];
+    }
+    column_end[static_cast<std::size_t>(j)] = static_cast<int>(count);
+  }
+  if (column_.size() < count) column_.resize(count);
+  if (scratch_value_.size() < count) scratch_value_.resize(count);
+  start_.assign(static_cast<std::size_t>(m_) + 1, 0);
+  for (std::size_t e = 0; e < count; ++e) ++start_[static_cast<std::size_t>(row_of[e]) + 1];
+  for (int k = 0; k < m_; ++k) start_[static_cast<std::size_t>(k) + 1] += start_[static_cast<std::size_t>(k)];
+  end_.assign(start_.begin(), start_.end() - 1);  // each row's cursor, ending at its end
+  std::size_t e = 0;
+  for (int j = 0; j < n_; ++j) {  // columns ascending, so each row's columns come out ascending
+    for (; e < static_cast<std::size_t>(column_end[static_cast<std::size_t>(j)]); ++e) {
+      const std::size_t slot = static_cast<std::size_t>(end_[static_cast<std::size_t>(row_of[e])]++);
+      column_[slot] = j;
+      scratch_value_[slot] = value_[e];
+    }
+  }
+  value_.swap(scratch_value_);
+}
+
 bool SparseRows::FillRow(const Eigen::MatrixXd& a, int k, int limit) {
   int e = start_[static_cast<std::size_t>(k)];
   for (int i = 0; i < n_; ++i) {
