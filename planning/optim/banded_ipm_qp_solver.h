@@ -1,0 +1,205 @@
+// BandedIpmQpSolver: a primal-dual interior-point QP solver (Mehrotra's predictor-corrector)
+// whose Newton systems are solved by a band Cholesky factorisation, for programs with knot
+// structure such as the body planner's per-cycle QP.
+//
+//   min 0.5 x'Hx + g'x   s.t.  row_lower <= A x <= row_upper,  variable_lower <= x <= variable_upper
+//
+// Why: the body QP's variables live on knots and its costs and rows couple neighbouring knots
+// only, so the reduced Newton matrix H + A'DA (+ the bounds' diagonal) is banded once the
+// variables are ordered knot by knot. An interior point's cost does not depend on how many
+// constraints are active (a cold active-set solve pays one factorisation update per change), and
+// each of its iterations is one band factorisation: n b^2 / 2 multiply-adds for half-bandwidth b.
+//
+// Method (Mehrotra 1992; Wright, Primal-Dual Interior-Point Methods, 1997, chapters 10 and 11
+// for the QP form): every finite side of a row or bound gets a slack s >= 0 and a multiplier
+// lambda >= 0; the Newton system is reduced to (H + A'DA + D_bounds + rho I) dx = r with
+// D = lambda / s per side, factorised once per iteration and solved twice (predictor, corrector).
+// Equalities (lower == upper) are kept as rows with a small dual regularisation delta (the
+// proximal method of multipliers' term), so they enter D as 1 / delta and need no slack pair.
+// The variables are ordered by reverse Cuthill-McKee over the pattern of H + A'A (or kept in
+// the program's order when that is narrower); a wide band is the dense factorisation.
+//
+// Outcomes: kSolved when qpbenchmark's primal residual, dual residual and duality gap are all
+// within tolerance; kInfeasible when the multipliers grow into a Farkas certificate (A'y + z ~ 0
+// with a negative support value); kUnbounded when the iterates run off along a direction of
+// descent the constraints allow; otherwise kIterationLimit, kTimeLimit or kNumericalError.
+// Duals follow SolveResult's convention. Every solve starts cold from its own starting point (an
+// interior point gains little from the last solution): the program's initial guess is not used,
+// and only the workspace and the variable order are kept between solves, so a solve of a
+// program of the same size and pattern allocates nothing.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planning/optim/band_cholesky.h"
+#include "planning/optim/band_ordering.h"
+#include "planning/optim/solver.h"
+#include "planning/optim/sparse_rows.h"
+
+namespace stairplan::optim {
+
+/// Settings of BandedIpmQpSolver.
+struct BandedIpmQpSettings {
+  /// Interior-point iterations allowed per solve.
+  int max_iterations = 100;
+  /// Wall-clock limit per solve [s], checked every iteration. Infinity means none.
+  double time_limit_s = kInf;
+  /// Solved when the primal residual, dual residual and duality gap (qpbenchmark's) are each at
+  /// most tolerance + relative_tolerance * (the size of the terms they are made of).
+  double tolerance = 1e-9;
+  /// See tolerance: the round-off floor of programs with large terms (objectives of 1e7, where
+  /// the gap's terms cancel to about 1e-16 of their size) lets them finish.
+  double relative_tolerance = 1e-15;
+  /// Primal regularisation rho on the Newton matrix's diagonal (keeps LPs and singular H
+  /// factorisable; the residuals are the unregularised problem's, so the solution is not moved).
+  double primal_regularization = 1e-9;
+  /// Dual regularisation delta of the equalities.
+  double equality_regularization = 1e-9;
+  /// Fraction of the way to the boundary of s, lambda >= 0 an iteration goes at most.
+  double step_fraction = 0.995;
+  /// Iterative-refinement steps per Newton solve (against the regularised reduced matrix). None
+  /// by default: an interior point corrects an inexact step at the next iteration, and the final
+  /// accuracy comes from the polish on the active set.
+  int refinement_steps = 0;
+  /// Throws std::invalid_argument naming the offending field.
+  void Validate() const;
+};
+
+/// Mehrotra predictor-corrector interior point over a band Cholesky (see the file's top comment).
+class BandedIpmQpSolver final : public Solver {
+ public:
+  BandedIpmQpSolver() = default;
+  /// With `settings` (checked: throws std::invalid_argument naming the field).
+  explicit BandedIpmQpSolver(const BandedIpmQpSettings& settings) : settings_(settings) { settings_.Validate(); }
+
+  std::string_view name() const override { return "banded-ipm"; }
+  /// Quadratic programs only (no nonlinear costs or constraints).
+  bool Supports(const Program& program) const override { return program.IsQuadratic(); }
+
+  ///@{
+  /// The settings, changeable between solves.
+  BandedIpmQpSettings& settings() { return settings_; }
+  const BandedIpmQpSettings& settings() const { return settings_; }
+  ///@}
+
+  /// The half-bandwidth of the last solve's Newton matrix in the order it was factorised in.
+  int bandwidth() const { return factor_.bandwidth(); }
+  /// True when the last solve reordered the variables (reverse Cuthill-McKee).
+  bool reordered() const { return ordering_.reordered(); }
+
+ private:
+  // Which sides of a constraint are finite (an equality has lower == upper).
+  enum class Kind : std::uint8_t { kFree, kLower, kUpper, kBoth, kEquality };
+
+  void DoSolve(const Program& program, SolveResult* result) override;
+
+  // Sizing, the sparse copies of H and A (when their revisions changed), the bounds.
+  void Prepare(const Program& program);
+  void LoadBounds(const Program& program);
+  // The variable order and band from the pattern of H + A'A.
+  void Analyse();
+  // Per constraint, a_k'x for every k.
+  void ComputeValues(const Eigen::VectorXd& x, Eigen::VectorXd* values) const;
+  // qpbenchmark's measures of a point (x, y) and the sizes of their terms (for the relative
+  // tolerance); values, H x and the dual residual into the given vectors.
+  struct Measures {
+    double primal = 0.0, dual = 0.0, gap = 0.0;
+    double primal_scale = 0.0, dual_scale = 0.0, gap_scale = 0.0;
+    double support = 0.0, combination = 0.0;  // the gap's support term; |A'y + z|_inf
+  };
+  Measures Measure(const Eigen::VectorXd& x, const Eigen::VectorXd& y, Eigen::VectorXd* values, Eigen::VectorXd* hx,
+                   Eigen::VectorXd* r_dual) const;
+  // The iterate's duals, residuals, complementarity and measures.
+  void ComputeResiduals();
+  bool Converged(const Measures& measures) const;
+  // The active-set polish (see Polish() in the .cc); true when it solved the program.
+  bool Polish();
+  // The side of constraint k the iterate holds active; all of them into active_, returning how
+  // many changed.
+  ActiveSide SideOf(int k) const;
+  int UpdateActiveSides();
+  bool IsInfeasible() const;
+  bool IsUnbounded() const;
+  // D from the iterate, then the Newton matrix H + rho I + sum D_k a_k a_k' assembled in band
+  // storage and factorised.
+  void Factorize();
+  void Assemble();
+  // K dx = rhs_ into dx_ through the factor, with refinement against K.
+  void SolveReduced();
+  void SolveThroughFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd* solution);
+  void MultiplyReduced(const Eigen::VectorXd& v, Eigen::VectorXd* out) const;
+  // The Newton direction for complementarity targets rc (per lower and upper side).
+  void Direction(const Eigen::VectorXd& rc_lower, const Eigen::VectorXd& rc_upper);
+  // Largest step keeping s and lambda nonnegative along the current direction (infinite: none).
+  double MaxStep() const;
+  // The mean complementarity after a step of alpha along the current direction.
+  double ComplementarityAfter(double alpha) const;
+  void Step(double alpha);
+  // The start (see StartingPoint() in the .cc).
+  void StartingPoint();
+  SolveStatus Iterate();
+  void ZeroDuals();
+  void FillResult(const Program& program, SolveStatus status, SolveResult* result) const;
+
+  // Constraint k: k < m is row k of A, k >= m bounds variable k - m.
+  bool HasLower(int k) const {
+    const Kind kind = kind_[static_cast<std::size_t>(k)];
+    return kind == Kind::kLower || kind == Kind::kBoth;
+  }
+  bool HasUpper(int k) const {
+    const Kind kind = kind_[static_cast<std::size_t>(k)];
+    return kind == Kind::kUpper || kind == Kind::kBoth;
+  }
+  // The dual of constraint k in SolveResult's convention.
+  double Dual(int k) const;
+  void AddNormal(int k, double alpha, Eigen::VectorXd* y) const {
+    if (k < m_) {
+      rows_.AddRow(k, alpha, y);
+    } else {
+      (*y)[k - m_] += alpha;
+    }
+  }
+
+  BandedIpmQpSettings settings_;
+  const Program* program_ = nullptr;
+  int n_ = 0, m_ = 0;
+  int sides_ = 0;  // finite inequality sides: the count complementarity is averaged over
+  bool bounds_consistent_ = true;  // no lower bound above its upper one
+
+  std::uint64_t hessian_revision_ = 0, matrix_revision_ = 0;
+  bool analysed_ = false;
+  SparseRows rows_, hessian_rows_;
+  BandOrdering ordering_;
+  BandCholesky factor_;
+
+  // Per constraint: the bounds and which of them are present.
+  std::vector<Kind> kind_;
+  Eigen::VectorXd lower_, upper_;
+
+  // The iterate: x, per constraint the slacks and multipliers of its sides (zero where absent)
+  // and the equality multipliers.
+  Eigen::VectorXd x_, s_lower_, s_upper_, l_lower_, l_upper_, w_;
+  // Values v = a_k'x, residuals of v - lower - s_lower, upper - v - s_upper, v - lower (equality),
+  // the dual residual H x + g + A'y + z, and H x.
+  Eigen::VectorXd v_, r_lower_, r_upper_, r_dual_, hx_;
+  // The Newton system: D and the right-hand side's per-constraint term, the step.
+  Eigen::VectorXd d_, e_, rhs_, dx_, dv_, ds_lower_, ds_upper_, dl_lower_, dl_upper_, dw_;
+  Eigen::VectorXd rc_lower_, rc_upper_, work_, correction_, permuted_;
+  // The duals in SolveResult's convention, the iterate's active set (the polish's when it
+  // succeeded), and the polish's point, duals and targets.
+  Eigen::VectorXd y_, xp_, yp_, vp_, hxp_, rdp_, target_;
+  std::vector<ActiveSide> active_;
+  Measures measures_, polish_measures_;
+  double next_polish_mu_ = kInf;
+  double mu_ = 0.0;
+  double rho_ = 0.0, delta_ = 0.0;
+  int iterations_ = 0;
+  std::chrono::steady_clock::time_point deadline_;
+  bool has_deadline_ = false;
+};
+
+}  // namespace stairplan::optim
