@@ -2,14 +2,15 @@
 // Newton system reduced to the variables and factorised in band storage.
 //
 // Notation: constraint k has normal a_k (row k of A, or e_j for a bound on variable j) and value
-// v_k = a_k'x. A finite lower side has slack s_l = v - lower >= 0 and multiplier l_l >= 0, an
-// upper side s_u = upper - v and l_u; an equality has a free multiplier w. The dual of
-// constraint k in SolveResult's convention is y_k = l_u - l_l (or w), so that the stationarity
-// residual is r_d = H x + g + sum_k a_k y_k. Eliminating the slacks' and multipliers' steps from
-// the Newton equations leaves
+// v_k = a_k'x. Each finite inequality side j of constraint k(j) has a sign (+1 lower, -1 upper),
+// a slack s_j = sign (v - bound) >= 0 and a multiplier l_j >= 0; an equality has a free
+// multiplier w. The dual of constraint k in SolveResult's convention is y_k = -sum sign_j l_j
+// over its sides (or w), so that the stationarity residual is r_d = H x + g + sum_k a_k y_k.
+// Eliminating the slacks' and multipliers' steps from the Newton equations leaves
 //   (H + rho I + sum_k D_k a_k a_k') dx = -r_d - sum_k e_k a_k
-// with D_k = l_l / s_l + l_u / s_u (1 / delta for an equality) and e_k from the residuals and the
-// complementarity targets (Direction()).
+// with D_k the sum of l_j / s_j over its sides (1 / delta for an equality) and e_k from the
+// residuals and the complementarity targets (Direction()). Everything per side runs over
+// contiguous vectors; only D, e and the values are per constraint.
 #include "planning/optim/banded_ipm_qp_solver.h"
 
 #include <algorithm>
@@ -78,7 +79,9 @@ void BandedIpmQpSolver::DoSolve(const Program& program, SolveResult* result) {
     status = Iterate();
   } else {
     x_.setZero();
-    ZeroDuals();
+    s_.setZero();
+    l_.setZero();
+    w_.setZero();
     ComputeResiduals();
   }
   FillResult(program, status, result);
@@ -93,16 +96,17 @@ void BandedIpmQpSolver::Prepare(const Program& program) {
     n_ = n;
     m_ = m;
     const int k = n + m;
-    kind_.assign(static_cast<std::size_t>(k), Kind::kFree);
-    for (Eigen::VectorXd* v : {&lower_, &upper_, &s_lower_, &s_upper_, &l_lower_, &l_upper_, &w_, &v_, &r_lower_,
-                               &r_upper_, &d_, &e_, &dv_, &ds_lower_, &ds_upper_, &dl_lower_, &dl_upper_, &dw_,
-                               &rc_lower_, &rc_upper_}) {
+    for (Eigen::VectorXd* v : {&lower_, &upper_, &w_, &v_, &d_, &e_, &dv_, &dw_, &y_, &yp_, &vp_, &target_}) {
       v->resize(k);
     }
-    for (Eigen::VectorXd* v : {&y_, &yp_, &vp_, &target_}) v->resize(k);
+    for (Eigen::VectorXd* v : {&side_sign_, &side_bound_, &s_, &l_, &inverse_s_, &r_, &rc_, &ds_, &dl_}) {
+      v->resize(2 * k);
+    }
     for (Eigen::VectorXd* v : {&x_, &r_dual_, &hx_, &rhs_, &dx_, &work_, &correction_, &permuted_, &xp_, &hxp_, &rdp_}) {
       v->resize(n);
     }
+    side_constraint_.resize(2 * static_cast<std::size_t>(k));
+    equalities_.reserve(static_cast<std::size_t>(k));
     active_.assign(static_cast<std::size_t>(k), 0);
   }
   if (resized || other || program.matrix_revision() != matrix_revision_) {
@@ -123,26 +127,26 @@ void BandedIpmQpSolver::Prepare(const Program& program) {
 
 void BandedIpmQpSolver::LoadBounds(const Program& program) {
   sides_ = 0;
+  equalities_.clear();
   bounds_consistent_ = true;
+  const auto add_side = [this](int k, double sign, double bound) {
+    side_constraint_[static_cast<std::size_t>(sides_)] = k;
+    side_sign_[sides_] = sign;
+    side_bound_[sides_] = bound;
+    ++sides_;
+  };
   for (int k = 0; k < n_ + m_; ++k) {
     const double lo = NormalizeBound(k < m_ ? program.row_lower()[k] : program.variable_lower()[k - m_]);
     const double up = NormalizeBound(k < m_ ? program.row_upper()[k] : program.variable_upper()[k - m_]);
     lower_[k] = lo;
     upper_[k] = up;
-    Kind kind = Kind::kFree;
-    if (lo == up) {
-      kind = Kind::kEquality;
-    } else if (std::isfinite(lo) && std::isfinite(up)) {
-      kind = Kind::kBoth;
-    } else if (std::isfinite(lo)) {
-      kind = Kind::kLower;
-    } else if (std::isfinite(up)) {
-      kind = Kind::kUpper;
-    }
-    kind_[static_cast<std::size_t>(k)] = kind;
-    sides_ += HasLower(k) ? 1 : 0;
-    sides_ += HasUpper(k) ? 1 : 0;
     if (lo > up) bounds_consistent_ = false;
+    if (lo == up) {
+      equalities_.push_back(k);  // within the reserved capacity
+      continue;
+    }
+    if (std::isfinite(lo)) add_side(k, 1.0, lo);
+    if (std::isfinite(up)) add_side(k, -1.0, up);
   }
 }
 
@@ -173,30 +177,19 @@ void BandedIpmQpSolver::Analyse() {
   analysed_ = true;
 }
 
-void BandedIpmQpSolver::ZeroDuals() {
-  for (Eigen::VectorXd* v : {&s_lower_, &s_upper_, &l_lower_, &l_upper_, &w_}) v->setZero();
-}
-
-double BandedIpmQpSolver::Dual(int k) const {
-  return kind_[static_cast<std::size_t>(k)] == Kind::kEquality ? w_[k] : l_upper_[k] - l_lower_[k];
+void BandedIpmQpSolver::ComputeValues(const Eigen::VectorXd& x, Eigen::VectorXd* values) const {
+  for (int k = 0; k < m_; ++k) (*values)[k] = rows_.RowDot(k, x);
+  values->tail(n_) = x;
 }
 
 void BandedIpmQpSolver::ComputeResiduals() {
-  for (int k = 0; k < n_ + m_; ++k) y_[k] = Dual(k);
+  y_ = w_;
+  for (int j = 0; j < sides_; ++j) y_[side_constraint_[static_cast<std::size_t>(j)]] -= side_sign_[j] * l_[j];
   measures_ = Measure(x_, y_, &v_, &hx_, &r_dual_);
-  double complementarity = 0.0;
-  for (int k = 0; k < n_ + m_; ++k) {
-    if (HasLower(k)) {
-      r_lower_[k] = v_[k] - lower_[k] - s_lower_[k];
-      complementarity += s_lower_[k] * l_lower_[k];
-    }
-    if (HasUpper(k)) {
-      r_upper_[k] = upper_[k] - v_[k] - s_upper_[k];
-      complementarity += s_upper_[k] * l_upper_[k];
-    }
-    if (kind_[static_cast<std::size_t>(k)] == Kind::kEquality) r_lower_[k] = v_[k] - lower_[k];
+  for (int j = 0; j < sides_; ++j) {
+    r_[j] = side_sign_[j] * (v_[side_constraint_[static_cast<std::size_t>(j)]] - side_bound_[j]) - s_[j];
   }
-  mu_ = sides_ > 0 ? complementarity / sides_ : 0.0;
+  mu_ = sides_ > 0 ? s_.head(sides_).dot(l_.head(sides_)) / sides_ : 0.0;
 }
 
 BandedIpmQpSolver::Measures BandedIpmQpSolver::Measure(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -206,30 +199,27 @@ BandedIpmQpSolver::Measures BandedIpmQpSolver::Measure(const Eigen::VectorXd& x,
   hessian_rows_.Multiply(x, hx);
   const Eigen::VectorXd& g = program_->linear_cost();
   *r_dual = *hx + g;
+  for (int k = 0; k < m_; ++k) {
+    if (y[k] != 0.0) rows_.AddRow(k, y[k], r_dual);
+  }
+  r_dual->noalias() += y.tail(n_);
   Measures out;
-  double support = 0.0, combination = 0.0;
+  double support = 0.0;
   for (int k = 0; k < n_ + m_; ++k) {
     const double v = (*values)[k], lo = lower_[k], up = upper_[k];
-    if (y[k] != 0.0) AddNormal(k, y[k], r_dual);
     support += Support(y[k], lo, up);
     if (std::isfinite(lo)) out.primal = std::max(out.primal, lo - v);
     if (std::isfinite(up)) out.primal = std::max(out.primal, v - up);
-    if (kind_[static_cast<std::size_t>(k)] != Kind::kFree) out.primal_scale = std::max(out.primal_scale, std::abs(v));
+    if (std::isfinite(lo) || std::isfinite(up)) out.primal_scale = std::max(out.primal_scale, std::abs(v));
   }
-  for (int i = 0; i < n_; ++i) combination = std::max(combination, std::abs((*r_dual)[i] - (*hx)[i] - g[i]));
+  out.combination = (*r_dual - *hx - g).lpNorm<Eigen::Infinity>();
   out.dual = r_dual->lpNorm<Eigen::Infinity>();
   const double xhx = x.dot(*hx), gx = g.dot(x);
   out.gap = std::abs(xhx + gx + support);
   out.support = support;
-  out.dual_scale = std::max({hx->lpNorm<Eigen::Infinity>(), g.lpNorm<Eigen::Infinity>(), combination});
-  out.combination = combination;
+  out.dual_scale = std::max({hx->lpNorm<Eigen::Infinity>(), g.lpNorm<Eigen::Infinity>(), out.combination});
   out.gap_scale = std::max({std::abs(xhx), std::abs(gx), std::abs(support)});
   return out;
-}
-
-void BandedIpmQpSolver::ComputeValues(const Eigen::VectorXd& x, Eigen::VectorXd* values) const {
-  for (int k = 0; k < m_; ++k) (*values)[k] = rows_.RowDot(k, x);
-  values->tail(n_) = x;
 }
 
 bool BandedIpmQpSolver::Converged(const Measures& e) const {
@@ -262,16 +252,10 @@ bool BandedIpmQpSolver::IsUnbounded() const {
 }
 
 void BandedIpmQpSolver::Factorize() {
-  for (int k = 0; k < n_ + m_; ++k) {
-    double d = 0.0;
-    if (kind_[static_cast<std::size_t>(k)] == Kind::kEquality) {
-      d = 1.0 / delta_;
-    } else {
-      if (HasLower(k)) d += l_lower_[k] / s_lower_[k];
-      if (HasUpper(k)) d += l_upper_[k] / s_upper_[k];
-    }
-    d_[k] = d;
-  }
+  inverse_s_.head(sides_) = s_.head(sides_).cwiseInverse();  // the two directions divide by s too
+  d_.setZero();
+  for (int j = 0; j < sides_; ++j) d_[side_constraint_[static_cast<std::size_t>(j)]] += l_[j] * inverse_s_[j];
+  for (const int k : equalities_) d_[k] = 1.0 / delta_;
   Assemble();
   factor_.Factorize(kPivotTol);
 }
@@ -326,118 +310,93 @@ void BandedIpmQpSolver::SolveReduced() {
   }
 }
 
-void BandedIpmQpSolver::Direction(const Eigen::VectorXd& rc_lower, const Eigen::VectorXd& rc_upper) {
-  rhs_ = -r_dual_;
-  for (int k = 0; k < n_ + m_; ++k) {
-    double e = 0.0;
-    if (kind_[static_cast<std::size_t>(k)] == Kind::kEquality) {
-      e = r_lower_[k] / delta_;
-    } else {
-      if (HasLower(k)) e += (rc_lower[k] + l_lower_[k] * r_lower_[k]) / s_lower_[k];
-      if (HasUpper(k)) e -= (rc_upper[k] + l_upper_[k] * r_upper_[k]) / s_upper_[k];
-    }
-    if (e != 0.0) AddNormal(k, -e, &rhs_);
+void BandedIpmQpSolver::Direction() {
+  // Per side: ds = sign dv + r and l ds + s dl = -rc give dl = -(rc + l ds) / s, which in the
+  // stationarity row adds D dv + e with e = sign (rc + l r) / s.
+  e_.setZero();
+  for (int j = 0; j < sides_; ++j) {
+    e_[side_constraint_[static_cast<std::size_t>(j)]] += side_sign_[j] * (rc_[j] + l_[j] * r_[j]) * inverse_s_[j];
   }
+  for (const int k : equalities_) e_[k] = (v_[k] - lower_[k]) / delta_;
+  rhs_ = -r_dual_;
+  for (int k = 0; k < m_; ++k) {
+    if (e_[k] != 0.0) rows_.AddRow(k, -e_[k], &rhs_);
+  }
+  rhs_ -= e_.tail(n_);
   SolveReduced();
   ComputeValues(dx_, &dv_);
-  for (int k = 0; k < n_ + m_; ++k) {
-    ds_lower_[k] = dl_lower_[k] = ds_upper_[k] = dl_upper_[k] = dw_[k] = 0.0;
-    if (kind_[static_cast<std::size_t>(k)] == Kind::kEquality) {
-      dw_[k] = (dv_[k] + r_lower_[k]) / delta_;
-      continue;
-    }
-    if (HasLower(k)) {
-      ds_lower_[k] = dv_[k] + r_lower_[k];
-      dl_lower_[k] = (-rc_lower[k] - l_lower_[k] * ds_lower_[k]) / s_lower_[k];
-    }
-    if (HasUpper(k)) {
-      ds_upper_[k] = -dv_[k] + r_upper_[k];
-      dl_upper_[k] = (-rc_upper[k] - l_upper_[k] * ds_upper_[k]) / s_upper_[k];
-    }
+  for (int j = 0; j < sides_; ++j) {
+    ds_[j] = side_sign_[j] * dv_[side_constraint_[static_cast<std::size_t>(j)]] + r_[j];
+    dl_[j] = -(rc_[j] + l_[j] * ds_[j]) * inverse_s_[j];
   }
+  dw_.setZero();
+  for (const int k : equalities_) dw_[k] = (dv_[k] + v_[k] - lower_[k]) / delta_;
 }
 
 double BandedIpmQpSolver::MaxStep() const {
   double alpha = kInf;
-  const auto limit = [&alpha](double value, double step) {
-    if (step < 0) alpha = std::min(alpha, -value / step);
-  };
-  for (int k = 0; k < n_ + m_; ++k) {
-    if (HasLower(k)) {
-      limit(s_lower_[k], ds_lower_[k]);
-      limit(l_lower_[k], dl_lower_[k]);
-    }
-    if (HasUpper(k)) {
-      limit(s_upper_[k], ds_upper_[k]);
-      limit(l_upper_[k], dl_upper_[k]);
-    }
+  for (int j = 0; j < sides_; ++j) {
+    if (ds_[j] < 0) alpha = std::min(alpha, -s_[j] / ds_[j]);
+    if (dl_[j] < 0) alpha = std::min(alpha, -l_[j] / dl_[j]);
   }
   return alpha;
 }
 
 double BandedIpmQpSolver::ComplementarityAfter(double alpha) const {
-  double sum = 0.0;
-  for (int k = 0; k < n_ + m_; ++k) {
-    if (HasLower(k)) sum += (s_lower_[k] + alpha * ds_lower_[k]) * (l_lower_[k] + alpha * dl_lower_[k]);
-    if (HasUpper(k)) sum += (s_upper_[k] + alpha * ds_upper_[k]) * (l_upper_[k] + alpha * dl_upper_[k]);
-  }
-  return sides_ > 0 ? sum / sides_ : 0.0;
+  if (sides_ == 0) return 0.0;
+  const auto s = s_.head(sides_), l = l_.head(sides_), ds = ds_.head(sides_), dl = dl_.head(sides_);
+  return (s + alpha * ds).dot(l + alpha * dl) / sides_;
 }
 
 void BandedIpmQpSolver::Step(double alpha) {
   x_ += alpha * dx_;
-  s_lower_ += alpha * ds_lower_;
-  s_upper_ += alpha * ds_upper_;
-  l_lower_ += alpha * dl_lower_;
-  l_upper_ += alpha * dl_upper_;
+  s_.head(sides_) += alpha * ds_.head(sides_);
+  l_.head(sides_) += alpha * dl_.head(sides_);
   w_ += alpha * dw_;
 }
 
 void BandedIpmQpSolver::StartingPoint() {
   // x minimises 0.5 x'Hx + g'x + 0.5 sum over finite sides (a_k'x - bound)^2 (+ the equalities
   // weighted 1 / delta): one factorisation, and x lands between two-sided bounds.
-  rhs_ = -program_->linear_cost();
-  for (int k = 0; k < n_ + m_; ++k) {
-    double d = 0.0, target = 0.0;
-    if (kind_[static_cast<std::size_t>(k)] == Kind::kEquality) {
-      d = 1.0 / delta_;
-      target = lower_[k] / delta_;
-    } else {
-      if (HasLower(k)) d += 1.0, target += lower_[k];
-      if (HasUpper(k)) d += 1.0, target += upper_[k];
-    }
-    d_[k] = d;
-    if (target != 0.0) AddNormal(k, target, &rhs_);
+  d_.setZero();
+  target_.setZero();
+  for (int j = 0; j < sides_; ++j) {
+    const int k = side_constraint_[static_cast<std::size_t>(j)];
+    d_[k] += 1.0;
+    target_[k] += side_bound_[j];
   }
+  for (const int k : equalities_) {
+    d_[k] = 1.0 / delta_;
+    target_[k] = lower_[k] / delta_;
+  }
+  rhs_ = -program_->linear_cost();
+  for (int k = 0; k < m_; ++k) {
+    if (target_[k] != 0.0) rows_.AddRow(k, target_[k], &rhs_);
+  }
+  rhs_ += target_.tail(n_);
   Assemble();
   factor_.Factorize(kPivotTol);
   SolveReduced();
   x_ = dx_;
   ComputeValues(x_, &v_);
-  // Mehrotra's start (Nocedal & Wright, Numerical Optimization, section 14.3): the slacks from
-  // x shifted by 1.5 times the largest violation, multipliers 1, then both shifted alike toward
-  // the mean complementarity. Shifts in the data's own units keep narrow two-sided rows (a hip
-  // band 0.14 m wide) from starting with slacks far wider than the band.
-  ZeroDuals();
-  double min_s = kInf;
-  for (int k = 0; k < n_ + m_; ++k) {
-    if (HasLower(k)) min_s = std::min(min_s, s_lower_[k] = v_[k] - lower_[k]);
-    if (HasUpper(k)) min_s = std::min(min_s, s_upper_[k] = upper_[k] - v_[k]);
-  }
+  w_.setZero();
   if (sides_ == 0) return;
-  const double shift = std::max(-1.5 * min_s, 0.0);
-  double sum_s = 0.0;
-  for (int k = 0; k < n_ + m_; ++k) {
-    if (HasLower(k)) sum_s += (s_lower_[k] += shift), l_lower_[k] = 1.0;
-    if (HasUpper(k)) sum_s += (s_upper_[k] += shift), l_upper_[k] = 1.0;
+  // The slacks as in Mehrotra's start (Nocedal & Wright, Numerical Optimization, section 14.3):
+  // from x, shifted by 1.5 times the largest violation, then by half their mean. Shifts in the
+  // data's own units keep narrow two-sided rows (a hip band 0.14 m wide) from starting with
+  // slacks far wider than the band. The multipliers then put every side on the central path,
+  // s_j l_j = mu0, with mu0 the mean slack times sqrt(1 + |g|_inf): multipliers grow with the
+  // gradient they balance (the body QP's |g| is 4e4; unit multipliers cost it three more
+  // iterations), and a side with a wide slack starts with a small multiplier.
+  auto s = s_.head(sides_), l = l_.head(sides_);
+  for (int j = 0; j < sides_; ++j) {
+    s[j] = side_sign_[j] * (v_[side_constraint_[static_cast<std::size_t>(j)]] - side_bound_[j]);
   }
-  // With unit multipliers s'l is the sum of the slacks.
-  const double centre_s = sum_s > 0 ? 0.5 * sum_s / sides_ : 1.0;
-  const double centre_l = sum_s > 0 ? 0.5 : 1.0;
-  for (int k = 0; k < n_ + m_; ++k) {
-    if (HasLower(k)) s_lower_[k] += centre_s, l_lower_[k] += centre_l;
-    if (HasUpper(k)) s_upper_[k] += centre_s, l_upper_[k] += centre_l;
-  }
+  s.array() += std::max(-1.5 * s.minCoeff(), 0.0);
+  const double mean = s.mean();
+  s.array() += mean > 0 ? 0.5 * mean : 1.0;
+  const double mu0 = s.mean() * std::sqrt(1.0 + program_->linear_cost().lpNorm<Eigen::Infinity>());
+  l = mu0 * s.cwiseInverse();
 }
 
 SolveStatus BandedIpmQpSolver::Iterate() {
@@ -458,20 +417,14 @@ SolveStatus BandedIpmQpSolver::Iterate() {
     if (has_deadline_ && std::chrono::steady_clock::now() > deadline_) return SolveStatus::kTimeLimit;
     Factorize();
     // Predictor: the affine-scaling direction (complementarity target 0).
-    for (int k = 0; k < n_ + m_; ++k) {
-      rc_lower_[k] = s_lower_[k] * l_lower_[k];
-      rc_upper_[k] = s_upper_[k] * l_upper_[k];
-    }
-    Direction(rc_lower_, rc_upper_);
+    rc_.head(sides_) = s_.head(sides_).cwiseProduct(l_.head(sides_));
+    Direction();
     const double mu_affine = ComplementarityAfter(std::min(1.0, MaxStep()));
     const double ratio = mu_ > 0 ? mu_affine / mu_ : 0.0;
     const double sigma = std::min(1.0, ratio * ratio * ratio);
     // Corrector: centring toward sigma mu plus the predictor's second-order term.
-    for (int k = 0; k < n_ + m_; ++k) {
-      rc_lower_[k] += ds_lower_[k] * dl_lower_[k] - (HasLower(k) ? sigma * mu_ : 0.0);
-      rc_upper_[k] += ds_upper_[k] * dl_upper_[k] - (HasUpper(k) ? sigma * mu_ : 0.0);
-    }
-    Direction(rc_lower_, rc_upper_);
+    rc_.head(sides_).array() += ds_.head(sides_).array() * dl_.head(sides_).array() - sigma * mu_;
+    Direction();
     const double alpha = std::min(1.0, settings_.step_fraction * MaxStep());
     if (!std::isfinite(alpha) || !dx_.allFinite()) return SolveStatus::kNumericalError;
     Step(alpha);
@@ -484,34 +437,25 @@ void BandedIpmQpSolver::FillResult(const Program& program, SolveStatus status, S
   result->row_duals = y_.head(m_);
   result->bound_duals = y_.tail(n_);
   result->objective = 0.5 * x_.dot(hx_) + program.linear_cost().dot(x_) + program.constant();
-  for (int k = 0; k < n_ + m_; ++k) {
-    const ActiveSide side = active_[static_cast<std::size_t>(k)];
-    if (k < m_) {
-      result->active_set.rows[static_cast<std::size_t>(k)] = side;
-    } else {
-      result->active_set.bounds[static_cast<std::size_t>(k - m_)] = side;
-    }
-  }
+  std::copy(active_.begin(), active_.begin() + m_, result->active_set.rows.begin());
+  std::copy(active_.begin() + m_, active_.end(), result->active_set.bounds.begin());
   result->info.iterations = iterations_;
   result->info.primal_residual = measures_.primal;
   result->info.dual_residual = measures_.dual;
 }
 
-ActiveSide BandedIpmQpSolver::SideOf(int k) const {
-  // Active where the multiplier has outgrown the slack (they meet at sqrt(mu) on the path).
-  if (kind_[static_cast<std::size_t>(k)] == Kind::kEquality) return -1;
-  if (HasLower(k) && l_lower_[k] > s_lower_[k]) return -1;
-  if (HasUpper(k) && l_upper_[k] > s_upper_[k]) return 1;
-  return 0;
-}
-
 int BandedIpmQpSolver::UpdateActiveSides() {
-  int changes = 0;
-  for (int k = 0; k < n_ + m_; ++k) {
-    const ActiveSide side = SideOf(k);
-    changes += side != active_[static_cast<std::size_t>(k)] ? 1 : 0;
-    active_[static_cast<std::size_t>(k)] = side;
+  // Active where the multiplier has outgrown the slack (they meet at sqrt(mu) on the central
+  // path); an equality always, on its lower side as SolveResult's convention has it.
+  previous_active_ = active_;
+  std::fill(active_.begin(), active_.end(), ActiveSide{0});
+  for (int j = 0; j < sides_; ++j) {
+    const std::size_t k = static_cast<std::size_t>(side_constraint_[static_cast<std::size_t>(j)]);
+    if (l_[j] > s_[j]) active_[k] = side_sign_[j] > 0 ? -1 : 1;
   }
+  for (const int k : equalities_) active_[static_cast<std::size_t>(k)] = -1;
+  int changes = 0;
+  for (std::size_t k = 0; k < active_.size(); ++k) changes += active_[k] != previous_active_[k] ? 1 : 0;
   return changes;
 }
 
@@ -546,9 +490,8 @@ bool BandedIpmQpSolver::Polish() {
   }
   polish_measures_ = Measure(xp_, yp_, &vp_, &hxp_, &rdp_);
   for (int k = 0; k < n_ + m_; ++k) {
-    const ActiveSide side = active_[static_cast<std::size_t>(k)];
-    const bool equality = kind_[static_cast<std::size_t>(k)] == Kind::kEquality;
-    if (!equality && side * yp_[k] < -settings_.tolerance) return false;  // a multiplier of the wrong sign
+    const bool equality = lower_[k] == upper_[k];  // its multiplier has no sign
+    if (!equality && active_[static_cast<std::size_t>(k)] * yp_[k] < -settings_.tolerance) return false;
   }
   if (!Converged(polish_measures_)) return false;
   x_ = xp_;

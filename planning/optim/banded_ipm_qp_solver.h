@@ -92,13 +92,11 @@ class BandedIpmQpSolver final : public Solver {
   bool reordered() const { return ordering_.reordered(); }
 
  private:
-  // Which sides of a constraint are finite (an equality has lower == upper).
-  enum class Kind : std::uint8_t { kFree, kLower, kUpper, kBoth, kEquality };
-
   void DoSolve(const Program& program, SolveResult* result) override;
 
   // Sizing, the sparse copies of H and A (when their revisions changed), the bounds.
   void Prepare(const Program& program);
+  // This solve's sides and equalities from the program's bounds.
   void LoadBounds(const Program& program);
   // The variable order and band from the pattern of H + A'A.
   void Analyse();
@@ -118,9 +116,8 @@ class BandedIpmQpSolver final : public Solver {
   bool Converged(const Measures& measures) const;
   // The active-set polish (see Polish() in the .cc); true when it solved the program.
   bool Polish();
-  // The side of constraint k the iterate holds active; all of them into active_, returning how
-  // many changed.
-  ActiveSide SideOf(int k) const;
+  // The sides the iterate holds active (multiplier above slack) into active_; returns how many
+  // constraints changed side.
   int UpdateActiveSides();
   bool IsInfeasible() const;
   bool IsUnbounded() const;
@@ -132,8 +129,8 @@ class BandedIpmQpSolver final : public Solver {
   void SolveReduced();
   void SolveThroughFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd* solution);
   void MultiplyReduced(const Eigen::VectorXd& v, Eigen::VectorXd* out) const;
-  // The Newton direction for complementarity targets rc (per lower and upper side).
-  void Direction(const Eigen::VectorXd& rc_lower, const Eigen::VectorXd& rc_upper);
+  // The Newton direction for the complementarity targets rc_ (per side).
+  void Direction();
   // Largest step keeping s and lambda nonnegative along the current direction (infinite: none).
   double MaxStep() const;
   // The mean complementarity after a step of alpha along the current direction.
@@ -142,20 +139,9 @@ class BandedIpmQpSolver final : public Solver {
   // The start (see StartingPoint() in the .cc).
   void StartingPoint();
   SolveStatus Iterate();
-  void ZeroDuals();
   void FillResult(const Program& program, SolveStatus status, SolveResult* result) const;
 
   // Constraint k: k < m is row k of A, k >= m bounds variable k - m.
-  bool HasLower(int k) const {
-    const Kind kind = kind_[static_cast<std::size_t>(k)];
-    return kind == Kind::kLower || kind == Kind::kBoth;
-  }
-  bool HasUpper(int k) const {
-    const Kind kind = kind_[static_cast<std::size_t>(k)];
-    return kind == Kind::kUpper || kind == Kind::kBoth;
-  }
-  // The dual of constraint k in SolveResult's convention.
-  double Dual(int k) const;
   void AddNormal(int k, double alpha, Eigen::VectorXd* y) const {
     if (k < m_) {
       rows_.AddRow(k, alpha, y);
@@ -167,7 +153,6 @@ class BandedIpmQpSolver final : public Solver {
   BandedIpmQpSettings settings_;
   const Program* program_ = nullptr;
   int n_ = 0, m_ = 0;
-  int sides_ = 0;  // finite inequality sides: the count complementarity is averaged over
   bool bounds_consistent_ = true;  // no lower bound above its upper one
 
   std::uint64_t hessian_revision_ = 0, matrix_revision_ = 0;
@@ -176,23 +161,30 @@ class BandedIpmQpSolver final : public Solver {
   BandOrdering ordering_;
   BandCholesky factor_;
 
-  // Per constraint: the bounds and which of them are present.
-  std::vector<Kind> kind_;
+  // Per constraint (rows, then variables): the bounds (+-inf: none).
   Eigen::VectorXd lower_, upper_;
+  // Each finite inequality side j (a two-sided constraint has two): its constraint, its sign
+  // (+1 lower: s = v - bound, -1 upper: s = bound - v) and bound, so that s = sign (v - bound).
+  // The per-side vectors are sized for every constraint's two sides; the first sides_ are used.
+  int sides_ = 0;
+  std::vector<int> side_constraint_;
+  Eigen::VectorXd side_sign_, side_bound_;
+  // The equalities (lower == upper), by constraint.
+  std::vector<int> equalities_;
 
-  // The iterate: x, per constraint the slacks and multipliers of its sides (zero where absent)
-  // and the equality multipliers.
-  Eigen::VectorXd x_, s_lower_, s_upper_, l_lower_, l_upper_, w_;
-  // Values v = a_k'x, residuals of v - lower - s_lower, upper - v - s_upper, v - lower (equality),
-  // the dual residual H x + g + A'y + z, and H x.
-  Eigen::VectorXd v_, r_lower_, r_upper_, r_dual_, hx_;
-  // The Newton system: D and the right-hand side's per-constraint term, the step.
-  Eigen::VectorXd d_, e_, rhs_, dx_, dv_, ds_lower_, ds_upper_, dl_lower_, dl_upper_, dw_;
-  Eigen::VectorXd rc_lower_, rc_upper_, work_, correction_, permuted_;
-  // The duals in SolveResult's convention, the iterate's active set (the polish's when it
-  // succeeded), and the polish's point, duals and targets.
-  Eigen::VectorXd y_, xp_, yp_, vp_, hxp_, rdp_, target_;
-  std::vector<ActiveSide> active_;
+  // The iterate: x, per side the slack s and multiplier l, per constraint the equality
+  // multipliers w (zero elsewhere).
+  Eigen::VectorXd x_, s_, l_, w_;
+  // Per side 1 / s, the residual sign (v - bound) - s, the complementarity targets and the step.
+  Eigen::VectorXd inverse_s_, r_, rc_, ds_, dl_;
+  // Per constraint: values v = a_k'x, D, the right-hand side's term e, the step's dv and dw, the
+  // duals in SolveResult's convention. Per variable: H x, the dual residual H x + g + A'y + z.
+  Eigen::VectorXd v_, d_, e_, dv_, dw_, y_, hx_, r_dual_;
+  Eigen::VectorXd rhs_, dx_, work_, correction_, permuted_;
+  // The iterate's active set (the polish's when it succeeded), and the polish's point, duals
+  // and targets.
+  std::vector<ActiveSide> active_, previous_active_;
+  Eigen::VectorXd xp_, yp_, vp_, hxp_, rdp_, target_;
   Measures measures_, polish_measures_;
   double next_polish_mu_ = kInf;
   double mu_ = 0.0;

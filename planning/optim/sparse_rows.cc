@@ -37,41 +37,41 @@ void SparseRows::Assign(const Eigen::MatrixXd& a) {
 }
 
 void SparseRows::AssignPacked(const Eigen::MatrixXd& a) {
-  // One pass over the column-major matrix collects each column's nonzeros (into the spare
-  // halves of the storage); a pass over the nonzeros then sorts them into rows.
+  // One pass over the column-major matrix collects each column's nonzeros (in scratch storage);
+  // a pass over the nonzeros then sorts them into rows.
   ++builds_;
   m_ = static_cast<int>(a.rows());
   n_ = static_cast<int>(a.cols());
   std::size_t count = 0;
-  std::vector<int>& row_of = scratch_row_;
-  std::vector<int>& column_end = scratch_column_end_;
-  column_end.resize(static_cast<std::size_t>(n_));
+  scratch_column_end_.resize(static_cast<std::size_t>(n_));
   for (int j = 0; j < n_; ++j) {
+    // Room for the whole column, so that the loop below writes every entry and only advances
+    // past nonzeros: no branch on the pattern (mispredicted at every nonzero).
+    const std::size_t room = count + static_cast<std::size_t>(m_);
+    if (scratch_row_.size() < room) scratch_row_.resize(2 * room);
+    if (scratch_value_.size() < room) scratch_value_.resize(2 * room);
     const double* col = a.data() + static_cast<std::ptrdiff_t>(j) * m_;
     for (int k = 0; k < m_; ++k) {
-      if (col[k] == 0.0) continue;
-      if (count == row_of.size()) row_of.resize(std::max<std::size_t>(64, 2 * count));
-      if (count == value_.size()) value_.resize(row_of.size());
-      row_of[count] = k;
-      value_[count++] = col[k];
+      scratch_row_[count] = k;
+      scratch_value_[count] = col[k];
+      count += col[k] != 0.0 ? 1 : 0;
     }
-    column_end[static_cast<std::size_t>(j)] = static_cast<int>(count);
+    scratch_column_end_[static_cast<std::size_t>(j)] = static_cast<int>(count);
   }
   if (column_.size() < count) column_.resize(count);
-  if (scratch_value_.size() < count) scratch_value_.resize(count);
+  if (value_.size() < count) value_.resize(count);
   start_.assign(static_cast<std::size_t>(m_) + 1, 0);
-  for (std::size_t e = 0; e < count; ++e) ++start_[static_cast<std::size_t>(row_of[e]) + 1];
+  for (std::size_t e = 0; e < count; ++e) ++start_[static_cast<std::size_t>(scratch_row_[e]) + 1];
   for (int k = 0; k < m_; ++k) start_[static_cast<std::size_t>(k) + 1] += start_[static_cast<std::size_t>(k)];
   end_.assign(start_.begin(), start_.end() - 1);  // each row's cursor, ending at its end
   std::size_t e = 0;
   for (int j = 0; j < n_; ++j) {  // columns ascending, so each row's columns come out ascending
-    for (; e < static_cast<std::size_t>(column_end[static_cast<std::size_t>(j)]); ++e) {
-      const std::size_t slot = static_cast<std::size_t>(end_[static_cast<std::size_t>(row_of[e])]++);
+    for (; e < static_cast<std::size_t>(scratch_column_end_[static_cast<std::size_t>(j)]); ++e) {
+      const std::size_t slot = static_cast<std::size_t>(end_[static_cast<std::size_t>(scratch_row_[e])]++);
       column_[slot] = j;
-      scratch_value_[slot] = value_[e];
+      value_[slot] = scratch_value_[e];
     }
   }
-  value_.swap(scratch_value_);
 }
 
 bool SparseRows::FillRow(const Eigen::MatrixXd& a, int k, int limit) {
