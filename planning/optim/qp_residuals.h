@@ -27,6 +27,10 @@ struct QpResiduals {
   bool Within(double tolerance) const { return primal < tolerance && dual < tolerance && gap < tolerance; }
 };
 
+/// One constraint's term of r_g: upper max(dual, 0) + lower min(dual, 0), an infinite side
+/// adding nothing.
+double GapSupportTerm(double dual, double lower, double upper);
+
 /// The measures of `result` on the quadratic program `program` (sizes must match).
 QpResiduals ComputeQpResiduals(const Program& program, const SolveResult& result);
 

@@ -51,11 +51,17 @@ void SparseRows::AssignPacked(const Eigen::MatrixXd& a) {
     if (scratch_row_.size() < room) scratch_row_.resize(2 * room);
     if (scratch_value_.size() < room) scratch_value_.resize(2 * room);
     const double* col = a.data() + static_cast<std::ptrdiff_t>(j) * m_;
-    for (int k = 0; k < m_; ++k) {
+    const auto take = [&](int k) {
       scratch_row_[count] = k;
       scratch_value_[count] = col[k];
       count += col[k] != 0.0 ? 1 : 0;
+    };
+    int k = 0;
+    for (; k + 4 <= m_; k += 4) {  // runs of zeros (most of a banded matrix) skipped four at a time
+      if (col[k] == 0.0 && col[k + 1] == 0.0 && col[k + 2] == 0.0 && col[k + 3] == 0.0) continue;
+      take(k), take(k + 1), take(k + 2), take(k + 3);
     }
+    for (; k < m_; ++k) take(k);
     scratch_column_end_[static_cast<std::size_t>(j)] = static_cast<int>(count);
   }
   if (column_.size() < count) column_.resize(count);
