@@ -5,10 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <random>
-#include <sstream>
 #include <string>
 
 #include "kinematics/builtin_robot.h"
@@ -19,36 +17,16 @@
 #include "planning/optim/body_qp_example.h"
 #include "planning/optim/qp_residuals.h"
 #include "planning/optim/qps_reader.h"
+#include "kkt_check.h"
+#include "maros_meszaros_index.h"
 #include "test_paths.h"
 
-using namespace stairplan;
 using namespace stairplan::optim;
+using stairplan::testing::CheckKkt;
+using stairplan::testing::ReadMarosMeszarosIndex;
 using stairplan::testing::SharedPath;
 
 namespace {
-
-// The KKT conditions in SolveResult's dual convention: stationarity, feasibility, dual signs and
-// complementarity, each within `tol`.
-void CheckKkt(const Program& p, const SolveResult& r, double tol) {
-  const Eigen::VectorXd ax = p.constraint_matrix() * r.x;
-  const Eigen::VectorXd stationarity =
-      p.hessian() * r.x + p.linear_cost() + p.constraint_matrix().transpose() * r.row_duals + r.bound_duals;
-  CHECK(stationarity.lpNorm<Eigen::Infinity>() < tol);
-  CHECK(p.MaxViolation(r.x) < tol);
-  const auto complementary = [&](double value, double lo, double hi, double dual) {
-    if (!std::isfinite(lo)) CHECK(dual > -tol);  // no lower side: no push from below
-    if (!std::isfinite(hi)) CHECK(dual < tol);
-    if (std::isfinite(lo)) CHECK(std::abs(std::min(dual, 0.0) * (value - lo)) < tol * (1.0 + std::abs(dual)));
-    if (std::isfinite(hi)) CHECK(std::abs(std::max(dual, 0.0) * (hi - value)) < tol * (1.0 + std::abs(dual)));
-  };
-  for (int i = 0; i < p.num_rows(); ++i) {
-    complementary(ax[i], NormalizeBound(p.row_lower()[i]), NormalizeBound(p.row_upper()[i]), r.row_duals[i]);
-  }
-  for (int j = 0; j < p.num_variables(); ++j) {
-    complementary(r.x[j], NormalizeBound(p.variable_lower()[j]), NormalizeBound(p.variable_upper()[j]),
-                  r.bound_duals[j]);
-  }
-}
 
 // Both solvers on `p`: ours solved, KKT at 1e-8, qpbenchmark's residuals at 1e-8, and the active
 // set solver's objective (relative 1e-8).
@@ -203,16 +181,16 @@ TEST_CASE("BandedIpmQpSolver: a dense row falls back to the full band and stays 
 }
 
 TEST_CASE("BandedIpmQpSolver: the body planner's own QP along a flight", "[banded-ipm]") {
-  const Staircase stairs{StairSpec{}};
-  const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
-  const Plan footsteps = PlanCrawl(BuiltinRobot(), stairs, map);
-  BodyPlanner planner(BuiltinRobot(), stairs, map, footsteps, BodyPlannerSettings{});
-  BodyState state = planner.StartState();
+  const stairplan::Staircase stairs{stairplan::StairSpec{}};
+  const stairplan::ConstrainedMap map = stairplan::ConstrainedMap::FromStaircase(stairs, stairplan::Facing::kForward);
+  const stairplan::Plan footsteps = stairplan::PlanCrawl(stairplan::BuiltinRobot(), stairs, map);
+  stairplan::BodyPlanner planner(stairplan::BuiltinRobot(), stairs, map, footsteps, stairplan::BodyPlannerSettings{});
+  stairplan::BodyState state = planner.StartState();
   constexpr double kPeriod = 0.003;
   int checked = 0;
   for (int cycle = 0; cycle * kPeriod < 4.0; ++cycle) {
     const double now = cycle * kPeriod;
-    planner.Update(state, BodyCommand{}, now);
+    planner.Update(state, stairplan::BodyCommand{}, now);
     state = planner.Interpolate(now + kPeriod);
     if (cycle % 150 != 0) continue;
     INFO("t = " << now);
@@ -228,18 +206,9 @@ TEST_CASE("BandedIpmQpSolver: small Maros-Meszaros problems reach the published 
     WARN("Maros-Meszaros problems for banded-ipm skipped: ../shared not found");
     return;
   }
-  std::ifstream index(dir + "/INDEX.tsv");
-  REQUIRE(index);
-  std::string line, name;
-  std::getline(index, line);
   std::map<std::string, double> optimum;
-  while (std::getline(index, line)) {
-    std::istringstream s(line);
-    int n = 0, m = 0;
-    double value = 0;
-    s >> name >> n >> m >> value;
-    optimum[name] = value;
-  }
+  for (const auto& e : ReadMarosMeszarosIndex(dir)) optimum[e.name] = e.optimum;
+  REQUIRE(optimum.size() == 34);
   for (const char* problem : {"HS21", "HS35", "HS76", "HS118", "GENHS28", "QAFIRO", "DUALC1", "CVXQP1_S"}) {
     INFO(problem);
     const QpsProblem q = ReadQpsFile(dir + "/" + problem + ".SIF");
