@@ -97,7 +97,8 @@ void BandedIpmQpSolver::Prepare(const Program& program) {
     for (Eigen::VectorXd* v : {&side_sign_, &side_bound_, &s_, &l_, &inverse_s_, &r_, &rc_, &ds_, &dl_}) {
       v->resize(2 * k);
     }
-    for (Eigen::VectorXd* v : {&x_, &r_dual_, &hx_, &rhs_, &dx_, &work_, &correction_, &permuted_, &xp_, &hxp_, &rdp_}) {
+    for (Eigen::VectorXd* v :
+         {&x_, &r_dual_, &hx_, &rhs_, &dx_, &work_, &correction_, &permuted_, &xp_, &hxp_, &rdp_}) {
       v->resize(n);
     }
     side_constraint_.resize(2 * static_cast<std::size_t>(k));
