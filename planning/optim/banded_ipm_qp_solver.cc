@@ -430,7 +430,9 @@ SolveStatus BandedIpmQpSolver::Iterate() {
     rc_.head(sides_).array() += ds_.head(sides_).array() * dl_.head(sides_).array() - sigma * mu_;
     Direction();
     const double alpha = std::min(1.0, settings_.step_fraction * MaxStep());
-    if (!std::isfinite(alpha) || !dx_.allFinite()) return SolveStatus::kNumericalError;
+    // A step that breaks down (at mu near round-off on a badly scaled program) may still leave
+    // an iterate whose active set the polish can finish from.
+    if (!std::isfinite(alpha) || !dx_.allFinite()) return Polish() ? SolveStatus::kSolved : SolveStatus::kNumericalError;
     Step(alpha);
   }
 }
