@@ -5,12 +5,6 @@
 #include <stdexcept>
 
 namespace stairplan::optim {
-// Like qpbenchmark's sums over the finite lb and ub.
-double GapSupportTerm(double dual, double lower, double upper) {
-  if (dual > 0 && std::isfinite(upper)) return upper * dual;
-  if (dual < 0 && std::isfinite(lower)) return lower * dual;
-  return 0.0;
-}
 
 QpResiduals ComputeQpResiduals(const Program& p, const SolveResult& r) {
   const int n = p.num_variables(), m = p.num_rows();
