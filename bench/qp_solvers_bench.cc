@@ -1,5 +1,6 @@
-// QP solvers regime by regime (planning/optim/solve_regime.h): our active-set solver, Ipopt and
-// CLP on (a) the body-planner-shaped QP (40 knots, 3 variables each, banded rows) along 200 cycles
+// QP solvers regime by regime (planning/optim/solve_regime.h): our active-set solver, our banded
+// interior point (which starts every solve cold, so its warm-sequence numbers are cold solves
+// with a kept workspace), Ipopt and CLP on (a) the body-planner-shaped QP (40 knots, 3 variables each, banded rows) along 200 cycles
 // of its per-cycle update, cold (a fresh solver per cycle) and warm sequence (each cycle from the
 // last one's solution, Ipopt with its multipliers); (b) the Maros-Meszaros set, cold; (c) the
 // Online QP sequences diesel and crane, warm sequence. Times are process CPU time per solve;
@@ -32,7 +33,7 @@ namespace {
 bool Smoke() { return std::getenv("STAIRPLAN_BENCH_SMOKE") != nullptr; }
 
 std::vector<std::string> Solvers() {
-  std::vector<std::string> names = {"active-set", "ipopt"};
+  std::vector<std::string> names = {"active-set", "banded-ipm", "ipopt"};
   if (ClpSolver::IsAvailable()) names.push_back("clp");
   return names;
 }

@@ -1,5 +1,5 @@
 // `stairplan qp`: solve a QP file with a chosen solver, or benchmark solvers over QP files.
-//   stairplan qp solve FILE [--solver active-set|ipopt|nlopt|clp|clp-barrier] [--json] [--time-limit S]
+//   stairplan qp solve FILE [--solver active-set|banded-ipm|ipopt|nlopt|clp|clp-barrier] [--json] [--time-limit S]
 //   stairplan qp bench FILES_OR_DIRS... [--solvers a,b] [--regimes r,s] [--csv OUT] [--summary-csv OUT]
 //                      [--plot OUT.svg] [--repeat N] [--max-qps N] [--time-limit S]   (qp_bench.h)
 // Exit codes: 0 solved, 3 infeasible or unbounded, 2 bad input (file errors, NaN, bad flags),
@@ -102,13 +102,14 @@ int RunQp(const std::vector<std::string>& args) {
   std::string file, solver = "active-set";
   bool json = false;
   solve->add_option("file", file, "QPS file (Maros-Meszaros format)")->required();
-  solve->add_option("--solver", solver, "active-set (default), ipopt, nlopt, clp or clp-barrier");
+  solve->add_option("--solver", solver, "active-set (default), banded-ipm, ipopt, nlopt, clp or clp-barrier");
   solve->add_flag("--json", json, "Print one JSON object (status, objective, iterations, solve_time_us, max_violation, x)");
   double time_limit = optim::kInf;
   solve->add_option("--time-limit", time_limit, "Wall-clock limit for the solve [s] (default none)");
   CLI::App* bench = app.add_subcommand("bench", "Benchmark solvers over QP files and folders, regime by regime");
   QpBenchOptions options;
-  std::string solvers = optim::ClpSolver::IsAvailable() ? "active-set,ipopt,clp" : "active-set,ipopt";
+  std::string solvers =
+      optim::ClpSolver::IsAvailable() ? "active-set,banded-ipm,ipopt,clp" : "active-set,banded-ipm,ipopt";
   std::string regimes = "cold,identical-resolve,warm-sequence";
   bench->add_option("inputs", options.inputs, "QPS files, folders of them, or qpOASES sequence folders")->required();
   bench->add_option("--solvers", solvers, "Comma-separated solvers, the first the base of the ratios (default " + solvers + ")");

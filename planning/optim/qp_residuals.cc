@@ -5,17 +5,6 @@
 #include <stdexcept>
 
 namespace stairplan::optim {
-namespace {
-
-// upper max(dual, 0) + lower min(dual, 0), over finite sides only (as qpbenchmark sums lb and ub
-// where they are finite).
-double SupportTerm(double dual, double lower, double upper) {
-  if (dual > 0 && std::isfinite(upper)) return upper * dual;
-  if (dual < 0 && std::isfinite(lower)) return lower * dual;
-  return 0.0;
-}
-
-}  // namespace
 
 QpResiduals ComputeQpResiduals(const Program& p, const SolveResult& r) {
   const int n = p.num_variables(), m = p.num_rows();
@@ -31,8 +20,8 @@ QpResiduals ComputeQpResiduals(const Program& p, const SolveResult& r) {
   if (m > 0) stationarity += p.constraint_matrix().transpose() * r.row_duals;
   out.dual = stationarity.lpNorm<Eigen::Infinity>();
   double gap = r.x.dot(hx) + p.linear_cost().dot(r.x);
-  for (int i = 0; i < m; ++i) gap += SupportTerm(r.row_duals[i], p.row_lower()[i], p.row_upper()[i]);
-  for (int j = 0; j < n; ++j) gap += SupportTerm(r.bound_duals[j], p.variable_lower()[j], p.variable_upper()[j]);
+  for (int i = 0; i < m; ++i) gap += GapSupportTerm(r.row_duals[i], p.row_lower()[i], p.row_upper()[i]);
+  for (int j = 0; j < n; ++j) gap += GapSupportTerm(r.bound_duals[j], p.variable_lower()[j], p.variable_upper()[j]);
   out.gap = std::isnan(gap) ? kInf : std::abs(gap);
   return out;
 }

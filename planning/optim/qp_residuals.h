@@ -13,6 +13,8 @@
 // and ub, infinite sides add nothing (a solver's round-off dual on a free variable is no gap).
 #pragma once
 
+#include <cmath>
+
 #include "planning/optim/program.h"
 #include "planning/optim/solve_result.h"
 
@@ -26,6 +28,15 @@ struct QpResiduals {
   /// All three below `tolerance` (with a kSolved status, qpbenchmark's success).
   bool Within(double tolerance) const { return primal < tolerance && dual < tolerance && gap < tolerance; }
 };
+
+/// One constraint's term of r_g: upper max(dual, 0) + lower min(dual, 0), an infinite side
+/// adding nothing (as qpbenchmark sums over the finite lb and ub). Inline: the interior-point
+/// solver evaluates it for every constraint at every iteration.
+inline double GapSupportTerm(double dual, double lower, double upper) {
+  if (dual > 0 && std::isfinite(upper)) return upper * dual;
+  if (dual < 0 && std::isfinite(lower)) return lower * dual;
+  return 0.0;
+}
 
 /// The measures of `result` on the quadratic program `program` (sizes must match).
 QpResiduals ComputeQpResiduals(const Program& program, const SolveResult& result);

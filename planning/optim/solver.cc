@@ -7,6 +7,7 @@
 #include <string>
 
 #include "planning/optim/active_set_qp_solver.h"
+#include "planning/optim/banded_ipm_qp_solver.h"
 #include "planning/optim/clp_solver.h"
 #include "planning/optim/ipopt_solver.h"
 #include "planning/optim/nlopt_solver.h"
@@ -78,6 +79,7 @@ std::unique_ptr<Solver> MakeSolver(const Program& program) {
 
 std::unique_ptr<Solver> MakeSolver(std::string_view name) {
   if (name == "active-set") return std::make_unique<ActiveSetQpSolver>();
+  if (name == "banded-ipm") return std::make_unique<BandedIpmQpSolver>();
   if (name == "ipopt") return std::make_unique<IpoptSolver>();
   if (name == "nlopt") return std::make_unique<NloptSolver>();
   if (name == "clp" || name == "clp-barrier") {
@@ -89,13 +91,14 @@ std::unique_ptr<Solver> MakeSolver(std::string_view name) {
     return std::make_unique<ClpSolver>(settings);
   }
   throw std::invalid_argument("unknown solver '" + std::string(name) +
-                              "' (expected active-set, ipopt, nlopt, clp or clp-barrier)");
+                              "' (expected active-set, banded-ipm, ipopt, nlopt, clp or clp-barrier)");
 }
 
 std::unique_ptr<Solver> MakeSolver(std::string_view name, double time_limit_s) {
   if (!(time_limit_s > 0)) throw std::invalid_argument("time_limit_s: must be positive");
   std::unique_ptr<Solver> solver = MakeSolver(name);
   if (auto* s = dynamic_cast<ActiveSetQpSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;
+  if (auto* s = dynamic_cast<BandedIpmQpSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;
   if (auto* s = dynamic_cast<IpoptSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;
   if (auto* s = dynamic_cast<NloptSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;
   if (auto* s = dynamic_cast<ClpSolver*>(solver.get())) s->settings().time_limit_s = time_limit_s;

@@ -32,7 +32,7 @@ class Solver {
   /// Solves `program` and returns a fresh result.
   SolveResult Solve(const Program& program);
 
-  /// A short name: "active-set", "ipopt", "nlopt", "clp", "clp-barrier".
+  /// A short name: "active-set", "banded-ipm", "ipopt", "nlopt", "clp", "clp-barrier".
   virtual std::string_view name() const = 0;
   /// True when this solver handles programs of this kind (e.g. QP-only solvers refuse nonlinear ones).
   virtual bool Supports(const Program& program) const = 0;
@@ -50,8 +50,8 @@ class Solver {
 /// The automatic choice: quadratic programs to ActiveSetQpSolver, the others to IpoptSolver.
 std::unique_ptr<Solver> MakeSolver(const Program& program);
 
-/// Solver by name ("active-set", "ipopt", "nlopt", "clp", "clp-barrier"); throws std::invalid_argument
-/// naming it otherwise, or naming the missing package for CLP in a build without it.
+/// Solver by name ("active-set", "banded-ipm", "ipopt", "nlopt", "clp", "clp-barrier"); throws
+/// std::invalid_argument naming it otherwise, or naming the missing package for CLP in a build without it.
 std::unique_ptr<Solver> MakeSolver(std::string_view name);
 /// The same with every solve limited to `time_limit_s` of wall time: a reference solver that
 /// cycles (CLP's primal simplex can) then returns kTimeLimit instead of running on.

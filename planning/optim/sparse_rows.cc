@@ -36,6 +36,50 @@ void SparseRows::Assign(const Eigen::MatrixXd& a) {
   start_[static_cast<std::size_t>(m_)] = e;
 }
 
+void SparseRows::AssignPacked(const Eigen::MatrixXd& a) {
+  // One pass over the column-major matrix collects each column's nonzeros (in scratch storage);
+  // a pass over the nonzeros then sorts them into rows.
+  ++builds_;
+  m_ = static_cast<int>(a.rows());
+  n_ = static_cast<int>(a.cols());
+  std::size_t count = 0;
+  scratch_column_end_.resize(static_cast<std::size_t>(n_));
+  for (int j = 0; j < n_; ++j) {
+    // Room for the whole column, so that the loop below writes every entry and only advances
+    // past nonzeros: no branch on the pattern (mispredicted at every nonzero).
+    const std::size_t room = count + static_cast<std::size_t>(m_);
+    if (scratch_row_.size() < room) scratch_row_.resize(2 * room);
+    if (scratch_value_.size() < room) scratch_value_.resize(2 * room);
+    const double* col = a.data() + static_cast<std::ptrdiff_t>(j) * m_;
+    const auto take = [&](int k) {
+      scratch_row_[count] = k;
+      scratch_value_[count] = col[k];
+      count += col[k] != 0.0 ? 1 : 0;
+    };
+    int k = 0;
+    for (; k + 4 <= m_; k += 4) {  // runs of zeros (most of a banded matrix) skipped four at a time
+      if (col[k] == 0.0 && col[k + 1] == 0.0 && col[k + 2] == 0.0 && col[k + 3] == 0.0) continue;
+      take(k), take(k + 1), take(k + 2), take(k + 3);
+    }
+    for (; k < m_; ++k) take(k);
+    scratch_column_end_[static_cast<std::size_t>(j)] = static_cast<int>(count);
+  }
+  if (column_.size() < count) column_.resize(count);
+  if (value_.size() < count) value_.resize(count);
+  start_.assign(static_cast<std::size_t>(m_) + 1, 0);
+  for (std::size_t e = 0; e < count; ++e) ++start_[static_cast<std::size_t>(scratch_row_[e]) + 1];
+  for (int k = 0; k < m_; ++k) start_[static_cast<std::size_t>(k) + 1] += start_[static_cast<std::size_t>(k)];
+  end_.assign(start_.begin(), start_.end() - 1);  // each row's cursor, ending at its end
+  std::size_t e = 0;
+  for (int j = 0; j < n_; ++j) {  // columns ascending, so each row's columns come out ascending
+    for (; e < static_cast<std::size_t>(scratch_column_end_[static_cast<std::size_t>(j)]); ++e) {
+      const std::size_t slot = static_cast<std::size_t>(end_[static_cast<std::size_t>(scratch_row_[e])]++);
+      column_[slot] = j;
+      value_[slot] = scratch_value_[e];
+    }
+  }
+}
+
 bool SparseRows::FillRow(const Eigen::MatrixXd& a, int k, int limit) {
   int e = start_[static_cast<std::size_t>(k)];
   for (int i = 0; i < n_; ++i) {

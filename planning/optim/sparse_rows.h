@@ -25,6 +25,11 @@ class SparseRows {
   void Resize(int m, int n);
   /// Copies the nonzeros of `a` (m x n as sized).
   void Assign(const Eigen::MatrixXd& a);
+  /// Copies the nonzeros of `a` (any size) without spare slots, reading it column by column: for
+  /// readers that take the whole matrix again whenever it changes (a cold solve reads it once,
+  /// where Resize's m x n storage and Assign's strided reads cost more than the solve's
+  /// iterations). Allocates only to grow. UpdateRow and UpdateRowAt need Resize and Assign.
+  void AssignPacked(const Eigen::MatrixXd& a);
   /// Takes row k of `a` again, in place when its nonzeros fit the row's slots; rebuilds the copy
   /// from `a` when they do not.
   void UpdateRow(const Eigen::MatrixXd& a, int k);
@@ -39,6 +44,14 @@ class SparseRows {
   double RowNorm(int k) const;
   /// Number of rows m.
   int rows() const { return m_; }
+  ///@{
+  /// Row k's nonzeros are the slots [RowBegin(k), RowEnd(k)), with ColumnAt(e) and ValueAt(e):
+  /// for readers that need the pattern itself (a factorisation's assembly).
+  int RowBegin(int k) const { return start_[static_cast<std::size_t>(k)]; }
+  int RowEnd(int k) const { return end_[static_cast<std::size_t>(k)]; }
+  int ColumnAt(int e) const { return column_[static_cast<std::size_t>(e)]; }
+  double ValueAt(int e) const { return value_[static_cast<std::size_t>(e)]; }
+  ///@}
   /// Row k times x.
   double RowDot(int k, const Eigen::VectorXd& x) const {
     double sum = 0.0;
@@ -72,6 +85,9 @@ class SparseRows {
   std::vector<int> end_;     // m: the end of row k's nonzeros (start_[k + 1] at most)
   std::vector<int> column_;  // capacity m * n
   std::vector<double> value_;
+  // AssignPacked's column-ordered nonzeros before they are sorted into rows.
+  std::vector<int> scratch_row_, scratch_column_end_;
+  std::vector<double> scratch_value_;
 };
 
 }  // namespace stairplan::optim

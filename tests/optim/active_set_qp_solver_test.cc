@@ -9,27 +9,12 @@
 #include "planning/optim/active_set_qp_solver.h"
 #include "planning/optim/body_qp_example.h"
 #include "planning/optim/ipopt_solver.h"
+#include "kkt_check.h"
 
 using namespace stairplan::optim;
+using stairplan::testing::CheckKkt;
 
 namespace {
-
-// Checks the KKT conditions of a QP result in the documented dual convention.
-void CheckKkt(const Program& p, const SolveResult& r, double tol) {
-  const Eigen::VectorXd ax = p.constraint_matrix() * r.x;
-  const Eigen::VectorXd stationarity =
-      p.hessian() * r.x + p.linear_cost() + p.constraint_matrix().transpose() * r.row_duals + r.bound_duals;
-  CHECK(stationarity.lpNorm<Eigen::Infinity>() < tol);
-  CHECK(p.MaxViolation(r.x) < tol);
-  const auto complementary = [&](double value, double lo, double hi, double dual) {
-    if (dual < -tol) CHECK(std::abs(value - lo) < tol);  // pushed up by the lower bound
-    if (dual > tol) CHECK(std::abs(value - hi) < tol);
-  };
-  for (int i = 0; i < p.num_rows(); ++i) complementary(ax[i], p.row_lower()[i], p.row_upper()[i], r.row_duals[i]);
-  for (int j = 0; j < p.num_variables(); ++j) {
-    complementary(r.x[j], p.variable_lower()[j], p.variable_upper()[j], r.bound_duals[j]);
-  }
-}
 
 // A random strictly convex QP with box bounds, two-sided rows and equalities; feasible by
 // construction (the rows' bounds bracket A x_feasible).

@@ -14,17 +14,15 @@
 #include "planning/optim/ipopt_solver.h"
 #include "planning/optim/qp_residuals.h"
 #include "planning/optim/qps_reader.h"
+#include "maros_meszaros_index.h"
 #include "test_paths.h"
 
 using namespace stairplan::optim;
+using stairplan::testing::MarosMeszarosEntry;
+using stairplan::testing::ReadMarosMeszarosIndex;
 using stairplan::testing::SharedPath;
 
 namespace {
-
-struct Entry {
-  std::string name;
-  double optimum;
-};
 
 bool OptimumIsZero(const std::string& name) {
   // HS268/S268: the true optimum is 0 (the published 5.7e-7 is inexact); HS51 and TAME are 0.
@@ -44,24 +42,13 @@ TEST_CASE("Maros-Meszaros: the active-set solver reaches the published optima", 
     WARN("Maros-Meszaros conformance skipped: ../shared not found");
     return;
   }
-  std::ifstream index(dir + "/INDEX.tsv");
-  REQUIRE(index);
-  std::string line;
-  std::getline(index, line);  // header
-  std::vector<Entry> entries;
-  while (std::getline(index, line)) {
-    std::istringstream s(line);
-    Entry e;
-    int n = 0, m = 0;
-    s >> e.name >> n >> m >> e.optimum;
-    if (!e.name.empty()) entries.push_back(e);
-  }
+  const std::vector<MarosMeszarosEntry> entries = ReadMarosMeszarosIndex(dir);
   REQUIRE(entries.size() == 34);
   int passed = 0;
   std::vector<std::string> failures;
   std::printf("%-10s %-16s %-18s %-9s %-7s %-16s %-18s\n", "problem", "active-set", "objective", "error", "iters",
               "ipopt", "objective");
-  for (const Entry& e : entries) {
+  for (const MarosMeszarosEntry& e : entries) {
     const QpsProblem q = ReadQpsFile(dir + "/" + e.name + ".SIF");
     ActiveSetQpSolver ours;
     const SolveResult r = ours.Solve(q.program);

@@ -1,56 +1,67 @@
 // Zero heap allocations per cycle: after the first solve at a given size, 1,000 warm re-solves of
 // a 40-knot body-planner-shaped QP (bounds and linear terms updated each cycle) allocate nothing;
-// cold re-solves neither.
+// cold re-solves neither; nor do the banded interior point's solves (every one cold).
 #include <catch2/catch.hpp>
 
 #include "alloc_counter.h"
 #include "planning/optim/active_set_qp_solver.h"
+#include "planning/optim/banded_ipm_qp_solver.h"
 #include "planning/optim/body_qp_example.h"
 
 using namespace stairplan::optim;
 using stairplan::testing::AllocationScope;
 
-TEST_CASE("1,000 warm re-solves of a 40-knot body QP allocate nothing", "[allocation]") {
+namespace {
+
+struct CycleCounts {
+  std::size_t allocations = 0;
+  int solved = 0, iterations = 0;
+};
+
+// After one warm-up solve, `cycles` cycles of the example's update and a solve, counted; with
+// `rewrite_matrix` A also counts as rewritten every other cycle (as the body planner's rows
+// are), so that whatever a solver keeps of A is made again.
+CycleCounts SolveCycles(Solver& solver, int cycles, bool rewrite_matrix = false) {
   BodyQpExample e = MakeBodyQpExample(40);
-  ActiveSetQpSolver solver;
   SolveResult result;
   solver.Solve(e.program, &result);  // warm-up: sizes the workspace and the result
   REQUIRE(result.status == SolveStatus::kSolved);
-  int solved = 0, iterations = 0;
-  std::size_t allocations = 0;
-  {
-    AllocationScope scope;
-    for (int cycle = 1; cycle <= 1000; ++cycle) {
-      UpdateBodyQpExample(cycle, &e);
-      solver.Solve(e.program, &result);
-      solved += result.status == SolveStatus::kSolved ? 1 : 0;
-      iterations += result.info.iterations;
-    }
-    allocations = scope.count();
+  CycleCounts counts;
+  AllocationScope scope;
+  for (int cycle = 1; cycle <= cycles; ++cycle) {
+    UpdateBodyQpExample(cycle, &e);
+    if (rewrite_matrix && cycle % 2 == 0) e.program.MutableConstraintMatrix();
+    solver.Solve(e.program, &result);
+    counts.solved += result.status == SolveStatus::kSolved ? 1 : 0;
+    counts.iterations += result.info.iterations;
   }
-  CHECK(allocations == 0);
-  CHECK(solved == 1000);
-  CHECK(iterations > 0);  // the active set really changed along the way
+  counts.allocations = scope.count();
+  return counts;
+}
+
+}  // namespace
+
+TEST_CASE("1,000 warm re-solves of a 40-knot body QP allocate nothing", "[allocation]") {
+  ActiveSetQpSolver solver;
+  const CycleCounts counts = SolveCycles(solver, 1000);
+  CHECK(counts.allocations == 0);
+  CHECK(counts.solved == 1000);
+  CHECK(counts.iterations > 0);  // the active set really changed along the way
 }
 
 TEST_CASE("cold re-solves allocate nothing either", "[allocation]") {
-  BodyQpExample e = MakeBodyQpExample(40);
   ActiveSetQpSettings settings;
   settings.warm_start = false;
   ActiveSetQpSolver solver(settings);
-  SolveResult result;
-  solver.Solve(e.program, &result);
-  std::size_t allocations = 0;
-  int solved = 0;
-  {
-    AllocationScope scope;
-    for (int cycle = 1; cycle <= 100; ++cycle) {
-      UpdateBodyQpExample(cycle, &e);
-      solver.Solve(e.program, &result);
-      solved += result.status == SolveStatus::kSolved ? 1 : 0;
-    }
-    allocations = scope.count();
-  }
-  CHECK(allocations == 0);
-  CHECK(solved == 100);
+  const CycleCounts counts = SolveCycles(solver, 100);
+  CHECK(counts.allocations == 0);
+  CHECK(counts.solved == 100);
+}
+
+TEST_CASE("banded interior-point solves of a same-shaped program allocate nothing", "[allocation]") {
+  BandedIpmQpSolver solver;
+  const CycleCounts counts = SolveCycles(solver, 100, true);
+  CHECK(counts.allocations == 0);
+  CHECK(counts.solved == 100);
+  CHECK(counts.iterations > 100);  // real interior-point solves, not a shortcut
 }
