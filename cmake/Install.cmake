@@ -1,6 +1,7 @@
 # Install the libraries, headers and an exported package so find_package(stairplan) works.
 include(CMakePackageConfigHelpers)
 get_property(modules GLOBAL PROPERTY STAIRPLAN_MODULES)
+get_property(STAIRPLAN_HAS_EGL GLOBAL PROPERTY STAIRPLAN_HAS_EGL)
 install(TARGETS ${modules} EXPORT stairplanTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -48,12 +49,16 @@ if(NOT STAIRPLAN_PC_FCL_FOUND)
 endif()
 string(REPLACE ";" " " pc_dependency_libs "$<TARGET_LINKER_FILE:mujoco::mujoco>;${STAIRPLAN_PC_FCL_LDFLAGS};${IPOPT_LDFLAGS}")
 string(APPEND STAIRPLAN_PC_LIBS "${pc_dependency_libs}")
-# CLP is optional: required only when the planning archive holds the CLP back-end. In the separate
-# objects of a normal build a consumer that never names ClpSolver left clp_solver.o out of its link
-# and the missing entry went unseen; a unity build merges it with code every consumer needs.
+# CLP and EGL are optional: required only when the planning archive holds the CLP back-end or the
+# offscreen renderer. In the separate objects of a normal build a consumer that never names
+# ClpSolver or OffscreenRenderer left their objects out of its link and the missing entry went
+# unseen; a unity build merges them with code every consumer needs.
 set(STAIRPLAN_PC_OPTIONAL_REQUIRES "")
 if(STAIRPLAN_HAS_CLP)
-  set(STAIRPLAN_PC_OPTIONAL_REQUIRES " clp")
+  string(APPEND STAIRPLAN_PC_OPTIONAL_REQUIRES " clp")
+endif()
+if(STAIRPLAN_HAS_EGL)
+  string(APPEND STAIRPLAN_PC_OPTIONAL_REQUIRES " egl")
 endif()
 file(RELATIVE_PATH STAIRPLAN_PC_PREFIX_FROM_PCDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 string(REGEX REPLACE "/$" "" STAIRPLAN_PC_PREFIX_FROM_PCDIR "${STAIRPLAN_PC_PREFIX_FROM_PCDIR}")
