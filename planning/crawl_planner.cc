@@ -17,8 +17,12 @@
 namespace stairplan {
 namespace {
 
-// The paper's crawl: one leg at a time, hind right, hind left, front right, front left.
-constexpr std::array<const char*, 4> kCrawlOrder = {"RH", "LH", "RF", "LF"};
+// The legs one cycle swings, in order.
+const std::array<const char*, 4>& SwingOrder(CrawlSequence sequence) {
+  static constexpr std::array<const char*, 4> kPairs = {"RH", "LH", "RF", "LF"};
+  static constexpr std::array<const char*, 4> kLateral = {"RH", "RF", "LH", "LF"};
+  return sequence == CrawlSequence::kLateral ? kLateral : kPairs;
+}
 
 double MeanRun(const StairSpec& spec) {
   if (spec.runs.empty()) return spec.run;
@@ -82,6 +86,14 @@ Plan Infeasible(Plan plan, const std::string& reason) {
 }
 
 }  // namespace
+
+CrawlSequence ParseCrawlSequence(const std::string& text) {
+  if (text == "pairs") return CrawlSequence::kPairs;
+  if (text == "lateral") return CrawlSequence::kLateral;
+  throw std::invalid_argument("crawl-sequence: must be 'pairs' or 'lateral' (got '" + text + "')");
+}
+
+const char* ToString(CrawlSequence sequence) { return sequence == CrawlSequence::kLateral ? "lateral" : "pairs"; }
 
 void CrawlSettings::Validate() const {
   RequireInRange("swing_duration", swing_duration, 0.05, 5.0);
@@ -219,8 +231,9 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
   // Each swing is preceded by a four-feet phase in which the COM moves over the next triangle.
   const double slot_duration = settings.shift_duration + settings.swing_duration;
   for (int c = 0; c < cycles; ++c) {
-    for (std::size_t slot = 0; slot < kCrawlOrder.size(); ++slot) {
-      const auto leg = std::find_if(tracks.begin(), tracks.end(), [&](const LegTrack& l) { return l.name == kCrawlOrder[slot]; });
+    const std::array<const char*, 4>& order = SwingOrder(settings.sequence);
+    for (std::size_t slot = 0; slot < order.size(); ++slot) {
+      const auto leg = std::find_if(tracks.begin(), tracks.end(), [&](const LegTrack& l) { return l.name == order[slot]; });
       Footstep step;
       step.leg = leg->name;
       step.t_liftoff = (4.0 * c + static_cast<double>(slot)) * slot_duration + settings.shift_duration;

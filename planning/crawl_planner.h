@@ -4,6 +4,7 @@
 // (step planner, body planner) replace its parts; it stays as a simple, predictable baseline.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,8 +18,27 @@
 
 namespace stairplan {
 
+/// The order in which the crawl swings its legs, one at a time, within a cycle.
+enum class CrawlSequence {
+  /// Right hind, left hind, right front, left front: the hind pair, then the front pair (the 2012
+  /// paper's crawl). Between the pairs the stance is a stride shorter: a short robot's hind feet
+  /// land just behind its front feet, and the next support triangle is a sliver the COM must
+  /// cross the body to reach.
+  kPairs,
+  /// Right hind, right front, left hind, left front: each side's hind leg, then its front leg (the
+  /// lateral-sequence crawl of McGhee and Frank, 1968, the most stable order of a crawl). The
+  /// stance keeps its length, and the COM moves across once a cycle.
+  kLateral,
+};
+
+/// "pairs" or "lateral"; throws std::invalid_argument otherwise.
+CrawlSequence ParseCrawlSequence(const std::string& text);
+/// The name ParseCrawlSequence reads.
+const char* ToString(CrawlSequence sequence);
+
 /// The crawl planner's timing, foothold layout and search.
 struct CrawlSettings {
+  CrawlSequence sequence = CrawlSequence::kPairs;  ///< the order of the swings
   double swing_duration = 0.40;       ///< one leg's swing [s]
   double shift_duration = 0.60;       ///< four feet down between swings, moving the COM [s]
   double start_gap = 0.10;            ///< front feet this far before the first step region [m]

@@ -29,6 +29,7 @@ struct PlanOptions {
   StairFlags stairs;
   std::string facing = "forward";
   std::string planner = "crawl";
+  std::string crawl_sequence = "pairs";
   std::string body = "path";
   std::optional<int> horizon;
   std::string nlp;
@@ -64,6 +65,9 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
                  "crawl: the step planner picks the cadence, feet at step-region centres (default); "
                  "step: the step planner's own footsteps; "
                  "paper, paper-alt: the 2012 paper's crawl, cases 1 and 2 (seed 003; climbing only)");
+  app.add_option("--crawl-sequence", o.crawl_sequence,
+                 "Order of the crawl's swings: pairs (hind pair then front pair, the 2012 paper's; default) or "
+                 "lateral (each side's hind then front leg)");
   app.add_option("--out", o.out, "Output directory for plan.json and plan.svg (default ./stairplan-out)");
   app.add_option("--start", o.start,
                  "X,Y,YAW: the robot's tracked pose; stair mode is judged there and the robot turns and moves to the "
@@ -291,6 +295,11 @@ int RunPlan(const std::vector<std::string>& args) {
       throw BadInput(std::string("--") + e.what());
     }
     if (IsPaperCrawl(options.footsteps) && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
+    try {
+      options.crawl.sequence = ParseCrawlSequence(o.crawl_sequence);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(std::string("--") + e.what());
+    }
     SetBodyOptions(o, options);
     ApplySettings(o.set, options);
     SetStairMode(o, options.stair_mode);

@@ -227,6 +227,7 @@ TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[
   expect_bad("--nosing 0.2", "--nosing");
   expect_bad("--direction sideways", "--direction");
   expect_bad("--facing left", "--facing");
+  expect_bad("--crawl-sequence trot", "--crawl-sequence");
   expect_bad("--robot /nonexistent.urdf", "/nonexistent.urdf");
   expect_bad("--stairs /nonexistent.yaml", "/nonexistent.yaml");
   expect_bad("--no-such-flag", "--no-such-flag");
