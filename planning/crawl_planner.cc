@@ -93,8 +93,6 @@ CrawlSequence ParseCrawlSequence(const std::string& text) {
   throw std::invalid_argument("crawl-sequence: must be 'pairs' or 'lateral' (got '" + text + "')");
 }
 
-const char* ToString(CrawlSequence sequence) { return sequence == CrawlSequence::kLateral ? "lateral" : "pairs"; }
-
 void CrawlSettings::Validate() const {
   RequireInRange("swing_duration", swing_duration, 0.05, 5.0);
   RequireInRange("shift_duration", shift_duration, 0.0, 5.0);
@@ -230,8 +228,8 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
 
   // Each swing is preceded by a four-feet phase in which the COM moves over the next triangle.
   const double slot_duration = settings.shift_duration + settings.swing_duration;
+  const std::array<const char*, 4>& order = SwingOrder(settings.sequence);
   for (int c = 0; c < cycles; ++c) {
-    const std::array<const char*, 4>& order = SwingOrder(settings.sequence);
     for (std::size_t slot = 0; slot < order.size(); ++slot) {
       const auto leg = std::find_if(tracks.begin(), tracks.end(), [&](const LegTrack& l) { return l.name == order[slot]; });
       Footstep step;

@@ -33,8 +33,6 @@ enum class CrawlSequence {
 
 /// "pairs" or "lateral"; throws std::invalid_argument otherwise.
 CrawlSequence ParseCrawlSequence(const std::string& text);
-/// The name ParseCrawlSequence reads.
-const char* ToString(CrawlSequence sequence);
 
 /// The crawl planner's timing, foothold layout and search.
 struct CrawlSettings {
