@@ -36,7 +36,7 @@ struct SweepOptions {
   std::string rise = "0.10:0.25:20", run = "0.20:0.35:20", nosing = "0.02", steps = "7";
   std::string directions = "up", facing = "forward", robot, robots, out, csv, svg, shard = "0/1";
   int threads = 1;
-  double validation_step = 0.05;
+  double validation_step = ValidationSettings{}.time_step;  // plan's: a coarser step judges a body QP at its knots alone
   bool times = false;
   bool simulate = false;
   bool resume = false;
@@ -315,7 +315,7 @@ int RunSweepCommand(const std::vector<std::string>& args) {
   app.add_option("--shard", o.shard, "Compute only shard i of N (i/N); join with sweep-merge");
   app.add_option("--csv", o.csv, "Output CSV file: a manifest ('#' lines), the header, a row per point");
   app.add_option("--svg", o.svg, "Output SVG heatmap");
-  app.add_option("--validation-step", o.validation_step, "Validator replay step [s] (default 0.05; plan uses 0.02)")
+  app.add_option("--validation-step", o.validation_step, "Validator replay step [s] (default 0.02, as plan)")
       ->check(CLI::Range(1e-3, 1.0));
   app.add_flag("--times", o.times, "Add plan_us and validate_us columns (not reproducible)");
   app.add_flag("--simulate", o.simulate,
