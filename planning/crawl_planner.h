@@ -36,7 +36,7 @@ CrawlSequence ParseCrawlSequence(const std::string& text);
 
 /// The crawl planner's timing, foothold layout and search.
 struct CrawlSettings {
-  CrawlSequence sequence = CrawlSequence::kPairs;  ///< the order of the swings
+  CrawlSequence sequence = CrawlSequence::kLateral;  ///< the order of the swings
   double swing_duration = 0.40;       ///< one leg's swing [s]
   double shift_duration = 0.60;       ///< four feet down between swings, moving the COM [s]
   double start_gap = 0.10;            ///< front feet this far before the first step region [m]

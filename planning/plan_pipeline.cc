@@ -81,9 +81,7 @@ PaperCrawlSettings PaperSettings(FootstepSource source) {
 PipelineOptions ForFootstepSource(const PipelineOptions& given) {
   PipelineOptions options = given;
   if (!IsPaperCrawl(options.footsteps)) return options;
-  if (options.body != BodySource::kQuasiStaticPath) {
-    throw std::invalid_argument("body: the paper's crawl plans its own quasi-static body path, not the body QP");
-  }
+  options.body = BodySource::kQuasiStaticPath;  // its body is part of the paper's design
   options.crawl.body.hip_height_fraction = PaperSettings(options.footsteps).body.hip_height_fraction;
   return options;
 }

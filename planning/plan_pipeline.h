@@ -37,11 +37,12 @@ enum class FootstepSource {
 };
 /// Where the body trajectory comes from.
 enum class BodySource {
-  /// The quasi-static path: COM over the stance triangle while a leg swings (validates today).
+  /// The quasi-static path: COM over the stance triangle while a leg swings, fitted by a posture
+  /// search and the posture retries (a baseline to compare with; the paper's crawl's own body).
   kQuasiStaticPath,
   /// The receding-horizon body optimisation run forward over the flight, one cycle per knot, as a
   /// control loop would run it (planning/body/plan_body.h), with body_qp's rows; optionally
-  /// refined by the NLP.
+  /// refined by the NLP. The default.
   kRecedingHorizonQp,
 };
 
@@ -83,7 +84,8 @@ struct PipelineOptions {
   FootstepSource footsteps = FootstepSource::kSelectedCrawl;  ///< which planner places the footsteps
   /// The step planner's controllers; the executed gait is quasi-static, so crawls only by default.
   StepPlannerSettings step = CrawlControllers();
-  BodySource body = BodySource::kQuasiStaticPath;  ///< which planner makes the body trajectory
+  /// Which planner makes the body trajectory; the paper's crawl always plans its own path.
+  BodySource body = BodySource::kRecedingHorizonQp;
   BodyPlannerSettings body_qp = LegRowBodySettings();  ///< for kRecedingHorizonQp (knots = the horizon)
   std::string body_nlp;          ///< "", "ipopt" or "nlopt": refine the QP body with the NLP
   BodyNlpSettings nlp;  ///< the NLP's solver settings, with body_nlp

@@ -1,5 +1,6 @@
-// Pipeline options with the body optimisation, as `stairplan plan --body qp` plans: the leg rows
-// of LegRowBodySettings() (the planner issue #18 makes the default; tested while it is opt-in).
+// Pipeline options with the body optimisation and the leg rows of LegRowBodySettings(), as
+// `stairplan plan` plans by default: named, so that tests of the rows keep them whatever the
+// defaults become.
 #pragma once
 
 #include "planning/plan_pipeline.h"
@@ -23,6 +24,16 @@ inline PipelineOptions FineKnotLegRowPipeline() {
   options.body_qp.trust_shift = defaults.trust_shift;
   options.body_qp.trust_lateral = defaults.trust_lateral;
   options.body_qp.trust_pitch = defaults.trust_pitch;
+  return options;
+}
+
+// The quasi-static path with its posture retries and the crawl's pairs sequence: how `plan`
+// planned before the body optimisation (`plan --body path --crawl-sequence pairs`), for the tests
+// of the baseline's own mechanisms (posture fit, retries, foothold search).
+inline PipelineOptions PathBaselinePipeline() {
+  PipelineOptions options;
+  options.body = BodySource::kQuasiStaticPath;
+  options.crawl.sequence = CrawlSequence::kPairs;
   return options;
 }
 

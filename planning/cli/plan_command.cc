@@ -29,8 +29,8 @@ struct PlanOptions {
   StairFlags stairs;
   std::string facing = "forward";
   std::string planner = "crawl";
-  std::string crawl_sequence = "pairs";
-  std::string body = "path";
+  std::string crawl_sequence;  // empty: CrawlSettings' default
+  std::string body;            // empty: PipelineOptions' default
   std::optional<int> horizon;
   std::string nlp;
   std::string cloud;
@@ -50,8 +50,9 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
   AddStairFlags(app, o.stairs);
   app.add_option("--facing", o.facing, "forward or backward, default forward");
   app.add_option("--body", o.body,
-                 "path: quasi-static COM path (default); qp: the receding-horizon body optimisation with its leg, "
-                 "support and clearance rows (--set body.stance_rows=0: without the leg rows)");
+                 "qp: the receding-horizon body optimisation with its leg, support and clearance rows (default; "
+                 "--set body.stance_rows=0: without the leg rows); path: the quasi-static COM path with its "
+                 "posture retries, a baseline (the paper's crawls always plan their own)");
   app.add_option("--horizon", o.horizon, "Knots of the body QP's horizon, 50 ms apart (implies --body qp; default 20)");
   app.add_option("--nlp", o.nlp, "Refine the QP body with the exact NLP: ipopt or nlopt (implies --body qp)");
   app.add_option("--cloud", o.cloud,
@@ -66,8 +67,8 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
                  "step: the step planner's own footsteps; "
                  "paper, paper-alt: the 2012 paper's crawl, cases 1 and 2 (seed 003; climbing only)");
   app.add_option("--crawl-sequence", o.crawl_sequence,
-                 "Order of the crawl's swings: pairs (hind pair then front pair, the 2012 paper's; default) or "
-                 "lateral (each side's hind then front leg)");
+                 "Order of the crawl's swings: lateral (each side's hind then front leg; default) or pairs "
+                 "(hind pair then front pair, the 2012 paper's)");
   app.add_option("--out", o.out, "Output directory for plan.json and plan.svg (default ./stairplan-out)");
   app.add_option("--start", o.start,
                  "X,Y,YAW: the robot's tracked pose; stair mode is judged there and the robot turns and moves to the "
@@ -143,13 +144,19 @@ void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& 
 }
 
 void SetBodyOptions(const PlanOptions& o, PipelineOptions& options) {
-  if (o.body != "path" && o.body != "qp") throw BadInput("--body: must be 'path' or 'qp' (got '" + o.body + "')");
+  if (!o.body.empty() && o.body != "path" && o.body != "qp") {
+    throw BadInput("--body: must be 'path' or 'qp' (got '" + o.body + "')");
+  }
   if (!o.nlp.empty() && o.nlp != "ipopt" && o.nlp != "nlopt") {
     throw BadInput("--nlp: must be 'ipopt' or 'nlopt' (got '" + o.nlp + "')");
   }
   if (o.horizon && (*o.horizon < 4 || *o.horizon > 400)) throw BadInput("--horizon: must be from 4 to 400 knots");
   const bool qp = o.body == "qp" || o.horizon || !o.nlp.empty();
-  options.body = qp ? BodySource::kRecedingHorizonQp : BodySource::kQuasiStaticPath;
+  if (qp && IsPaperCrawl(options.footsteps)) {
+    throw BadInput("--body qp: the paper's crawls plan their own quasi-static body path");
+  }
+  if (qp) options.body = BodySource::kRecedingHorizonQp;
+  if (o.body == "path") options.body = BodySource::kQuasiStaticPath;
   if (o.horizon) options.body_qp.knots = *o.horizon;
   options.body_nlp = o.nlp;
 }
@@ -296,7 +303,7 @@ int RunPlan(const std::vector<std::string>& args) {
     }
     if (IsPaperCrawl(options.footsteps) && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     try {
-      options.crawl.sequence = ParseCrawlSequence(o.crawl_sequence);
+      if (!o.crawl_sequence.empty()) options.crawl.sequence = ParseCrawlSequence(o.crawl_sequence);
     } catch (const std::invalid_argument& e) {
       throw BadInput(std::string("--") + e.what());
     }

@@ -6,6 +6,7 @@
 
 #include "bindings.h"
 #include "planning/body/body_planner.h"
+#include "planning/plan_pipeline.h"
 
 namespace stairplan::python {
 namespace {
@@ -82,20 +83,21 @@ void BindBody(py::module_& m) {
   BindState(m);
   py::class_<PyBodyPlanner>(m, "BodyPlanner", R"(The receding-horizon body QP for a control loop.
 
-BodyPlanner(plan, horizon=40): over a Plan's footsteps, stairs, robot and map (plan.map).
+BodyPlanner(plan, horizon=20): over a Plan's footsteps, stairs, robot and map (plan.map), with
+the support, leg and clearance rows `plan` plans with.
 Each cycle: out = planner.update(state, now); track out.reference and out.feet. update() does
 not allocate after the first call and releases no GIL (it takes microseconds).)")
       .def(py::init([](const PlanResult& p, int horizon) {
         if (p.result->plan.status != PlanStatus::kOk) {
           throw std::invalid_argument("plan: status is infeasible (" + p.result->plan.status_reason + ")");
         }
-        BodyPlannerSettings settings;
+        BodyPlannerSettings settings = PipelineOptions{}.body_qp;
         settings.knots = horizon;
         PyBodyPlanner out{p.robot, p.stairs, p.result, nullptr};
         py::gil_scoped_release release;
         out.planner = std::make_unique<BodyPlanner>(*out.robot, *out.stairs, out.plan->map, out.plan->plan, settings);
         return out;
-      }), py::arg("plan"), py::arg("horizon") = BodyPlannerSettings{}.knots)
+      }), py::arg("plan"), py::arg("horizon") = PipelineOptions{}.body_qp.knots)
       .def("update", [](PyBodyPlanner& p, const BodyState& state, double now, double height_offset,
                         double pitch_offset) -> const BodyPlannerOutput& {
         return p.planner->Update(state, BodyCommand{height_offset, pitch_offset}, now);

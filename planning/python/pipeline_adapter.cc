@@ -27,7 +27,8 @@ std::string OneOf(const nlohmann::json& value, const std::string& name, const st
 // The CLI's --body/--horizon/--nlp rule: a horizon or an NLP implies the body QP.
 void SetBody(const nlohmann::json& o, PipelineOptions& options) {
   const auto given = [&](const char* key) { return o.contains(key) && !o.at(key).is_null(); };
-  bool qp = given("body") && OneOf(o.at("body"), "body", {"path", "qp"}) == "qp";
+  const std::string body = given("body") ? OneOf(o.at("body"), "body", {"path", "qp"}) : "";
+  bool qp = body == "qp";
   if (given("horizon")) {
     const nlohmann::json& h = o.at("horizon");
     if (!h.is_number_integer() || h.get<int>() < 4 || h.get<int>() > 400) {
@@ -40,7 +41,8 @@ void SetBody(const nlohmann::json& o, PipelineOptions& options) {
     options.body_nlp = OneOf(o.at("nlp"), "nlp", {"ipopt", "nlopt"});
     qp = true;
   }
-  options.body = qp ? BodySource::kRecedingHorizonQp : BodySource::kQuasiStaticPath;
+  if (qp) options.body = BodySource::kRecedingHorizonQp;
+  if (body == "path") options.body = BodySource::kQuasiStaticPath;
 }
 
 }  // namespace
@@ -51,8 +53,8 @@ const std::vector<std::string>& StairOptionNames() {
 }
 
 PipelineOptions PipelineOptionsFrom(const nlohmann::json& o) {
-  static const std::vector<std::string> known = {"facing", "planner", "body", "horizon", "nlp", "validate",
-                                                 "validation_time_step"};
+  static const std::vector<std::string> known = {"facing", "planner", "crawl_sequence", "body", "horizon", "nlp",
+                                                 "validate", "validation_time_step"};
   for (const auto& [key, value] : o.items()) {
     bool found = false;
     for (const std::string& k : known) found = found || k == key;
@@ -69,6 +71,9 @@ PipelineOptions PipelineOptionsFrom(const nlohmann::json& o) {
   }
   if (o.contains("planner") && !o.at("planner").is_null()) {
     options.footsteps = ParseFootstepSource(OneOf(o.at("planner"), "planner", {"crawl", "step"}));
+  }
+  if (o.contains("crawl_sequence") && !o.at("crawl_sequence").is_null()) {
+    options.crawl.sequence = ParseCrawlSequence(OneOf(o.at("crawl_sequence"), "crawl_sequence", {"lateral", "pairs"}));
   }
   SetBody(o, options);
   if (o.contains("validate") && !o.at("validate").is_null()) {

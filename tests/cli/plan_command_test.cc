@@ -164,7 +164,7 @@ TEST_CASE("plan --start: out of stair mode's range it warns, and the plan still 
 
 TEST_CASE("plan.json names the body planner and, for the receding horizon, carries every cycle's solve", "[cli][plan]") {
   const std::string dir = MakeTempDir("plan-cycles");
-  const Run path = Plan("--steps 2 --out " + dir + "/path", dir);
+  const Run path = Plan("--steps 2 --body path --out " + dir + "/path", dir);
   REQUIRE(path.code == 0);
   const json by_path = json::parse(ReadFile(dir + "/path/plan.json"));
   CHECK(by_path["body_planner"] == "quasi_static_path");
@@ -173,7 +173,7 @@ TEST_CASE("plan.json names the body planner and, for the receding horizon, carri
   // The default horizon (1 s) under the sanitizers too: since knot 1 keeps the acceleration limits
   // with the body executed a cycle ago, a horizon shorter than about 0.9 s sees the second step too
   // late to climb it within them (30 knots 25 ms apart: joint limits at t = 7.2 s).
-  const Run qp = Plan("--steps 2 --body qp --out " + dir + "/qp", dir);
+  const Run qp = Plan("--steps 2 --out " + dir + "/qp", dir);  // the default
   INFO(qp.out << qp.err);
   REQUIRE(qp.code == 0);  // with its support and leg rows the body optimisation's plan validates
   const json plan = json::parse(ReadFile(dir + "/qp/plan.json"));

@@ -57,10 +57,10 @@ TEST_CASE("validate judges dynamics with validator settings and names a bad one"
   const std::string plan = WritePlan(dir, FullOrSanitized<std::string>("", " --steps 3"));
   std::string out, err;
   // Reported by default: the summary line, the verdict untouched.
-  CHECK(Validate(plan + " --set validator.friction=0.2", dir, &out, &err) == 0);
+  CHECK(Validate(plan + " --set validator.friction=0.1", dir, &out, &err) == 0);
   CHECK_THAT(out, Catch::Contains("dynamics (report): FAILS"));
   // Judged: the slipping foot is a violation, exit 3, and the JSON names its family.
-  CHECK(Validate(plan + " --set validator.friction=0.2 --set validator.dynamics=2 --json", dir, &out, &err) == 3);
+  CHECK(Validate(plan + " --set validator.friction=0.1 --set validator.dynamics=2 --json", dir, &out, &err) == 3);
   const json report = json::parse(out);
   CHECK(report["dynamics"]["mode"] == "judge");
   CHECK(report["dynamics"]["failed_instants"].get<int>() > 0);

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "../kinematics/robot_files.h"
+#include "leg_row_pipeline.h"
 #include "collision/stance_check.h"
 #include "kinematics/builtin_robot.h"
 #include "planning/body_path.h"
@@ -65,12 +66,14 @@ Failure CheckTouchdowns(const RobotModel& robot, const Staircase& stairs, const 
   return failure;
 }
 
-// Plans the default stairs as the CLI does and checks its touchdowns; prints how far it got.
-// Without `posture_retries` the first posture's plan: the pipeline's answer whenever no retry
-// validates (RunPipeline keeps the first attempt's then).
+// Plans the default stairs as `stairplan plan --body path --crawl-sequence pairs` does and checks
+// its touchdowns (the posture fit's and the foothold search's work; the body optimisation's plans
+// are judged by the validator alone); prints how far it got. Without `posture_retries` the first
+// posture's plan: the pipeline's answer whenever no retry validates (RunPipeline keeps the first
+// attempt's then).
 void CheckCliPlan(const std::string& label, const RobotModel& robot, bool posture_retries = true) {
   const Staircase stairs{StairSpec{}};
-  PipelineOptions cli;  // what `stairplan plan` passes without flags
+  PipelineOptions cli = testing::PathBaselinePipeline();
   if (!posture_retries) cli.posture_retries.clear();
   const PipelineResult result = RunPipeline(robot, stairs, cli);
   REQUIRE(result.plan.status == PlanStatus::kOk);
@@ -86,11 +89,11 @@ void CheckCliPlan(const std::string& label, const RobotModel& robot, bool postur
 
 }  // namespace
 
-TEST_CASE("CLI plan stances are reachable and clear: built-in stairbot", "[plan_stance]") {
+TEST_CASE("the path baseline's stances are reachable and clear: built-in stairbot", "[plan_stance]") {
   CheckCliPlan("stairbot", BuiltinRobot());
 }
 
-TEST_CASE("CLI plan stances are reachable and clear: shared robots", "[plan_stance]") {
+TEST_CASE("the path baseline's stances are reachable and clear: shared robots", "[plan_stance]") {
   const auto robots = testing::TestRobots(false);
   if (robots.empty()) {
     WARN("shared robots skipped: ../shared not found");
@@ -127,7 +130,7 @@ CrawlPair CrawlWithAndWithout(const std::string& label, const Staircase& stairs,
   if (file == robots.end()) return pair;
   pair.found = true;
   pair.robot = RobotModel::FromUrdfFile(file->path);
-  const PipelineOptions options;
+  const PipelineOptions options = testing::PathBaselinePipeline();  // the search is the pairs crawl's
   const ConstrainedMap map = BuildPipelineMap(pair.robot, stairs, options);
   CrawlSettings changed = options.crawl;
   change(changed);
@@ -200,6 +203,14 @@ TEST_CASE("no crawl swing stands on a support triangle too thin for the centre o
     CHECK(SmallestSupportInradius(plans.changed) < 1e-3);
     CHECK(SmallestSupportInradius(plans.searched) >= CrawlSettings{}.min_support_inradius);
     for (const Footstep& step : plans.searched.footsteps) CHECK(step.in_step_region);
+    // The lateral sequence (the default) lifts each front foot right after the hind foot behind it
+    // lands beside it: no swing stands on both, and its lattice layout holds the circle unsearched.
+    const ConstrainedMap map = BuildPipelineMap(plans.robot, Staircase{low}, PipelineOptions{});
+    CrawlSettings lateral;
+    lateral.fit_footholds = 0;
+    const Plan unsearched = PlanCrawl(plans.robot, Staircase{low}, map, lateral);
+    REQUIRE(unsearched.status == PlanStatus::kOk);
+    CHECK(SmallestSupportInradius(unsearched) >= CrawlSettings{}.min_support_inradius);
   }
 }
 

@@ -17,7 +17,7 @@
 #include "perception/footfall_scenes.h"
 #include "perception/pcd_files.h"
 #include "perception/perception_scenes.h"
-#include "perception/body_optimisation_flags.h"
+#include "perception/path_baseline_flags.h"
 #include "sanitized.h"
 #include "stairplan/version.h"
 #include "test_paths.h"
@@ -146,13 +146,13 @@ TEST_CASE("map --stairs-out: plans on the perceived stairs keep the fit's uncert
   const StairSpec seen = StairSpecFromYamlFile(dir + "/stairs.yaml");
   CHECK(seen.uncertainty > 0.0);
   CHECK(seen.uncertainty < 0.03);
-  // Under the sanitizers the default only (as "footfalls --stairs-out, plan --stairs: ..."): the
-  // body optimisation's uncertainty is one margin added to rows every sanitized body test runs.
+  // The default and the quasi-static path baseline; under the sanitizers the default only (as
+  // "footfalls --stairs-out, plan --stairs: ...").
   std::vector<std::string> bodies = {std::string()};
-  if (!kSanitized) bodies.push_back(std::string(kBodyOptimisation));
+  if (!kSanitized) bodies.push_back(std::string(kPathBaseline));
   for (const std::string& body : bodies) {
-    INFO((body.empty() ? "default" : "body optimisation"));
-    const std::string out = dir + (body.empty() ? "/plan" : "/plan_qp");
+    INFO((body.empty() ? "default" : "path baseline"));
+    const std::string out = dir + (body.empty() ? "/plan" : "/plan_path");
     const StairplanRun plan = RunStairplan(dir, "plan --stairs " + dir + "/stairs.yaml " + body + " --out " + out);
     INFO(plan.out << plan.err);
     REQUIRE(plan.code == 0);

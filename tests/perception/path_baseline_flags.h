@@ -1,11 +1,10 @@
-// The `stairplan plan` flags of the body optimisation as it is about to become the default
-// planner: the perception CLI tests plan with them as well as with the quasi-static default.
+// The `stairplan plan` flags of the quasi-static path baseline (the planner before the body
+// optimisation became the default): the perception CLI tests plan with them as well as with the
+// default, so that the baseline keeps planning what it planned.
 #pragma once
 
 namespace stairplan::testing {
 
-inline constexpr const char* kBodyOptimisation =
-    "--body qp --set body.stance_rows=1 --set body.stability_margin=0.03 --set body.hip_height_fraction=0.6 "
-    "--set body.max_shift=0.15 --set body.max_lateral_shift=0.15 --set body.acceleration_weight=1";
+inline constexpr const char* kPathBaseline = "--body path --crawl-sequence pairs";
 
 }  // namespace stairplan::testing

@@ -15,6 +15,7 @@
 #include "planning/crawl_planner.h"
 #include "planning/plan_pipeline.h"
 #include "planning/swing_trajectory.h"
+#include "leg_row_pipeline.h"
 #include "sanitized.h"
 
 using namespace stairplan;
@@ -82,7 +83,7 @@ CrawlSettings LeanCrawl(const CrawlSettings& defaults) {
 TEST_CASE("the lean posture validates a steep long staircase the default posture does not", "[planning][steep]") {
   // (rise 0.242, run 0.342): invalid on main, both at the sweep's 0.05 s replay and the plan's 0.02 s.
   const Staircase stairs = SweepStairs(18, 18, testing::FullOrSanitized(7, 3));
-  PipelineOptions options;
+  PipelineOptions options = testing::PathBaselinePipeline();
   options.posture_retries.clear();
   const PipelineResult first = RunPipeline(BuiltinRobot(), stairs, options);
   REQUIRE(first.validated);
@@ -100,7 +101,7 @@ TEST_CASE("the lean posture validates a steep long staircase the default posture
 TEST_CASE("the posture fit checks the swings' corners when asked: every lift end stands", "[planning][steep]") {
   const RobotModel& robot = BuiltinRobot();
   const Staircase stairs = SweepStairs(18, 18, testing::FullOrSanitized(7, 3));
-  const PipelineOptions options;
+  const PipelineOptions options = testing::PathBaselinePipeline();
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
   CrawlSettings crawl = LeanCrawl(options.crawl);
   crawl.body.check_swing_corners = false;
@@ -121,7 +122,7 @@ TEST_CASE("a body that jumps sends the crawl to its foothold search, which finds
   if (testing::kSanitized) return;
   const RobotModel& robot = BuiltinRobot();
   const Staircase stairs = SweepStairs(19, 19, 7);
-  const PipelineOptions options;
+  const PipelineOptions options = testing::PathBaselinePipeline();
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
   CrawlSettings crawl = LeanCrawl(options.crawl);
   crawl.body.check_swing_corners = true;
@@ -146,7 +147,7 @@ TEST_CASE("near-miss postures open after a later attempt's near miss", "[plannin
   const Staircase stairs = SweepStairs(15, 1, 4);
   const BodyPosture tall{0.8, 1.0};
   const BodyPosture low{0.5, 0.75, false, 0.0, true};
-  PipelineOptions options;
+  PipelineOptions options = testing::PathBaselinePipeline();
   options.posture_retries = {low};
   const PipelineResult gated = RunPipeline(BuiltinRobot(), stairs, options);
   CHECK_FALSE(gated.validation.ok);

@@ -14,6 +14,7 @@
 #include "planning/simulation/impact_detection.h"
 #include "planning/simulation/plan_executor.h"
 #include "planning/simulation/sim_outcome_json.h"
+#include "leg_row_pipeline.h"
 #include "sanitized.h"
 
 using namespace stairplan;
@@ -32,7 +33,10 @@ const PlantedStrike& StrikeScene() {
   static const PlantedStrike scene = [] {
     PlantedStrike s;
     s.spec.steps = 2;
-    const PipelineOptions options;
+    // The scene was planted on the quasi-static path's plan. On the body optimisation's the robot
+    // that stepped aside rolls over at 5.1-6.0 s (the plan's ZMP 3.7 cm outside the support that
+    // is left at 4.55 s): the response that plan needs is still to be made.
+    const PipelineOptions options = testing::PathBaselinePipeline();
     s.plan = RunPipeline(BuiltinRobot(), Staircase(s.spec), options).plan;
     // The first footstep of each front leg: RF's first, then LF's onto the same tread.
     const auto first = [&](const char* leg) {

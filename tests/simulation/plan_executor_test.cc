@@ -136,9 +136,10 @@ TEST_CASE("the built-in robot descends the default stairs in MuJoCo at the plan'
       CHECK(l.touched);
       CHECK(l.in_step_region);
     }
-    // The stance feet hold where they landed: 2-3 cm is the foot sphere rolling and what creep
-    // is left; a foot the plan unloads slides a decimetre or more.
-    CHECK(o.max_foot_slip_m < 0.04);
+    // The stance feet hold where they landed: 2-5 cm is the foot sphere rolling and what creep
+    // is left (4.7 cm facing backward, a hind foot in the last shift); a foot the plan unloads
+    // slides a decimetre or more.
+    CHECK(o.max_foot_slip_m < 0.05);
     CHECK(o.force_qp_failures == 0);
     CHECK(o.max_roll < 0.1);
     // It got down the flight (1.19 m) and ended where the plan ends.
@@ -147,13 +148,15 @@ TEST_CASE("the built-in robot descends the default stairs in MuJoCo at the plan'
   }
 }
 
-TEST_CASE("the default-pace crawl is dynamically infeasible as planned: it tips, and the outcome says why",
+TEST_CASE("the quasi-static path's quick crawl is dynamically infeasible as planned: it tips, and the outcome says why",
           "[simulation]") {
   const RobotModel& robot = BuiltinRobot();
   StairSpec spec;
   spec.steps = testing::FullOrSanitized(spec.steps, 2);  // a shorter flight under the sanitizers
   const Staircase stairs(spec);
-  const PipelineResult planned = RunPipeline(robot, stairs, DynamicCrawl(0.25));
+  PipelineOptions quick = testing::PathBaselinePipeline();
+  quick.crawl.shift_duration = 0.25;
+  const PipelineResult planned = RunPipeline(robot, stairs, quick);
   REQUIRE(planned.validation.ok);  // the quasi-static validator does not look at accelerations
   const SimulationOutcome o = Simulate(robot, stairs, planned.plan);
   INFO(Describe(o));
@@ -169,6 +172,15 @@ TEST_CASE("the default-pace crawl is dynamically infeasible as planned: it tips,
   INFO(Describe(s));
   CHECK(s.Passed());
   CHECK(s.plan_zmp_margin_m > 0.0);
+  // The body optimisation (the default) plans the same footsteps within its acceleration limits:
+  // MuJoCo carries its crawl at that pace as planned.
+  const PipelineResult optimised = RunPipeline(robot, stairs, DynamicCrawl(0.25));
+  REQUIRE(optimised.validation.ok);
+  const SimulationOutcome q = Simulate(robot, stairs, optimised.plan);
+  INFO(Describe(q));
+  CHECK(q.status == SimStatus::kSuccess);
+  CHECK(q.other_contacts.empty());
+  CHECK(q.plan_max_acceleration < o.plan_max_acceleration);
 }
 
 TEST_CASE("a plan with the body far too low fails in MuJoCo and names the link on the stairs", "[simulation]") {

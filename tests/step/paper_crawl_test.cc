@@ -272,9 +272,10 @@ TEST_CASE("the pipeline runs the paper crawl at the paper's posture, validated, 
                              defaults.crawl.body.hip_height_fraction, defaults.crawl.start_gap);
   CHECK((a.position - at_default.position).norm() > 1e-4);
   CHECK(r.approach.stair_mode.engaged);
-  // The paper's crawl has its own body path: asking for the body QP is an error, not ignored.
-  options.body = BodySource::kRecedingHorizonQp;
-  CHECK_THROWS_AS(RunPipeline(robot, stairs, options), std::invalid_argument);
+  // The paper's crawl has its own body path, whatever the body source (the body optimisation by
+  // default); `plan --planner paper --body qp` is refused.
+  CHECK(options.body == BodySource::kRecedingHorizonQp);
+  CHECK(r.plan.body_planner == BodyPlannerKind::kQuasiStaticPath);
 }
 
 // Why no plan with the paper's design validates on its robot, from the paper's own geometry:

@@ -243,14 +243,14 @@ TEST_CASE("the default plan is dynamically feasible and planted infeasible versi
     CHECK(r.dynamics.first_failure_leg == v->leg_id);
   }
 
-  SECTION("a friction coefficient of 0.2 fails the default plan") {
+  SECTION("a friction coefficient of 0.1 fails the default plan") {
     ValidationSettings settings = Judging();
-    settings.dynamics.friction = 0.2;
+    settings.dynamics.friction = 0.1;
     const ValidationReport r = s.Validate(s.result.plan, settings);
     INFO(DescribeDynamics(r));
     const Violation* v = FirstDynamicsViolation(r);
     REQUIRE(v != nullptr);
-    INFO("friction 0.2: first dynamics violation at t=" << v->t << " s, " << v->leg << ", " << ToString(v->kind)
+    INFO("friction 0.1: first dynamics violation at t=" << v->t << " s, " << v->leg << ", " << ToString(v->kind)
                                                        << ", residual " << v->value << " N");
     CHECK_FALSE(r.ok);
     CHECK(v->kind == ViolationKind::kFrictionCone);
@@ -273,7 +273,7 @@ TEST_CASE("the default plan is dynamically feasible and planted infeasible versi
   SECTION("reported by default, not judged: a planted failure is summarised but leaves the verdict alone") {
     ValidationSettings settings;
     CHECK(settings.dynamics.mode == DynamicsCheckMode::kReport);
-    settings.dynamics.friction = 0.2;
+    settings.dynamics.friction = 0.1;
     const ValidationReport r = s.Validate(s.result.plan, settings);
     INFO(DescribeDynamics(r));
     CHECK(r.ok);
