@@ -8,6 +8,9 @@
 //   ./body_planner_bench                  (counters: p50_us, p99_us, max_us, mean_cpu_us, ...)
 //   STAIRPLAN_BENCH_SMOKE=1 ./body_planner_bench   (ctest's smoke run: one solved cycle each, a few QPs)
 //
+// Every latency traversal starts from a new planner: its bound-grid nodes (KinematicBodyBounds)
+// and carried leg rows (KnotRowCache) are empty, as on a robot starting the flight, so the cycles
+// that fill them are measured (nodes_computed, cycles_with_fills; *_no_fills: the other cycles).
 // The latencies are wall-clock; *_cpu_us are the same cycles' thread CPU time, which leaves out
 // the time other processes held the core (on a shared 2-core machine the wall-clock tail is
 // mostly that when other builds run: compare the two before blaming the planner).
@@ -25,6 +28,7 @@
 #include "kinematics/builtin_robot.h"
 #include "planning/body/body_nlp.h"
 #include "planning/body/body_planner.h"
+#include "planning/body/kinematic_body_bounds.h"
 #include "planning/crawl_planner.h"
 #include "planning/optim/clp_solver.h"
 #include "planning/optim/qp_benchmark.h"
@@ -45,30 +49,66 @@ struct Fixture {
   Staircase stairs{StairSpec{}};
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
   Plan footsteps = PlanCrawl(BuiltinRobot(), stairs, map);
+  BodyPlannerSettings settings;
   std::unique_ptr<BodyPlanner> planner;
   double period = kPeriod;  // of the control loop [s]
-  explicit Fixture(BodyPlannerSettings settings = {}, double loop_period = kPeriod) : period(loop_period) {
+  explicit Fixture(BodyPlannerSettings planner_settings = {}, double loop_period = kPeriod)
+      : settings(planner_settings), period(loop_period) {
     settings.cycle_budget_s = 1.0;  // measure every solve (the budget is the loop's business)
-    planner = std::make_unique<BodyPlanner>(BuiltinRobot(), stairs, map, footsteps, settings);
-    if (!Smoke()) Traverse(nullptr);  // fills the bound caches
+    Rebuild();
+  }
+  // A new planner: empty bound and row caches, as a robot has them when it starts a flight.
+  void Rebuild() { planner = std::make_unique<BodyPlanner>(BuiltinRobot(), stairs, map, footsteps, settings); }
+  int NodesComputed() {
+    const auto* bounds = dynamic_cast<const KinematicBodyBounds*>(&planner->bounds());
+    return bounds == nullptr ? 0 : bounds->reach_nodes_computed() + bounds->clearance_nodes_computed();
   }
   static bool Smoke() { return std::getenv("STAIRPLAN_BENCH_SMOKE") != nullptr; }
-  // One traversal at 333 Hz with the state advanced along the plan; latencies of the cycles
-  // (wall-clock and thread CPU time).
-  void Traverse(std::vector<double>* latency_us, std::vector<double>* cpu_us = nullptr) {
+  // Per solved cycle (out.solves == 1; the warm-up cycle is not one): wall-clock and thread CPU
+  // time, and what the cycle did.
+  struct Cycles {
+    std::vector<double> latency_us, cpu_us, bounds_us, solve_us, iterations, linearised, reused;
+    // Bound-cache nodes (KinematicBodyBounds' grid) the cycle computed, and the CPU time of the
+    // cycles that computed none.
+    std::vector<double> nodes, cpu_no_fill_us, bounds_no_fill_us, solve_no_fill_us;
+    std::size_t size() const { return latency_us.size(); }
+    void clear() {
+      for (std::vector<double>* v : {&latency_us, &cpu_us, &bounds_us, &solve_us, &iterations, &linearised, &reused, &nodes,
+                                     &cpu_no_fill_us, &bounds_no_fill_us, &solve_no_fill_us}) {
+        v->clear();
+      }
+    }
+  };
+  // One traversal from a new planner (empty caches) with the state advanced along the plan.
+  void Traverse(Cycles* cycles) {
     const std::size_t limit = Smoke() ? 1 : static_cast<std::size_t>(-1);  // the smoke run: one solved cycle
-    planner->Reset();
+    Rebuild();
     BodyState state = planner->StartState();
     const double end = planner->schedule().end_time();
-    for (int cycle = 0; cycle * period <= end && (latency_us == nullptr || latency_us->size() < limit); ++cycle) {
+    for (int cycle = 0; cycle * period <= end && cycles->size() < limit; ++cycle) {
       const double now = cycle * period;  // not a running sum: the knots' instants recur exactly
+      const int nodes0 = NodesComputed();
       const double c0 = ThreadCpuMicros();
       const auto t0 = std::chrono::steady_clock::now();
       const BodyPlannerOutput& out = planner->Update(state, BodyCommand{}, now);
       const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
       const double cpu = ThreadCpuMicros() - c0;
-      if (latency_us != nullptr && out.solves == 1) latency_us->push_back(us);
-      if (cpu_us != nullptr && out.solves == 1) cpu_us->push_back(cpu);
+      if (out.solves == 1) {
+        cycles->latency_us.push_back(us);
+        cycles->cpu_us.push_back(cpu);
+        cycles->bounds_us.push_back(out.timings.bounds_us);
+        cycles->solve_us.push_back(out.timings.solve_us);
+        cycles->iterations.push_back(out.iterations);
+        cycles->linearised.push_back(out.linearised_knots);
+        cycles->reused.push_back(out.reused_knots);
+        const int nodes = NodesComputed() - nodes0;
+        cycles->nodes.push_back(nodes);
+        if (nodes == 0) {
+          cycles->cpu_no_fill_us.push_back(cpu);
+          cycles->bounds_no_fill_us.push_back(out.timings.bounds_us);
+          cycles->solve_no_fill_us.push_back(out.timings.solve_us);
+        }
+      }
       state = planner->Interpolate(now + period);
     }
   }
@@ -99,20 +139,39 @@ double Percentile(std::vector<double> v, double q) {
 // Update's latency percentiles over `wanted` cycles (at least one traversal) of `f`.
 void ReportLatency(benchmark::State& state, Fixture& f, std::size_t wanted) {
   // The smoke run's traversal stops after one solved cycle: asking for more would never end.
-  const std::size_t cycles = Fixture::Smoke() ? 1 : wanted;
-  std::vector<double> latency, cpu;
+  const std::size_t wanted_cycles = Fixture::Smoke() ? 1 : wanted;
+  Fixture::Cycles c;
   for (auto _ : state) {
-    latency.clear();
-    cpu.clear();
-    while (latency.size() < cycles) f.Traverse(&latency, &cpu);
+    c.clear();
+    while (c.size() < wanted_cycles) f.Traverse(&c);
   }
-  state.counters["cycles"] = static_cast<double>(latency.size());
-  state.counters["p50_us"] = Percentile(latency, 0.5);
-  state.counters["p99_us"] = Percentile(latency, 0.99);
-  state.counters["max_us"] = Percentile(latency, 1.0);
-  state.counters["p50_cpu_us"] = Percentile(cpu, 0.5);
-  state.counters["p99_cpu_us"] = Percentile(cpu, 0.99);
-  state.counters["max_cpu_us"] = Percentile(cpu, 1.0);
+  const auto mean = [](const std::vector<double>& v) {
+    double sum = 0.0;
+    for (double x : v) sum += x;
+    return sum / static_cast<double>(std::max<std::size_t>(1, v.size()));
+  };
+  state.counters["cycles"] = static_cast<double>(c.size());
+  state.counters["p50_us"] = Percentile(c.latency_us, 0.5);
+  state.counters["p99_us"] = Percentile(c.latency_us, 0.99);
+  state.counters["max_us"] = Percentile(c.latency_us, 1.0);
+  state.counters["p50_cpu_us"] = Percentile(c.cpu_us, 0.5);
+  state.counters["p99_cpu_us"] = Percentile(c.cpu_us, 0.99);
+  state.counters["max_cpu_us"] = Percentile(c.cpu_us, 1.0);
+  // Where a cycle's time goes (wall-clock): the rows and bounds, and the QP.
+  state.counters["p99_bounds_us"] = Percentile(c.bounds_us, 0.99);
+  state.counters["p99_solve_us"] = Percentile(c.solve_us, 0.99);
+  state.counters["mean_iterations"] = mean(c.iterations);
+  state.counters["max_iterations"] = Percentile(c.iterations, 1.0);
+  state.counters["mean_linearised_knots"] = mean(c.linearised);
+  state.counters["mean_reused_knots"] = mean(c.reused);
+  state.counters["nodes_computed"] = mean(c.nodes) * static_cast<double>(c.size());
+  state.counters["cycles_with_fills"] = static_cast<double>(c.size() - c.cpu_no_fill_us.size());
+  if (!c.cpu_no_fill_us.empty()) {
+    state.counters["p50_cpu_us_no_fills"] = Percentile(c.cpu_no_fill_us, 0.5);
+    state.counters["p99_cpu_us_no_fills"] = Percentile(c.cpu_no_fill_us, 0.99);
+    state.counters["p99_bounds_us_no_fills"] = Percentile(c.bounds_no_fill_us, 0.99);
+    state.counters["p99_solve_us_no_fills"] = Percentile(c.solve_no_fill_us, 0.99);
+  }
 }
 
 void BM_UpdateLatency(benchmark::State& state) { ReportLatency(state, Shared(), 10000); }

@@ -65,6 +65,7 @@ LegKinematics::LegKinematics(const LegModel& leg, const KDL::Tree& tree, const s
   }
   hip_B_ = leg.hip_B;
   LegWorkspace ws(*this);
+  BuildFkSegments(ws);
   BuildKneeTable(ws);
   ComputeReach(ws);
   ComputeNominal(ws);
@@ -107,12 +108,89 @@ Eigen::Matrix3d LegKinematics::FootJacobian(const Eigen::Vector3d& q, LegWorkspa
   return JacobianFromFrames(ws);
 }
 
+void LegKinematics::BuildFkSegments(LegWorkspace& ws) {
+  fk_segments_.clear();
+  std::vector<FkSegment> segments;
+  for (unsigned i = 0; i < chain_->getNrOfSegments(); ++i) {
+    const KDL::Segment& segment = chain_->getSegment(i);
+    const KDL::Joint& joint = segment.getJoint();
+    FkSegment s;
+    const Eigen::Isometry3d at_zero = ToEigen(segment.pose(0.0));
+    s.rotation = at_zero.linear();
+    s.translation = at_zero.translation();
+    if (joint.getType() == KDL::Joint::RotAxis) {
+      s.revolute = true;
+      s.axis = ToEigen(joint.JointAxis()).normalized();
+      s.origin = ToEigen(joint.JointOrigin());
+    } else if (joint.getType() != KDL::Joint::None) {
+      return;  // KDL's solver for other joint types
+    }
+    segments.push_back(s);
+  }
+  // A segment turns about its joint's line: pose(q) = (R M0, o + R (p0 - o)) with (M0, p0) its
+  // pose at q = 0 and R the turn by q about the axis through o. KDL's joints may carry a scale or
+  // offset this leaves out: the frames must agree with KDL's solver over the joints' ranges.
+  fk_segments_ = std::move(segments);
+  for (int k = 0; k < 27; ++k) {
+    Eigen::Vector3d q;
+    for (int j = 0; j < kDof; ++j) {
+      const int level = (k / (j == 0 ? 1 : j == 1 ? 3 : 9)) % 3;
+      q(j) = SampleLo(lower_(j)) + 0.5 * level * (SampleHi(upper_(j)) - SampleLo(lower_(j))) + 0.1 * (j + 1);
+      ws.q_(static_cast<unsigned>(j)) = q(j);
+    }
+    ws.fk_->JntToCart(ws.q_, ws.frames_);
+    std::vector<KDL::Frame> kdl = ws.frames_;
+    ws.frames_current_ = false;
+    SegmentFrames(q, ws);
+    for (std::size_t i = 0; i < kdl.size(); ++i) {
+      for (int r = 0; r < 3; ++r) {
+        bool agree = std::abs(kdl[i].p(r) - ws.frames_[i].p(r)) <= 1e-12;
+        for (int c = 0; c < 3; ++c) agree = agree && std::abs(kdl[i].M(r, c) - ws.frames_[i].M(r, c)) <= 1e-12;
+        if (!agree) {
+          fk_segments_.clear();
+          ws.frames_current_ = false;
+          return;
+        }
+      }
+    }
+  }
+  ws.frames_current_ = false;
+}
+
 Eigen::Vector3d LegKinematics::SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const {
   // The planners ask for several things at one q in a row (foot, Jacobian, flexion joint, link
   // frames): the chain is run once per q. A NaN q never equals the kept one, so it is recomputed.
   if (!ws.frames_current_ || !(ws.frames_q_.array() == q.array()).all()) {
-    for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
-    ws.fk_->JntToCart(ws.q_, ws.frames_);
+    if (fk_segments_.empty()) {
+      for (int j = 0; j < kDof; ++j) ws.q_(static_cast<unsigned>(j)) = q(j);
+      ws.fk_->JntToCart(ws.q_, ws.frames_);
+    } else {
+      Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      int j = 0;
+      for (std::size_t i = 0; i < fk_segments_.size(); ++i) {
+        const FkSegment& s = fk_segments_[i];
+        if (s.revolute) {
+          // Rodrigues' turn by q(j) about the unit axis a: c I + s [a]x + (1 - c) a a'.
+          const double angle = q(j++), c = std::cos(angle), sn = std::sin(angle), v = 1.0 - c;
+          const Eigen::Vector3d& a = s.axis;
+          Eigen::Matrix3d r;
+          r << c + v * a.x() * a.x(), v * a.x() * a.y() - sn * a.z(), v * a.x() * a.z() + sn * a.y(),
+              v * a.x() * a.y() + sn * a.z(), c + v * a.y() * a.y(), v * a.y() * a.z() - sn * a.x(),
+              v * a.x() * a.z() - sn * a.y(), v * a.y() * a.z() + sn * a.x(), c + v * a.z() * a.z();
+          p.noalias() += m * (s.origin + r * (s.translation - s.origin));
+          m = m * (r * s.rotation).eval();
+        } else {
+          p.noalias() += m * s.translation;
+          m = m * s.rotation;
+        }
+        KDL::Frame& f = ws.frames_[i];
+        for (int row = 0; row < 3; ++row) {
+          for (int col = 0; col < 3; ++col) f.M(row, col) = m(row, col);
+          f.p(row) = p(row);
+        }
+      }
+    }
     ws.frames_q_ = q;
     ws.frames_current_ = true;
     ws.frames_B_current_ = false;

@@ -111,9 +111,11 @@ class LegKinematics {
   double Descend(const Eigen::Vector3d& target, Eigen::Vector3d& q, bool clamp, const IkSettings& settings,
                  LegWorkspace& ws, int& iterations) const;
   Eigen::Vector3d RestartSeed(int k) const;
-  // KDL's forward kinematics at q, every segment's frame left in `ws` (kept there: a second call
+  // The forward kinematics at q, every segment's frame left in `ws` (kept there: a second call
   // at the same q costs a comparison); returns the foot.
   Eigen::Vector3d SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
+  // Fills fk_segments_ from the chain and keeps them where they reproduce KDL's frames.
+  void BuildFkSegments(LegWorkspace& ws);
   // Movable joint j's line in the base frame, from the frames SegmentFrames left in `ws`.
   JointLine JointLineFromFrames(const LegWorkspace& ws, int j) const;
   // The foot Jacobian from the frames SegmentFrames left in `ws`: per joint, its axis crossed with
@@ -132,6 +134,18 @@ class LegKinematics {
 
   LegModel leg_;
   std::shared_ptr<const KDL::Chain> chain_;
+  // Each chain segment for SegmentFrames: its frame at q = 0 and, for a revolute joint, its unit
+  // axis and a point on it in the segment's base frame. An IK solve runs the chain tens of times
+  // (hundreds when it fails and restarts), and these fixed-size products take 0.6 of KDL's
+  // solver's time. Empty (a prismatic joint, frames KDL's solver disagrees with): KDL's solver.
+  struct FkSegment {
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    bool revolute = false;
+  };
+  std::vector<FkSegment> fk_segments_;
   std::vector<std::string> segment_links_;
   int knee_segment_ = 0;
   Eigen::Vector3d lower_, upper_, nominal_, hip_B_;

@@ -74,21 +74,26 @@ BodyPose KinematicBodyBounds::PoseFor(int leg, const Eigen::Vector3d& contact_W,
   return pose;
 }
 
-StanceLegCheck KinematicBodyBounds::CheckLeg(int leg, const Eigen::Vector3d& contact_W, const BodyPose& body) {
+IkResult KinematicBodyBounds::StanceIk(int leg, const Eigen::Vector3d& contact_W, const BodyPose& body) {
   const LegKinematics& kin = kinematics_->leg(leg);
   LegWorkspace& ws = ws_->leg(leg);
   const Eigen::Isometry3d body_W = body.ToIsometry();
   const Eigen::Isometry3d W_body = body_W.inverse();
-  StanceLegCheck check;
   // As CheckStance: the sphere's offset from the foot origin turns with the foot, so re-aim.
   Eigen::Matrix3d foot_rotation_W = body_W.linear();
-  check.ik = kin.SolveFootIk(W_body * FootOriginForContact(kin.model(), contact_W, foot_rotation_W), ws);
+  IkResult ik = kin.SolveFootIk(W_body * FootOriginForContact(kin.model(), contact_W, foot_rotation_W), ws);
   if (!kin.model().foot_sphere_center.isZero()) {
-    for (int pass = 0; pass < 3 && check.ik.ok(); ++pass) {
-      foot_rotation_W = body_W.linear() * kin.FootPose(check.ik.q, ws).linear();
-      check.ik = kin.SolveFootIk(W_body * FootOriginForContact(kin.model(), contact_W, foot_rotation_W), check.ik.q, ws);
+    for (int pass = 0; pass < 3 && ik.ok(); ++pass) {
+      foot_rotation_W = body_W.linear() * kin.FootPose(ik.q, ws).linear();
+      ik = kin.SolveFootIk(W_body * FootOriginForContact(kin.model(), contact_W, foot_rotation_W), ik.q, ws);
     }
   }
+  return ik;
+}
+
+StanceLegCheck KinematicBodyBounds::CheckLeg(int leg, const Eigen::Vector3d& contact_W, const BodyPose& body) {
+  StanceLegCheck check;
+  check.ik = StanceIk(leg, contact_W, body);
   check.clearance = check.ik.ok()
                         ? LegStairClearance(*kinematics_, *collision_, *stairs_, leg, check.ik.q, body, *ws_).distance
                         : -std::numeric_limits<double>::infinity();
@@ -147,8 +152,14 @@ float KinematicBodyBounds::FillClearLow(ClearNode& node, int foothold, int i, in
   if (!(r.lo <= r.hi)) return node.lo;
   const double dx = x0_ + i * settings_.grid_dx, pitch = p0_ + j * settings_.grid_pitch;
   const double need = settings_.clearance_margin + kClearanceSlack;
+  // CheckLeg(...).ok(need) with FCL measuring only the shape pairs that may be nearer than
+  // `need`: the node asks yes or no, and pairs surely farther cannot change the answer.
+  ClearanceOptions options;
+  options.prune_above = need;
   const auto clear = [&](double h) {
-    return CheckLeg(f.leg, f.contact_W, PoseFor(f.leg, f.contact_W, dx, h, pitch)).ok(need);
+    const BodyPose body = PoseFor(f.leg, f.contact_W, dx, h, pitch);
+    const IkResult ik = StanceIk(f.leg, f.contact_W, body);
+    return ik.ok() && LegStairClearance(*kinematics_, *collision_, *stairs_, f.leg, ik.q, body, *ws_, options).distance >= need;
   };
   // Clearance grows as the body rises (the leg straightens away from risers and nosings): the
   // lowest clear height above the reach's lower end.

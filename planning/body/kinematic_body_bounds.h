@@ -69,6 +69,8 @@ class KinematicBodyBounds final : public BodyBounds {
     float lo = 0.0f;
     bool done = false;
   };
+  // IK of leg `leg` with its foot's sphere resting on `contact_W` and the body at `body` (CheckLeg's).
+  IkResult StanceIk(int leg, const Eigen::Vector3d& contact_W, const BodyPose& body);
   // The body pose putting leg `leg`'s hip at (dx along the heading, nominal lateral, h above)
   // relative to `contact_W`, pitched by `pitch`.
   BodyPose PoseFor(int leg, const Eigen::Vector3d& contact_W, double dx, double h, double pitch) const;

@@ -135,6 +135,8 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
   // through the offsets between the first two joints.) The flexion joint turns with the first
   // joint, which moves it by d flex / d q0 times q0's change.
   const Eigen::Vector3d flexion = kin.FlexionPosition(ik.q, ws);
+  // Read while the workspace holds the chain at ik.q: the flexion joint's derivative below moves it.
+  const AxisDistance axis = AxisDistanceOf(kin, ws, ik.q, foot_B);
   const Eigen::Vector3d span = foot_B - flexion;
   const double length = span.norm();
   Eigen::Vector4d grad = Eigen::Vector4d::Zero();
@@ -152,7 +154,6 @@ StanceLegRows LinearizeStanceLeg(const LegKinematics& kin, LegWorkspace& ws, con
          kin.extension().hi - margins.reach - bulge.up - length);
   // The axis distance: at least the leg plane's offset and the reach (or axis) margin, the swing's
   // bulge toward the axis further out. Its upper side is loose: the extension row bounds the reach.
-  const AxisDistance axis = AxisDistanceOf(kin, ws, ik.q, foot_B);
   if (axis.valid) {
     const Bulge toward = BulgeOf(axis.out.dot(bends_B[0]), axis.out.dot(bends_B[1]));
     const double keep = std::max(margins.reach, margins.axis);
