@@ -91,10 +91,10 @@ void BandedIpmQpSolver::Prepare(const Program& program) {
     n_ = n;
     m_ = m;
     const int k = n + m;
-    for (Eigen::VectorXd* v : {&lower_, &upper_, &w_, &v_, &d_, &e_, &dv_, &dw_, &y_, &yp_, &vp_, &target_}) {
+    for (Eigen::VectorXd* v : {&lower_, &upper_, &finite_lower_, &finite_upper_, &bounded_, &w_, &v_, &d_, &e_, &dv_, &dw_, &y_, &yp_, &vp_, &target_}) {
       v->resize(k);
     }
-    for (Eigen::VectorXd* v : {&side_sign_, &side_bound_, &s_, &l_, &inverse_s_, &r_, &rc_, &ds_, &dl_}) {
+    for (Eigen::VectorXd* v : {&side_sign_, &side_bound_, &s_, &l_, &inverse_s_, &inverse_l_, &side_work_, &r_, &rc_, &ds_, &dl_}) {
       v->resize(2 * k);
     }
     for (Eigen::VectorXd* v :
@@ -107,12 +107,12 @@ void BandedIpmQpSolver::Prepare(const Program& program) {
     active_.assign(static_cast<std::size_t>(k), 0);
   }
   if (resized || other || program.matrix_revision() != matrix_revision_) {
-    rows_.AssignPacked(program.constraint_matrix());
+    rows_.Assign(program.constraint_matrix());
     matrix_revision_ = program.matrix_revision();
     analysed_ = false;
   }
   if (resized || other || program.hessian_revision() != hessian_revision_) {
-    hessian_rows_.AssignPacked(program.hessian());
+    hessian_rows_.AssignSymmetric(program.hessian());
     hessian_revision_ = program.hessian_revision();
     analysed_ = false;
   }
@@ -137,6 +137,9 @@ void BandedIpmQpSolver::LoadBounds(const Program& program) {
     const double up = NormalizeBound(k < m_ ? program.row_upper()[k] : program.variable_upper()[k - m_]);
     lower_[k] = lo;
     upper_[k] = up;
+    finite_lower_[k] = std::isfinite(lo) ? lo : 0.0;
+    finite_upper_[k] = std::isfinite(up) ? up : 0.0;
+    bounded_[k] = std::isfinite(lo) || std::isfinite(up) ? 1.0 : 0.0;
     if (lo > up) bounds_consistent_ = false;
     if (lo == up) {
       equalities_.push_back(k);  // within the reserved capacity
@@ -171,6 +174,36 @@ void BandedIpmQpSolver::Analyse() {
     ordering_.Compute();
   }
   factor_.Resize(n_, ordering_.bandwidth());
+  // Where Assemble() adds: H's lower triangle once (its values do not change within a solve),
+  // the diagonal, and each row's pairs of nonzeros with their products.
+  const auto at = [this](int i) { return ordering_.position(i); };
+  factor_.SetZero();
+  for (int i = 0; i < n_; ++i) {
+    const int pi = at(i);
+    for (int e = hessian_rows_.RowBegin(i); e < hessian_rows_.RowEnd(i); ++e) {
+      const int pj = at(hessian_rows_.ColumnAt(e));
+      if (pi >= pj) factor_.Add(pi, pj, hessian_rows_.ValueAt(e));
+    }
+  }
+  const std::size_t band_size = static_cast<std::size_t>(n_) * static_cast<std::size_t>(factor_.bandwidth() + 1);
+  h_band_.assign(factor_.data(), factor_.data() + band_size);
+  diagonal_slot_.resize(static_cast<std::size_t>(n_));
+  for (int i = 0; i < n_; ++i) diagonal_slot_[static_cast<std::size_t>(i)] = static_cast<int>(factor_.Offset(at(i), at(i)));
+  pair_slot_.clear();
+  pair_product_.clear();
+  pair_end_.resize(static_cast<std::size_t>(m_));
+  for (int k = 0; k < m_; ++k) {
+    for (int e = rows_.RowBegin(k); e < rows_.RowEnd(k); ++e) {
+      const int pe = at(rows_.ColumnAt(e));
+      for (int f = rows_.RowBegin(k); f < rows_.RowEnd(k); ++f) {
+        const int pf = at(rows_.ColumnAt(f));
+        if (pe < pf) continue;
+        pair_slot_.push_back(static_cast<int>(factor_.Offset(pe, pf)));
+        pair_product_.push_back(rows_.ValueAt(e) * rows_.ValueAt(f));
+      }
+    }
+    pair_end_[static_cast<std::size_t>(k)] = static_cast<int>(pair_slot_.size());
+  }
   analysed_ = true;
 }
 
@@ -180,35 +213,41 @@ void BandedIpmQpSolver::ComputeValues(const Eigen::VectorXd& x, Eigen::VectorXd*
 }
 
 void BandedIpmQpSolver::ComputeResiduals() {
+  const int n = sides_;
+  const auto sign = side_sign_.head(n).array();
+  side_work_.head(n).array() = sign * l_.head(n).array();
   y_ = w_;
-  for (int j = 0; j < sides_; ++j) y_[side_constraint_[static_cast<std::size_t>(j)]] -= side_sign_[j] * l_[j];
+  for (int j = 0; j < n; ++j) y_[side_constraint_[static_cast<std::size_t>(j)]] -= side_work_[j];
   measures_ = Measure(x_, y_, &v_, &hx_, &r_dual_);
-  for (int j = 0; j < sides_; ++j) {
-    r_[j] = side_sign_[j] * (v_[side_constraint_[static_cast<std::size_t>(j)]] - side_bound_[j]) - s_[j];
+  for (int j = 0; j < n; ++j) side_work_[j] = v_[side_constraint_[static_cast<std::size_t>(j)]];
+  r_.head(n).array() = sign * (side_work_.head(n).array() - side_bound_.head(n).array()) - s_.head(n).array();
+  mu_ = n > 0 ? s_.head(n).dot(l_.head(n)) / n : 0.0;
+}
+
+void BandedIpmQpSolver::Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& y, Eigen::VectorXd* values,
+                                  Eigen::VectorXd* hx, Eigen::VectorXd* r_dual) const {
+  ComputeValues(x, values);
+  hessian_rows_.Multiply(x, hx);
+  *r_dual = *hx + program_->linear_cost();
+  for (int k = 0; k < m_; ++k) {
+    if (y[k] != 0.0) rows_.AddRow(k, y[k], r_dual);
   }
-  mu_ = sides_ > 0 ? s_.head(sides_).dot(l_.head(sides_)) / sides_ : 0.0;
+  r_dual->noalias() += y.tail(n_);
 }
 
 BandedIpmQpSolver::Measures BandedIpmQpSolver::Measure(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
                                                        Eigen::VectorXd* values, Eigen::VectorXd* hx,
                                                        Eigen::VectorXd* r_dual) const {
-  ComputeValues(x, values);
-  hessian_rows_.Multiply(x, hx);
+  Residuals(x, y, values, hx, r_dual);
   const Eigen::VectorXd& g = program_->linear_cost();
-  *r_dual = *hx + g;
-  for (int k = 0; k < m_; ++k) {
-    if (y[k] != 0.0) rows_.AddRow(k, y[k], r_dual);
-  }
-  r_dual->noalias() += y.tail(n_);
   Measures out;
-  double support = 0.0;
-  for (int k = 0; k < n_ + m_; ++k) {
-    const double v = (*values)[k], lo = lower_[k], up = upper_[k];
-    support += GapSupportTerm(y[k], lo, up);
-    if (std::isfinite(lo)) out.primal = std::max(out.primal, lo - v);
-    if (std::isfinite(up)) out.primal = std::max(out.primal, v - up);
-    if (std::isfinite(lo) || std::isfinite(up)) out.primal_scale = std::max(out.primal_scale, std::abs(v));
-  }
+  // qpbenchmark's support term (GapSupportTerm) and violation over every constraint, without a
+  // branch per constraint: an infinite side's finite_ stand-in is 0 and its violation -inf.
+  const auto v = values->array();
+  const auto yk = y.array();
+  const double support = (yk.max(0.0) * finite_upper_.array() + yk.min(0.0) * finite_lower_.array()).sum();
+  out.primal = std::max({0.0, (lower_.array() - v).maxCoeff(), (v - upper_.array()).maxCoeff()});
+  out.primal_scale = (v.abs() * bounded_.array()).maxCoeff();
   out.combination = (*r_dual - *hx - g).lpNorm<Eigen::Infinity>();
   out.dual = r_dual->lpNorm<Eigen::Infinity>();
   const double xhx = x.dot(*hx), gx = g.dot(x);
@@ -250,6 +289,7 @@ bool BandedIpmQpSolver::IsUnbounded() const {
 
 void BandedIpmQpSolver::Factorize() {
   inverse_s_.head(sides_) = s_.head(sides_).cwiseInverse();  // the two directions divide by s too
+  inverse_l_.head(sides_) = l_.head(sides_).cwiseInverse();  // and MaxStep() by s and l
   d_.setZero();
   for (int j = 0; j < sides_; ++j) d_[side_constraint_[static_cast<std::size_t>(j)]] += l_[j] * inverse_s_[j];
   for (const int k : equalities_) d_[k] = 1.0 / delta_;
@@ -258,28 +298,20 @@ void BandedIpmQpSolver::Factorize() {
 }
 
 void BandedIpmQpSolver::Assemble() {
-  // The lower triangle of H + rho I + sum_k D_k a_k a_k', in the factor's order.
-  factor_.SetZero();
-  const auto at = [this](int i) { return ordering_.position(i); };
-  for (int i = 0; i < n_; ++i) {
-    const int pi = at(i);
-    for (int e = hessian_rows_.RowBegin(i); e < hessian_rows_.RowEnd(i); ++e) {
-      const int pj = at(hessian_rows_.ColumnAt(e));
-      if (pi >= pj) factor_.Add(pi, pj, hessian_rows_.ValueAt(e));
-    }
-    factor_.Add(pi, pi, rho_ + d_[m_ + i]);
-  }
+  // The lower triangle of H + rho I + sum_k D_k a_k a_k', in the factor's order: H's part copied,
+  // each row's products a_ke a_kf scaled by D_k into the places Analyse() looked up.
+  double* band = factor_.data();
+  std::copy(h_band_.begin(), h_band_.end(), band);
+  for (int i = 0; i < n_; ++i) band[diagonal_slot_[static_cast<std::size_t>(i)]] += rho_ + d_[m_ + i];
+  int p = 0;
   for (int k = 0; k < m_; ++k) {
+    const int end = pair_end_[static_cast<std::size_t>(k)];
     const double d = d_[k];
-    if (d == 0.0) continue;
-    for (int e = rows_.RowBegin(k); e < rows_.RowEnd(k); ++e) {
-      const int pe = at(rows_.ColumnAt(e));
-      const double de = d * rows_.ValueAt(e);
-      for (int f = rows_.RowBegin(k); f < rows_.RowEnd(k); ++f) {
-        const int pf = at(rows_.ColumnAt(f));
-        if (pe >= pf) factor_.Add(pe, pf, de * rows_.ValueAt(f));
-      }
+    if (d == 0.0) {
+      p = end;
+      continue;
     }
+    for (; p < end; ++p) band[pair_slot_[static_cast<std::size_t>(p)]] += d * pair_product_[static_cast<std::size_t>(p)];
   }
 }
 
@@ -309,11 +341,14 @@ void BandedIpmQpSolver::SolveReduced() {
 
 void BandedIpmQpSolver::Direction() {
   // Per side: ds = sign dv + r and l ds + s dl = -rc give dl = -(rc + l ds) / s, which in the
-  // stationarity row adds D dv + e with e = sign (rc + l r) / s.
+  // stationarity row adds D dv + e with e = sign (rc + l r) / s. The per-side arithmetic runs
+  // over whole vectors; only the gathers and scatters by constraint are loops.
+  const int n = sides_;
+  const auto sign = side_sign_.head(n).array(), l = l_.head(n).array(), inv_s = inverse_s_.head(n).array();
+  const auto rc = rc_.head(n).array(), r = r_.head(n).array();
+  side_work_.head(n).array() = sign * (rc + l * r) * inv_s;
   e_.setZero();
-  for (int j = 0; j < sides_; ++j) {
-    e_[side_constraint_[static_cast<std::size_t>(j)]] += side_sign_[j] * (rc_[j] + l_[j] * r_[j]) * inverse_s_[j];
-  }
+  for (int j = 0; j < n; ++j) e_[side_constraint_[static_cast<std::size_t>(j)]] += side_work_[j];
   for (const int k : equalities_) e_[k] = (v_[k] - lower_[k]) / delta_;
   rhs_ = -r_dual_;
   for (int k = 0; k < m_; ++k) {
@@ -322,21 +357,21 @@ void BandedIpmQpSolver::Direction() {
   rhs_ -= e_.tail(n_);
   SolveReduced();
   ComputeValues(dx_, &dv_);
-  for (int j = 0; j < sides_; ++j) {
-    ds_[j] = side_sign_[j] * dv_[side_constraint_[static_cast<std::size_t>(j)]] + r_[j];
-    dl_[j] = -(rc_[j] + l_[j] * ds_[j]) * inverse_s_[j];
-  }
+  for (int j = 0; j < n; ++j) side_work_[j] = dv_[side_constraint_[static_cast<std::size_t>(j)]];
+  ds_.head(n).array() = sign * side_work_.head(n).array() + r;
+  dl_.head(n).array() = -(rc + l * ds_.head(n).array()) * inv_s;
   dw_.setZero();
   for (const int k : equalities_) dw_[k] = (dv_[k] + v_[k] - lower_[k]) / delta_;
 }
 
 double BandedIpmQpSolver::MaxStep() const {
-  double alpha = kInf;
-  for (int j = 0; j < sides_; ++j) {
-    if (ds_[j] < 0) alpha = std::min(alpha, -s_[j] / ds_[j]);
-    if (dl_[j] < 0) alpha = std::min(alpha, -l_[j] / dl_[j]);
-  }
-  return alpha;
+  // 1 / the fastest relative decrease of any slack or multiplier: products with their
+  // reciprocals (Factorize()) instead of a division and a branch per side.
+  if (sides_ == 0) return kInf;
+  const auto n = sides_;
+  const double rate = std::max({0.0, (-ds_.head(n).array() * inverse_s_.head(n).array()).maxCoeff(),
+                                (-dl_.head(n).array() * inverse_l_.head(n).array()).maxCoeff()});
+  return rate > 0.0 ? 1.0 / rate : kInf;
 }
 
 double BandedIpmQpSolver::ComplementarityAfter(double alpha) const {
@@ -484,7 +519,7 @@ bool BandedIpmQpSolver::Polish() {
   factor_.Factorize(kPivotTol);
   xp_ = x_;
   for (int step = 0; step < kPolishSteps; ++step) {
-    polish_measures_ = Measure(xp_, yp_, &vp_, &hxp_, &rdp_);
+    Residuals(xp_, yp_, &vp_, &hxp_, &rdp_);
     rhs_ = -rdp_;
     for (int k = 0; k < n_ + m_; ++k) {
       if (active_[static_cast<std::size_t>(k)] != 0) AddNormal(k, (target_[k] - vp_[k]) / delta_, &rhs_);

@@ -41,8 +41,8 @@
 
 #include "planning/optim/band_cholesky.h"
 #include "planning/optim/band_ordering.h"
+#include "planning/optim/packed_rows.h"
 #include "planning/optim/solver.h"
-#include "planning/optim/sparse_rows.h"
 
 namespace stairplan::optim {
 
@@ -115,6 +115,9 @@ class BandedIpmQpSolver final : public Solver {
   };
   Measures Measure(const Eigen::VectorXd& x, const Eigen::VectorXd& y, Eigen::VectorXd* values, Eigen::VectorXd* hx,
                    Eigen::VectorXd* r_dual) const;
+  // Only the vectors of Measure(): values, H x and the dual residual.
+  void Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& y, Eigen::VectorXd* values, Eigen::VectorXd* hx,
+                 Eigen::VectorXd* r_dual) const;
   // The iterate's duals, residuals, complementarity and measures.
   void ComputeResiduals();
   bool Converged(const Measures& measures) const;
@@ -161,12 +164,19 @@ class BandedIpmQpSolver final : public Solver {
 
   std::uint64_t hessian_revision_ = 0, matrix_revision_ = 0;
   bool analysed_ = false;
-  SparseRows rows_, hessian_rows_;
+  PackedRows rows_, hessian_rows_;
   BandOrdering ordering_;
   BandCholesky factor_;
+  // Assemble()'s places, from Analyse(): H's lower triangle in band storage, each variable's
+  // diagonal slot, and per row (ending at pair_end_[k]) the slots and products a_ke a_kf of its
+  // pairs of nonzeros in the lower triangle.
+  std::vector<double> h_band_;
+  std::vector<int> diagonal_slot_, pair_slot_, pair_end_;
+  std::vector<double> pair_product_;
 
-  // Per constraint (rows, then variables): the bounds (+-inf: none).
-  Eigen::VectorXd lower_, upper_;
+  // Per constraint (rows, then variables): the bounds (+-inf: none); the same with 0 for an
+  // infinite one, and 1 where either is finite (0 elsewhere).
+  Eigen::VectorXd lower_, upper_, finite_lower_, finite_upper_, bounded_;
   // Each finite inequality side j (a two-sided constraint has two): its constraint, its sign
   // (+1 lower: s = v - bound, -1 upper: s = bound - v) and bound, so that s = sign (v - bound).
   // The per-side vectors are sized for every constraint's two sides; the first sides_ are used.
@@ -179,10 +189,11 @@ class BandedIpmQpSolver final : public Solver {
   // The iterate: x, per side the slack s and multiplier l, per constraint the equality
   // multipliers w (zero elsewhere).
   Eigen::VectorXd x_, s_, l_, w_;
-  // Per side 1 / s, the residual sign (v - bound) - s, the complementarity targets and the step;
-  // whether the last step changed the multiplier relatively more than the slack (the side is
-  // active by Tapia's indicator).
-  Eigen::VectorXd inverse_s_, r_, rc_, ds_, dl_;
+  // Per side 1 / s and 1 / l (at the last factorisation), the residual sign (v - bound) - s,
+  // the complementarity targets and the step; whether the last step changed the multiplier
+  // relatively more than the slack (the side is active by Tapia's indicator).
+  Eigen::VectorXd inverse_s_, inverse_l_, r_, rc_, ds_, dl_;
+  Eigen::VectorXd side_work_;  // per side, scratch: a gather's or a scatter's values
   std::vector<char> multiplier_leads_;
   // Per constraint: values v = a_k'x, D, the right-hand side's term e, the step's dv and dw, the
   // duals in SolveResult's convention. Per variable: H x, the dual residual H x + g + A'y + z.
