@@ -108,6 +108,7 @@ void BandedIpmQpSolver::Prepare(const Program& program) {
   }
   if (resized || other || program.matrix_revision() != matrix_revision_) {
     rows_.Assign(program.constraint_matrix());
+    columns_.AssignTransposeOf(rows_);
     matrix_revision_ = program.matrix_revision();
     analysed_ = false;
   }
@@ -228,11 +229,8 @@ void BandedIpmQpSolver::Residuals(const Eigen::VectorXd& x, const Eigen::VectorX
                                   Eigen::VectorXd* hx, Eigen::VectorXd* r_dual) const {
   ComputeValues(x, values);
   hessian_rows_.Multiply(x, hx);
-  *r_dual = *hx + program_->linear_cost();
-  for (int k = 0; k < m_; ++k) {
-    if (y[k] != 0.0) rows_.AddRow(k, y[k], r_dual);
-  }
-  r_dual->noalias() += y.tail(n_);
+  const Eigen::VectorXd& g = program_->linear_cost();
+  for (int j = 0; j < n_; ++j) (*r_dual)[j] = (*hx)[j] + g[j] + columns_.RowDot(j, y) + y[m_ + j];
 }
 
 BandedIpmQpSolver::Measures BandedIpmQpSolver::Measure(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -350,11 +348,7 @@ void BandedIpmQpSolver::Direction() {
   e_.setZero();
   for (int j = 0; j < n; ++j) e_[side_constraint_[static_cast<std::size_t>(j)]] += side_work_[j];
   for (const int k : equalities_) e_[k] = (v_[k] - lower_[k]) / delta_;
-  rhs_ = -r_dual_;
-  for (int k = 0; k < m_; ++k) {
-    if (e_[k] != 0.0) rows_.AddRow(k, -e_[k], &rhs_);
-  }
-  rhs_ -= e_.tail(n_);
+  for (int i = 0; i < n_; ++i) rhs_[i] = -r_dual_[i] - columns_.RowDot(i, e_) - e_[m_ + i];
   SolveReduced();
   ComputeValues(dx_, &dv_);
   for (int j = 0; j < n; ++j) side_work_[j] = dv_[side_constraint_[static_cast<std::size_t>(j)]];

@@ -165,6 +165,7 @@ class BandedIpmQpSolver final : public Solver {
   std::uint64_t hessian_revision_ = 0, matrix_revision_ = 0;
   bool analysed_ = false;
   PackedRows rows_, hessian_rows_;
+  PackedRows columns_;  // A's columns, for the products A'y (rows_ for A x)
   BandOrdering ordering_;
   BandCholesky factor_;
   // Assemble()'s places, from Analyse(): H's lower triangle in band storage, each variable's

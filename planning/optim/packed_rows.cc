@@ -83,4 +83,24 @@ void PackedRows::Take(const Eigen::MatrixXd& a, bool symmetric) {
   }
 }
 
+void PackedRows::AssignTransposeOf(const PackedRows& a) {
+  const auto size = [](int v) { return static_cast<std::size_t>(v); };
+  m_ = a.n_;
+  n_ = a.m_;
+  start_.assign(size(m_) + 1, 0);
+  const std::size_t total = size(a.nonzeros());
+  for (std::size_t e = 0; e < total; ++e) ++start_[size(a.column_[e]) + 1];
+  for (int k = 0; k < m_; ++k) start_[size(k) + 1] += start_[size(k)];
+  if (column_.size() < total) column_.resize(total);
+  if (value_.size() < total) value_.resize(total);
+  cursor_.assign(start_.begin(), start_.end() - 1);
+  for (int k = 0; k < a.m_; ++k) {  // a's rows ascending: each new row's columns come out ascending
+    for (int e = a.RowBegin(k); e < a.RowEnd(k); ++e) {
+      const std::size_t slot = size(cursor_[size(a.ColumnAt(e))]++);
+      column_[slot] = k;
+      value_[slot] = a.ValueAt(e);
+    }
+  }
+}
+
 }  // namespace stairplan::optim

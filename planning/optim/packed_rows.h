@@ -27,6 +27,9 @@ class PackedRows {
   /// Takes the nonzeros of the symmetric `a` from its lower triangle (the upper one is not
   /// read), each off-diagonal one in both rows; each row's columns ascending.
   void AssignSymmetric(const Eigen::MatrixXd& a);
+  /// Takes the transpose of `a` (its columns as rows): for products A'y by rows (gathers),
+  /// where adding y_k a_k row by row stores into the entries the next row reads.
+  void AssignTransposeOf(const PackedRows& a);
 
   int rows() const { return m_; }  ///< rows of the matrix taken
   int cols() const { return n_; }  ///< columns of the matrix taken

@@ -2,7 +2,7 @@
 // columns, nothing else (signed zeros dropped, NaN kept), products with vectors; a symmetric
 // matrix from its lower triangle (the upper one garbage here, to prove it is not read); sizes
 // that are and are not multiples of its chunk of eight; taking a second matrix into the same
-// object.
+// object; the transpose of a copy.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -67,6 +67,9 @@ TEST_CASE("PackedRows: the nonzeros of a dense matrix by rows", "[banded-ipm][pa
         CHECK((y - a * x).lpNorm<Eigen::Infinity>() <= 1e-12);
         for (int k = 0; k < m; ++k) p.AddRow(k, 0.5 * k, &z);
         CHECK((z - a.transpose() * Eigen::VectorXd::LinSpaced(m, 0.0, 0.5 * (m - 1))).lpNorm<Eigen::Infinity>() <= 1e-12);
+        PackedRows t;
+        t.AssignTransposeOf(p);
+        CheckRows(t, a.transpose());
       }
     }
   }
