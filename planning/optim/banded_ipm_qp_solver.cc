@@ -64,12 +64,16 @@ void BandedIpmQpSolver::DoSolve(const Program& program, SolveResult* result) {
                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                     std::chrono::duration<double>(settings_.time_limit_s));
   }
-  Prepare(program);
+  const bool warm = Prepare(program) && settings_.warm_start && last_solved_;
   iterations_ = 0;
   next_polish_mu_ = kInf;
-  std::fill(active_.begin(), active_.end(), ActiveSide{0});
+  warm_started_ = false;
   SolveStatus status = SolveStatus::kInfeasible;
-  if (bounds_consistent_) {
+  if (bounds_consistent_ && warm && WarmPolish()) {
+    warm_started_ = true;
+    status = SolveStatus::kSolved;
+  } else if (bounds_consistent_) {
+    std::fill(active_.begin(), active_.end(), ActiveSide{0});
     StartingPoint();
     status = Iterate();
   } else {
@@ -79,10 +83,22 @@ void BandedIpmQpSolver::DoSolve(const Program& program, SolveResult* result) {
     w_.setZero();
     ComputeResiduals();
   }
+  last_solved_ = status == SolveStatus::kSolved;
   FillResult(program, status, result);
 }
 
-void BandedIpmQpSolver::Prepare(const Program& program) {
+bool BandedIpmQpSolver::WarmPolish() {
+  // The last active set, less the sides this program no longer has; its equalities as they are now.
+  for (int k = 0; k < n_ + m_; ++k) {
+    ActiveSide& side = active_[static_cast<std::size_t>(k)];
+    if ((side < 0 && !std::isfinite(lower_[k])) || (side > 0 && !std::isfinite(upper_[k]))) side = 0;
+    if (lower_[k] == upper_[k]) side = -1;
+    if (side == 0) y_[k] = 0.0;
+  }
+  return Polish();
+}
+
+bool BandedIpmQpSolver::Prepare(const Program& program) {
   const int n = program.num_variables(), m = program.num_rows();
   const bool resized = n != n_ || m != m_ || program_ == nullptr;
   const bool other = &program != program_;
@@ -121,6 +137,7 @@ void BandedIpmQpSolver::Prepare(const Program& program) {
   if (!analysed_) Analyse();
   rho_ = settings_.primal_regularization;
   delta_ = settings_.equality_regularization;
+  return !resized;
 }
 
 void BandedIpmQpSolver::LoadBounds(const Program& program) {

@@ -27,10 +27,14 @@
 // within tolerance; kInfeasible when the multipliers grow into a Farkas certificate (A'y + z ~ 0
 // with a negative support value); kUnbounded when the iterates run off along a direction of
 // descent the constraints allow; otherwise kIterationLimit, kTimeLimit or kNumericalError.
-// Duals follow SolveResult's convention. Every solve starts cold from its own starting point (an
-// interior point gains little from the last solution): the program's initial guess is not used,
-// and only the workspace and the variable order are kept between solves, so a solve of a
-// program of the same size allocates nothing (storage only grows with the band and nonzeros).
+// Duals follow SolveResult's convention. The interior point starts from its own starting point
+// (it gains little from the last solution; the program's initial guess is not used). A solve
+// after a solved one of the same size first tries the polish on the last solve's active set
+// from its solution (settings warm_start): a control loop's next QP usually keeps the active
+// set, and then one factorisation solves it (reported as 0 iterations); when the polish fails
+// its checks the interior point runs as from cold. The workspace and the variable order are
+// kept between solves, so a solve of a program of the same size allocates nothing (storage only
+// grows with the band and nonzeros).
 #pragma once
 
 #include <chrono>
@@ -69,6 +73,9 @@ struct BandedIpmQpSettings {
   /// by default: an interior point corrects an inexact step at the next iteration, and the final
   /// accuracy comes from the polish on the active set.
   int refinement_steps = 0;
+  /// Try the last solve's active set first when the last solve was solved and the program has
+  /// the same size (see the file's top comment); off: every solve runs the interior point.
+  bool warm_start = true;
   /// Throws std::invalid_argument naming the offending field.
   void Validate() const;
 };
@@ -94,12 +101,16 @@ class BandedIpmQpSolver final : public Solver {
   int bandwidth() const { return factor_.bandwidth(); }
   /// True when the last solve reordered the variables (reverse Cuthill-McKee).
   bool reordered() const { return ordering_.reordered(); }
+  /// True when the last solve was solved by the polish on the active set of the solve before
+  /// (settings warm_start), without interior-point iterations.
+  bool warm_started() const { return warm_started_; }
 
  private:
   void DoSolve(const Program& program, SolveResult* result) override;
 
-  // Sizing, the sparse copies of H and A (when their revisions changed), the bounds.
-  void Prepare(const Program& program);
+  // Sizing, the sparse copies of H and A (when their revisions changed), the bounds; false when
+  // the size changed (the last solve's iterate means nothing then).
+  bool Prepare(const Program& program);
   // This solve's sides and equalities from the program's bounds.
   void LoadBounds(const Program& program);
   // The variable order and band from the pattern of H + A'A.
@@ -145,6 +156,9 @@ class BandedIpmQpSolver final : public Solver {
   void Step(double alpha);
   // The start (see StartingPoint() in the .cc).
   void StartingPoint();
+  // The polish on the last solve's active set, from its solution (see warm_start); true when it
+  // solved the program.
+  bool WarmPolish();
   SolveStatus Iterate();
   void FillResult(const Program& program, SolveStatus status, SolveResult* result) const;
 
@@ -206,6 +220,10 @@ class BandedIpmQpSolver final : public Solver {
   Eigen::VectorXd xp_, yp_, vp_, hxp_, rdp_, target_;
   Measures measures_, polish_measures_;
   double next_polish_mu_ = kInf;
+  // The last solve ended solved (its x_, y_ and active_ are a warm start's guess).
+  bool last_solved_ = false;
+  // Whether the last solve ended in the polish of the solve before's active set.
+  bool warm_started_ = false;
   double mu_ = 0.0;
   double rho_ = 0.0, delta_ = 0.0;
   int iterations_ = 0;
