@@ -179,6 +179,7 @@ void BandedIpmQpSolver::Analyse() {
   if (pairs > kDenseEdgeFraction * static_cast<double>(n_) * static_cast<double>(n_)) {
     ordering_.KeepDense();
   } else {
+    ordering_.Reserve(static_cast<std::size_t>(pairs) + static_cast<std::size_t>(hessian_rows_.nonzeros()));
     for (int i = 0; i < n_; ++i) {
       for (int e = hessian_rows_.RowBegin(i); e < hessian_rows_.RowEnd(i); ++e) {
         if (hessian_rows_.ColumnAt(e) < i) ordering_.AddEdge(i, hessian_rows_.ColumnAt(e));
@@ -209,6 +210,9 @@ void BandedIpmQpSolver::Analyse() {
   for (int i = 0; i < n_; ++i) diagonal_slot_[static_cast<std::size_t>(i)] = static_cast<int>(factor_.Offset(at(i), at(i)));
   pair_slot_.clear();
   pair_product_.clear();
+  const std::size_t slots = static_cast<std::size_t>(pairs) + static_cast<std::size_t>(rows_.nonzeros());
+  pair_slot_.reserve(slots);  // a row's pairs in the lower triangle, its diagonal products included
+  pair_product_.reserve(slots);
   pair_end_.resize(static_cast<std::size_t>(m_));
   for (int k = 0; k < m_; ++k) {
     for (int e = rows_.RowBegin(k); e < rows_.RowEnd(k); ++e) {
