@@ -29,9 +29,13 @@ constexpr double kPivotTol = 1e-18;
 // it would cost more than it can save.
 constexpr double kDenseEdgeFraction = 0.25;
 // Multipliers this much larger than the gradient H x + g make a Farkas certificate worth checking,
-// and it holds when A'y + z and the support value are within kCertificateTol of |y|.
+// and it holds when A'y + z is within kCombinationTol of |y| and the support value below
+// -kCertificateTol |y|.
 constexpr double kLargeDualRatio = 1e6;
 constexpr double kCertificateTol = 1e-6;
+// A'y + z of a Farkas certificate must vanish to this fraction of |y|: multipliers running off
+// near mu = 0 on a feasible program (QPCBOEI2) come within 3e-7 of it.
+constexpr double kCombinationTol = 1e-9;
 // Refinement steps of the polish, and how much mu must fall before a failed polish is retried.
 // (Three steps take the regularised system's error, about delta times the multipliers, below
 // round-off; the polish's own measures decide whether it is kept.)
@@ -289,7 +293,7 @@ bool BandedIpmQpSolver::IsInfeasible() const {
   const double y_norm = y_.lpNorm<Eigen::Infinity>();
   const double gradient = (hx_ + program_->linear_cost()).lpNorm<Eigen::Infinity>();
   if (!(y_norm > kLargeDualRatio * (1.0 + gradient))) return false;
-  return measures_.combination <= kCertificateTol * y_norm && measures_.support < -kCertificateTol * y_norm;
+  return measures_.combination <= kCombinationTol * y_norm && measures_.support < -kCertificateTol * y_norm;
 }
 
 bool BandedIpmQpSolver::IsUnbounded() const {
