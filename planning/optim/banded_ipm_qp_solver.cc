@@ -111,10 +111,12 @@ bool BandedIpmQpSolver::Prepare(const Program& program) {
     n_ = n;
     m_ = m;
     const int k = n + m;
-    for (Eigen::VectorXd* v : {&lower_, &upper_, &finite_lower_, &finite_upper_, &bounded_, &w_, &v_, &d_, &e_, &dv_, &dw_, &y_, &yp_, &vp_, &target_}) {
+    for (Eigen::VectorXd* v : {&lower_, &upper_, &finite_lower_, &finite_upper_, &bounded_, &w_, &v_, &d_, &e_,
+                               &dv_, &dw_, &y_, &yp_, &vp_, &target_}) {
       v->resize(k);
     }
-    for (Eigen::VectorXd* v : {&side_sign_, &side_bound_, &s_, &l_, &inverse_s_, &inverse_l_, &side_work_, &r_, &rc_, &ds_, &dl_}) {
+    for (Eigen::VectorXd* v :
+         {&side_sign_, &side_bound_, &s_, &l_, &inverse_s_, &inverse_l_, &side_work_, &r_, &rc_, &ds_, &dl_}) {
       v->resize(2 * k);
     }
     for (Eigen::VectorXd* v :
@@ -211,7 +213,9 @@ void BandedIpmQpSolver::Analyse() {
   const std::size_t band_size = static_cast<std::size_t>(n_) * static_cast<std::size_t>(factor_.bandwidth() + 1);
   h_band_.assign(factor_.data(), factor_.data() + band_size);
   diagonal_slot_.resize(static_cast<std::size_t>(n_));
-  for (int i = 0; i < n_; ++i) diagonal_slot_[static_cast<std::size_t>(i)] = static_cast<int>(factor_.Offset(at(i), at(i)));
+  for (int i = 0; i < n_; ++i) {
+    diagonal_slot_[static_cast<std::size_t>(i)] = static_cast<int>(factor_.Offset(at(i), at(i)));
+  }
   pair_slot_.clear();
   pair_product_.clear();
   const std::size_t slots = static_cast<std::size_t>(pairs) + static_cast<std::size_t>(rows_.nonzeros());
@@ -334,7 +338,9 @@ void BandedIpmQpSolver::Assemble() {
       p = end;
       continue;
     }
-    for (; p < end; ++p) band[pair_slot_[static_cast<std::size_t>(p)]] += d * pair_product_[static_cast<std::size_t>(p)];
+    for (; p < end; ++p) {
+      band[pair_slot_[static_cast<std::size_t>(p)]] += d * pair_product_[static_cast<std::size_t>(p)];
+    }
   }
 }
 

@@ -66,7 +66,8 @@ TEST_CASE("PackedRows: the nonzeros of a dense matrix by rows", "[banded-ipm][pa
         p.Multiply(x, &y);
         CHECK((y - a * x).lpNorm<Eigen::Infinity>() <= 1e-12);
         for (int k = 0; k < m; ++k) p.AddRow(k, 0.5 * k, &z);
-        CHECK((z - a.transpose() * Eigen::VectorXd::LinSpaced(m, 0.0, 0.5 * (m - 1))).lpNorm<Eigen::Infinity>() <= 1e-12);
+        const Eigen::VectorXd weights = Eigen::VectorXd::LinSpaced(m, 0.0, 0.5 * (m - 1));
+        CHECK((z - a.transpose() * weights).lpNorm<Eigen::Infinity>() <= 1e-12);
         PackedRows t;
         t.AssignTransposeOf(p);
         CheckRows(t, a.transpose());
