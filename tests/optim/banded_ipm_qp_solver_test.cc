@@ -251,6 +251,30 @@ TEST_CASE("BandedIpmQpSolver: infeasible, unbounded and limited solves say so", 
     const SolveResult r = BandedIpmQpSolver().Solve(lp);
     CHECK(r.status == SolveStatus::kUnbounded);
   }
+  SECTION("a NaN anywhere in H or A (Solver's check sums in lanes of eight, then a tail)") {
+    BodyQpExample e = MakeBodyQpExample(40);
+    Program& q = e.program;
+    for (const Eigen::Index i : {Eigen::Index{0}, q.hessian().size() / 2, q.hessian().size() - 1}) {
+      const double kept = q.hessian().data()[i];
+      q.MutableHessian().data()[i] = std::nan("");
+      CHECK(BandedIpmQpSolver().Solve(q).status == SolveStatus::kInvalidInput);
+      q.MutableHessian().data()[i] = kept;
+    }
+    for (const Eigen::Index i : {Eigen::Index{3}, q.constraint_matrix().size() - 1}) {
+      const double kept = q.constraint_matrix().data()[i];
+      q.MutableConstraintMatrix().data()[i] = std::nan("");
+      CHECK(BandedIpmQpSolver().Solve(q).status == SolveStatus::kInvalidInput);
+      q.MutableConstraintMatrix().data()[i] = kept;
+    }
+    CHECK(BandedIpmQpSolver().Solve(q).status == SolveStatus::kSolved);
+    Program small;  // 3 x 3: one lane of eight and a tail of one
+    small.AddQuadraticCost(small.AddVariables("z", 3), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Ones());
+    for (const Eigen::Index i : {Eigen::Index{0}, Eigen::Index{8}}) {
+      small.MutableHessian().data()[i] = std::nan("");
+      CHECK(BandedIpmQpSolver().Solve(small).status == SolveStatus::kInvalidInput);
+      small.MutableHessian().data()[i] = 1.0;
+    }
+  }
   SECTION("the iteration and time limits") {
     BodyQpExample e = MakeBodyQpExample(40);
     BandedIpmQpSettings settings;
