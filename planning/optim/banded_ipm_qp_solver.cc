@@ -116,7 +116,7 @@ bool BandedIpmQpSolver::Prepare(const Program& program) {
       v->resize(k);
     }
     for (Eigen::VectorXd* v :
-         {&side_sign_, &side_bound_, &s_, &l_, &inverse_s_, &inverse_l_, &side_work_, &r_, &rc_, &ds_, &dl_}) {
+         {&side_sign_, &side_bound_, &s_, &l_, &inverse_s_, &inverse_l_, &r_, &rc_, &ds_, &dl_}) {
       v->resize(2 * k);
     }
     for (Eigen::VectorXd* v :
@@ -127,6 +127,7 @@ bool BandedIpmQpSolver::Prepare(const Program& program) {
     multiplier_leads_.resize(2 * static_cast<std::size_t>(k));
     equalities_.reserve(static_cast<std::size_t>(k));
     active_.assign(static_cast<std::size_t>(k), 0);
+    previous_active_.assign(static_cast<std::size_t>(k), 0);
   }
   if (resized || other || program.matrix_revision() != matrix_revision_) {
     rows_.Assign(program.constraint_matrix());
@@ -243,14 +244,21 @@ void BandedIpmQpSolver::ComputeValues(const Eigen::VectorXd& x, Eigen::VectorXd*
 }
 
 void BandedIpmQpSolver::ComputeResiduals() {
+  // Each per-side pass fuses its gather or scatter with its arithmetic (local pointers, so the
+  // compiler need not reload members after every store).
   const int n = sides_;
-  const auto sign = side_sign_.head(n).array();
-  side_work_.head(n).array() = sign * l_.head(n).array();
+  const int* constraint = side_constraint_.data();
+  const double* sign = side_sign_.data();
+  const double* s = s_.data();
+  const double* l = l_.data();
   y_ = w_;
-  for (int j = 0; j < n; ++j) y_[side_constraint_[static_cast<std::size_t>(j)]] -= side_work_[j];
+  double* y = y_.data();
+  for (int j = 0; j < n; ++j) y[constraint[j]] -= sign[j] * l[j];
   measures_ = Measure(x_, y_, &v_, &hx_, &r_dual_);
-  for (int j = 0; j < n; ++j) side_work_[j] = v_[side_constraint_[static_cast<std::size_t>(j)]];
-  r_.head(n).array() = sign * (side_work_.head(n).array() - side_bound_.head(n).array()) - s_.head(n).array();
+  const double* v = v_.data();
+  const double* bound = side_bound_.data();
+  double* r = r_.data();
+  for (int j = 0; j < n; ++j) r[j] = sign[j] * (v[constraint[j]] - bound[j]) - s[j];
   mu_ = n > 0 ? s_.head(n).dot(l_.head(n)) / n : 0.0;
 }
 
@@ -318,7 +326,11 @@ void BandedIpmQpSolver::Factorize() {
   inverse_s_.head(sides_) = s_.head(sides_).cwiseInverse();  // the two directions divide by s too
   inverse_l_.head(sides_) = l_.head(sides_).cwiseInverse();  // and MaxStep() by s and l
   d_.setZero();
-  for (int j = 0; j < sides_; ++j) d_[side_constraint_[static_cast<std::size_t>(j)]] += l_[j] * inverse_s_[j];
+  const int* constraint = side_constraint_.data();
+  const double* l = l_.data();
+  const double* inv_s = inverse_s_.data();
+  double* d = d_.data();
+  for (int j = 0; j < sides_; ++j) d[constraint[j]] += l[j] * inv_s[j];
   for (const int k : equalities_) d_[k] = 1.0 / delta_;
   Assemble();
   factor_.Factorize(kPivotTol);
@@ -370,21 +382,37 @@ void BandedIpmQpSolver::SolveReduced() {
 
 void BandedIpmQpSolver::Direction() {
   // Per side: ds = sign dv + r and l ds + s dl = -rc give dl = -(rc + l ds) / s, which in the
-  // stationarity row adds D dv + e with e = sign (rc + l r) / s. The per-side arithmetic runs
-  // over whole vectors; only the gathers and scatters by constraint are loops.
+  // stationarity row adds D dv + e with e = sign (rc + l r) / s. The gathers and scatters by
+  // constraint fuse with the per-side arithmetic, the scatter into e with its terms
+  // and MaxStep()'s rate in the same pass as the steps: one pass over the sides before the
+  // solve, one after (local pointers, so stores do not make the compiler reload members).
   const int n = sides_;
-  const auto sign = side_sign_.head(n).array(), l = l_.head(n).array(), inv_s = inverse_s_.head(n).array();
-  const auto rc = rc_.head(n).array(), r = r_.head(n).array();
-  side_work_.head(n).array() = sign * (rc + l * r) * inv_s;
+  const int* constraint = side_constraint_.data();
+  const double* sign = side_sign_.data();
+  const double* l = l_.data();
+  const double* inv_s = inverse_s_.data();
+  const double* inv_l = inverse_l_.data();
+  const double* rc = rc_.data();
+  const double* r = r_.data();
   e_.setZero();
-  for (int j = 0; j < n; ++j) e_[side_constraint_[static_cast<std::size_t>(j)]] += side_work_[j];
+  double* e = e_.data();
+  for (int j = 0; j < n; ++j) e[constraint[j]] += sign[j] * (rc[j] + l[j] * r[j]) * inv_s[j];
   for (const int k : equalities_) e_[k] = (v_[k] - lower_[k]) / delta_;
   for (int i = 0; i < n_; ++i) rhs_[i] = -r_dual_[i] - columns_.RowDot(i, e_) - e_[m_ + i];
   SolveReduced();
   ComputeValues(dx_, &dv_);
-  for (int j = 0; j < n; ++j) side_work_[j] = dv_[side_constraint_[static_cast<std::size_t>(j)]];
-  ds_.head(n).array() = sign * side_work_.head(n).array() + r;
-  dl_.head(n).array() = -(rc + l * ds_.head(n).array()) * inv_s;
+  const double* dv = dv_.data();
+  double* ds = ds_.data();
+  double* dl = dl_.data();
+  double rate = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double dsj = sign[j] * dv[constraint[j]] + r[j];
+    const double dlj = -(rc[j] + l[j] * dsj) * inv_s[j];
+    ds[j] = dsj;
+    dl[j] = dlj;
+    rate = std::max(rate, std::max(-dsj * inv_s[j], -dlj * inv_l[j]));
+  }
+  step_rate_ = rate;
   dw_.setZero();
   for (const int k : equalities_) dw_[k] = (dv_[k] + v_[k] - lower_[k]) / delta_;
 }
@@ -392,11 +420,8 @@ void BandedIpmQpSolver::Direction() {
 double BandedIpmQpSolver::MaxStep() const {
   // 1 / the fastest relative decrease of any slack or multiplier: products with their
   // reciprocals (Factorize()) instead of a division and a branch per side.
-  if (sides_ == 0) return kInf;
-  const auto n = sides_;
-  const double rate = std::max({0.0, (-ds_.head(n).array() * inverse_s_.head(n).array()).maxCoeff(),
-                                (-dl_.head(n).array() * inverse_l_.head(n).array()).maxCoeff()});
-  return rate > 0.0 ? 1.0 / rate : kInf;
+  // (Direction() takes the rate in its pass over the sides.)
+  return step_rate_ > 0.0 ? 1.0 / step_rate_ : kInf;
 }
 
 double BandedIpmQpSolver::ComplementarityAfter(double alpha) const {
@@ -410,12 +435,18 @@ void BandedIpmQpSolver::Step(double alpha) {
   // its multiplier, an inactive side's multiplier faster than its slack. Unlike l > s it needs no
   // common unit for slacks (metres) and multipliers (newtons): on the body QP it names the
   // active set three iterations sooner, and the polish ends the solve there.
+  // One pass over the sides through local pointers: the indicator and both updates together.
+  double* s = s_.data();
+  double* l = l_.data();
+  const double* ds = ds_.data();
+  const double* dl = dl_.data();
+  int* leads = multiplier_leads_.data();
   for (int j = 0; j < sides_; ++j) {
-    multiplier_leads_[static_cast<std::size_t>(j)] = dl_[j] * s_[j] > ds_[j] * l_[j] ? 1 : 0;
+    leads[j] = dl[j] * s[j] > ds[j] * l[j] ? 1 : 0;
+    s[j] += alpha * ds[j];
+    l[j] += alpha * dl[j];
   }
   x_ += alpha * dx_;
-  s_.head(sides_) += alpha * ds_.head(sides_);
-  l_.head(sides_) += alpha * dl_.head(sides_);
   w_ += alpha * dw_;
 }
 
@@ -514,16 +545,28 @@ int BandedIpmQpSolver::UpdateActiveSides() {
   // Active where the last step shrank the slack relatively more than the multiplier (Step()),
   // before any step where the multiplier exceeds the slack; an equality always, on its lower
   // side as SolveResult's convention has it.
-  previous_active_ = active_;
-  std::fill(active_.begin(), active_.end(), ActiveSide{0});
-  for (int j = 0; j < sides_; ++j) {
-    const std::size_t k = static_cast<std::size_t>(side_constraint_[static_cast<std::size_t>(j)]);
-    const bool active = iterations_ > 0 ? multiplier_leads_[static_cast<std::size_t>(j)] != 0 : l_[j] > s_[j];
-    if (active) active_[k] = side_sign_[j] > 0 ? -1 : 1;
+  // Through local pointers: a store of an int8 side may alias any member the loop would reload.
+  active_.swap(previous_active_);
+  ActiveSide* active = active_.data();
+  std::fill(active, active + active_.size(), ActiveSide{0});
+  const int* constraint = side_constraint_.data();
+  const double* sign = side_sign_.data();
+  if (iterations_ > 0) {
+    const int* leads = multiplier_leads_.data();
+    for (int j = 0; j < sides_; ++j) {
+      if (leads[j] != 0) active[constraint[j]] = sign[j] > 0 ? -1 : 1;
+    }
+  } else {
+    const double* s = s_.data();
+    const double* l = l_.data();
+    for (int j = 0; j < sides_; ++j) {
+      if (l[j] > s[j]) active[constraint[j]] = sign[j] > 0 ? -1 : 1;
+    }
   }
-  for (const int k : equalities_) active_[static_cast<std::size_t>(k)] = -1;
+  for (const int k : equalities_) active[k] = -1;
+  const ActiveSide* previous = previous_active_.data();
   int changes = 0;
-  for (std::size_t k = 0; k < active_.size(); ++k) changes += active_[k] != previous_active_[k] ? 1 : 0;
+  for (std::size_t k = 0; k < active_.size(); ++k) changes += active[k] != previous[k] ? 1 : 0;
   return changes;
 }
 

@@ -208,8 +208,8 @@ class BandedIpmQpSolver final : public Solver {
   // the complementarity targets and the step; whether the last step changed the multiplier
   // relatively more than the slack (the side is active by Tapia's indicator).
   Eigen::VectorXd inverse_s_, inverse_l_, r_, rc_, ds_, dl_;
-  Eigen::VectorXd side_work_;  // per side, scratch: a gather's or a scatter's values
-  std::vector<char> multiplier_leads_;
+  std::vector<int> multiplier_leads_;
+  double step_rate_ = 0.0;  // the last direction's fastest relative decrease of a slack or multiplier
   // Per constraint: values v = a_k'x, D, the right-hand side's term e, the step's dv and dw, the
   // duals in SolveResult's convention. Per variable: H x, the dual residual H x + g + A'y + z.
   Eigen::VectorXd v_, d_, e_, dv_, dw_, y_, hx_, r_dual_;
