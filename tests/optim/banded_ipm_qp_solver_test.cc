@@ -251,7 +251,7 @@ TEST_CASE("BandedIpmQpSolver: infeasible, unbounded and limited solves say so", 
     const SolveResult r = BandedIpmQpSolver().Solve(lp);
     CHECK(r.status == SolveStatus::kUnbounded);
   }
-  SECTION("a NaN anywhere in H or A (Solver's check sums in lanes of eight, then a tail)") {
+  SECTION("a NaN anywhere in H or A (Solver's check sums in lanes of sixteen, then a tail)") {
     BodyQpExample e = MakeBodyQpExample(40);
     Program& q = e.program;
     for (const Eigen::Index i : {Eigen::Index{0}, q.hessian().size() / 2, q.hessian().size() - 1}) {
@@ -267,12 +267,13 @@ TEST_CASE("BandedIpmQpSolver: infeasible, unbounded and limited solves say so", 
       q.MutableConstraintMatrix().data()[i] = kept;
     }
     CHECK(BandedIpmQpSolver().Solve(q).status == SolveStatus::kSolved);
-    Program small;  // 3 x 3: one lane of eight and a tail of one
-    small.AddQuadraticCost(small.AddVariables("z", 3), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Ones());
-    for (const Eigen::Index i : {Eigen::Index{0}, Eigen::Index{8}}) {
+    Program small;  // 5 x 5: one lane of sixteen and a tail of nine
+    small.AddQuadraticCost(small.AddVariables("z", 5), Eigen::MatrixXd::Identity(5, 5), Eigen::VectorXd::Ones(5));
+    for (const Eigen::Index i : {Eigen::Index{0}, Eigen::Index{15}, Eigen::Index{16}, Eigen::Index{24}}) {
+      const double kept = small.hessian().data()[i];
       small.MutableHessian().data()[i] = std::nan("");
       CHECK(BandedIpmQpSolver().Solve(small).status == SolveStatus::kInvalidInput);
-      small.MutableHessian().data()[i] = 1.0;
+      small.MutableHessian().data()[i] = kept;
     }
   }
   SECTION("the iteration and time limits") {
