@@ -1,6 +1,7 @@
 // QP solvers regime by regime (planning/optim/solve_regime.h): our active-set solver, our banded
-// interior point (which starts every solve cold, so its warm-sequence numbers are cold solves
-// with a kept workspace), Ipopt and CLP on (a) the body-planner-shaped QP (40 knots, 3 variables each, banded rows) along 200 cycles
+// interior point (warm: the last active set tried first by one equality-constrained solve, the
+// interior point from its own start when that fails), Ipopt and CLP on (a) the
+// body-planner-shaped QP (40 knots, 3 variables each, banded rows) along 200 cycles
 // of its per-cycle update, cold (a fresh solver per cycle) and warm sequence (each cycle from the
 // last one's solution, Ipopt with its multipliers); (b) the Maros-Meszaros set, cold; (c) the
 // Online QP sequences diesel and crane, warm sequence. Times are process CPU time per solve;

@@ -1,8 +1,9 @@
-// Band Cholesky, column by column (right-looking): each finished column updates the b columns
-// after it, over their stored entries only. The knot-structured programs it is for have narrow
-// bands (4 on the body QP), where loops of b iterations cost more in their bookkeeping than in
-// their arithmetic: bands up to kFixedBands wide run through copies of the kernels with b known
-// at compile time (unrolled), wider ones through the same kernels with b at run time.
+// Band L D L' (Cholesky without its square roots), column by column (right-looking): each
+// finished column updates the b columns after it, over their stored entries only. The
+// knot-structured programs it is for have narrow bands (4 on the body QP), where loops of b
+// iterations cost more in their bookkeeping than in their arithmetic: bands up to kFixedBands
+// wide run through copies of the kernels with b known at compile time (unrolled), wider ones
+// through the same kernels with b at run time.
 #include "planning/optim/band_cholesky.h"
 
 #include <algorithm>
@@ -12,8 +13,8 @@
 namespace stairplan::optim {
 namespace {
 
-// A replaced pivot: its square root divides the column, so its entries and the solution's
-// component there come out about 1e-32 of what they would be.
+// A replaced pivot divides its column, so its entries and the solution's component there come
+// out about 1e-64 of what they would be.
 constexpr double kHugePivot = 1e64;
 // Half-bandwidths with their own compiled kernels.
 constexpr int kFixedBands = 8;
@@ -43,35 +44,68 @@ int FactorizeBand(double* band, double* inverse_pivot, int n, int runtime_b, dou
       col[0] = kHugePivot;
       ++replaced;
     }
-    const double pivot = std::sqrt(col[0]);
-    col[0] = pivot;
-    const double inv = 1.0 / pivot;
+    const double inv = 1.0 / col[0];
     inverse_pivot[j] = inv;
-    for (int i = 1; i <= len; ++i) col[i] *= inv;
+    // The next column's pivot waits on this one's through a division, a product and an update
+    // (a square root more in L L'): the chain that sets a narrow band's speed.
     for (int k = 1; k <= len; ++k) {
-      const double v = col[k];
+      const double lk = col[k] * inv;  // col still holds d_j l_ij: a_ik -= a_ij a_kj / d_j
       double* target = col + static_cast<std::ptrdiff_t>(k) * (b + 1);  // column j + k, from its diagonal
-      for (int i = k; i <= len; ++i) target[i - k] -= col[i] * v;
+      for (int i = k; i <= len; ++i) target[i - k] -= col[i] * lk;
     }
+    for (int i = 1; i <= len; ++i) col[i] *= inv;
   });
   return replaced;
 }
 
+// L y = rhs, then D L' x = y; with kB > 0 the entries still to come ride in registers (a store
+// followed by a load of the same entry costs more than the multiply-add between them).
 template <int kB>
 void SolveBand(const double* band, const double* inverse_pivot, int n, int runtime_b, double* rhs) {
   const int b = kB > 0 ? kB : runtime_b;
-  ForEachColumn<kB>(n, b, [&](int j, auto len) {  // L y = rhs
-    const double* col = band + static_cast<std::ptrdiff_t>(j) * (b + 1);
-    const double y = rhs[j] * inverse_pivot[j];
-    rhs[j] = y;
-    for (int i = 1; i <= len; ++i) rhs[j + i] -= col[i] * y;
-  });
-  for (int j = n - 1; j >= 0; --j) {  // L' x = y
+  int j = 0;
+  if constexpr (kB > 0) {
+    if (n > kB) {
+      double w[kB];  // rhs[j .. j + kB - 1], partly eliminated
+      for (int i = 0; i < kB; ++i) w[i] = rhs[i];
+      for (; j + kB < n; ++j) {
+        const double* col = band + static_cast<std::ptrdiff_t>(j) * (kB + 1);
+        const double y = w[0];
+        rhs[j] = y;
+        for (int i = 1; i < kB; ++i) w[i - 1] = w[i] - col[i] * y;
+        w[kB - 1] = rhs[j + kB] - col[kB] * y;
+      }
+      for (int i = 0; i < kB; ++i) rhs[j + i] = w[i];
+    }
+  }
+  for (; j < n; ++j) {
     const double* col = band + static_cast<std::ptrdiff_t>(j) * (b + 1);
     const int len = std::min(b, n - 1 - j);
-    double sum = rhs[j];
-    for (int i = 1; i <= len; ++i) sum -= col[i] * rhs[j + i];
-    rhs[j] = sum * inverse_pivot[j];
+    const double y = rhs[j];
+    for (int i = 1; i <= len; ++i) rhs[j + i] -= col[i] * y;
+  }
+  // Backward: the last b rows with their shorter columns, then the rest with full ones.
+  const int tail = kB > 0 ? std::max(0, n - kB) : 0;
+  for (j = n - 1; j >= tail; --j) {
+    const double* col = band + static_cast<std::ptrdiff_t>(j) * (b + 1);
+    const int len = std::min(b, n - 1 - j);
+    double sum = rhs[j] * inverse_pivot[j];
+    for (int i = len; i >= 1; --i) sum -= col[i] * rhs[j + i];
+    rhs[j] = sum;
+  }
+  if constexpr (kB > 0) {
+    if (tail > 0) {
+      double v[kB];  // x[j + 1 .. j + kB]
+      for (int i = 0; i < kB; ++i) v[i] = rhs[tail + i];
+      for (j = tail - 1; j >= 0; --j) {
+        const double* col = band + static_cast<std::ptrdiff_t>(j) * (kB + 1);
+        double sum = rhs[j] * inverse_pivot[j];
+        for (int i = kB; i >= 1; --i) sum -= col[i] * v[i - 1];  // x[j + 1], the newest, last
+        for (int i = kB - 1; i >= 1; --i) v[i] = v[i - 1];
+        v[0] = sum;
+        rhs[j] = sum;
+      }
+    }
   }
 }
 

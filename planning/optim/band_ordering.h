@@ -25,6 +25,8 @@ class BandOrdering {
  public:
   /// Starts a pattern of n variables with no edges.
   void Reset(int n);
+  /// Room for `edges` edges (a caller that knows how many spares their growth one by one).
+  void Reserve(std::size_t edges) { edges_.reserve(edges); }
   /// Variables i and j are coupled (an off-diagonal nonzero; i == j is ignored).
   void AddEdge(int i, int j) {
     if (i != j) edges_.emplace_back(i, j);

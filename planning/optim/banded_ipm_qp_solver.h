@@ -27,10 +27,14 @@
 // within tolerance; kInfeasible when the multipliers grow into a Farkas certificate (A'y + z ~ 0
 // with a negative support value); kUnbounded when the iterates run off along a direction of
 // descent the constraints allow; otherwise kIterationLimit, kTimeLimit or kNumericalError.
-// Duals follow SolveResult's convention. Every solve starts cold from its own starting point (an
-// interior point gains little from the last solution): the program's initial guess is not used,
-// and only the workspace and the variable order are kept between solves, so a solve of a
-// program of the same size allocates nothing (storage only grows with the band and nonzeros).
+// Duals follow SolveResult's convention. The interior point starts from its own starting point
+// (it gains little from the last solution; the program's initial guess is not used). A solve
+// after a solved one of the same size first tries the polish on the last solve's active set
+// from its solution (settings warm_start): a control loop's next QP usually keeps the active
+// set, and then one factorisation solves it (reported as 0 iterations); when the polish fails
+// its checks the interior point runs as from cold. The workspace and the variable order are
+// kept between solves, so a solve of a program of the same size allocates nothing (storage only
+// grows with the band and nonzeros).
 #pragma once
 
 #include <chrono>
@@ -41,8 +45,8 @@
 
 #include "planning/optim/band_cholesky.h"
 #include "planning/optim/band_ordering.h"
+#include "planning/optim/packed_rows.h"
 #include "planning/optim/solver.h"
-#include "planning/optim/sparse_rows.h"
 
 namespace stairplan::optim {
 
@@ -69,6 +73,9 @@ struct BandedIpmQpSettings {
   /// by default: an interior point corrects an inexact step at the next iteration, and the final
   /// accuracy comes from the polish on the active set.
   int refinement_steps = 0;
+  /// Try the last solve's active set first when the last solve was solved and the program has
+  /// the same size (see the file's top comment); off: every solve runs the interior point.
+  bool warm_start = true;
   /// Throws std::invalid_argument naming the offending field.
   void Validate() const;
 };
@@ -94,12 +101,16 @@ class BandedIpmQpSolver final : public Solver {
   int bandwidth() const { return factor_.bandwidth(); }
   /// True when the last solve reordered the variables (reverse Cuthill-McKee).
   bool reordered() const { return ordering_.reordered(); }
+  /// True when the last solve was solved by the polish on the active set of the solve before
+  /// (settings warm_start), without interior-point iterations.
+  bool warm_started() const { return warm_started_; }
 
  private:
   void DoSolve(const Program& program, SolveResult* result) override;
 
-  // Sizing, the sparse copies of H and A (when their revisions changed), the bounds.
-  void Prepare(const Program& program);
+  // Sizing, the sparse copies of H and A (when their revisions changed), the bounds; false when
+  // the size changed (the last solve's iterate means nothing then).
+  bool Prepare(const Program& program);
   // This solve's sides and equalities from the program's bounds.
   void LoadBounds(const Program& program);
   // The variable order and band from the pattern of H + A'A.
@@ -115,6 +126,9 @@ class BandedIpmQpSolver final : public Solver {
   };
   Measures Measure(const Eigen::VectorXd& x, const Eigen::VectorXd& y, Eigen::VectorXd* values, Eigen::VectorXd* hx,
                    Eigen::VectorXd* r_dual) const;
+  // Only the vectors of Measure(): values, H x and the dual residual.
+  void Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& y, Eigen::VectorXd* values, Eigen::VectorXd* hx,
+                 Eigen::VectorXd* r_dual) const;
   // The iterate's duals, residuals, complementarity and measures.
   void ComputeResiduals();
   bool Converged(const Measures& measures) const;
@@ -142,6 +156,9 @@ class BandedIpmQpSolver final : public Solver {
   void Step(double alpha);
   // The start (see StartingPoint() in the .cc).
   void StartingPoint();
+  // The polish on the last solve's active set, from its solution (see warm_start); true when it
+  // solved the program.
+  bool WarmPolish();
   SolveStatus Iterate();
   void FillResult(const Program& program, SolveStatus status, SolveResult* result) const;
 
@@ -161,12 +178,20 @@ class BandedIpmQpSolver final : public Solver {
 
   std::uint64_t hessian_revision_ = 0, matrix_revision_ = 0;
   bool analysed_ = false;
-  SparseRows rows_, hessian_rows_;
+  PackedRows rows_, hessian_rows_;
+  PackedRows columns_;  // A's columns, for the products A'y (rows_ for A x)
   BandOrdering ordering_;
   BandCholesky factor_;
+  // Assemble()'s places, from Analyse(): H's lower triangle in band storage, each variable's
+  // diagonal slot, and per row (ending at pair_end_[k]) the slots and products a_ke a_kf of its
+  // pairs of nonzeros in the lower triangle.
+  std::vector<double> h_band_;
+  std::vector<int> diagonal_slot_, pair_slot_, pair_end_;
+  std::vector<double> pair_product_;
 
-  // Per constraint (rows, then variables): the bounds (+-inf: none).
-  Eigen::VectorXd lower_, upper_;
+  // Per constraint (rows, then variables): the bounds (+-inf: none); the same with 0 for an
+  // infinite one, and 1 where either is finite (0 elsewhere).
+  Eigen::VectorXd lower_, upper_, finite_lower_, finite_upper_, bounded_;
   // Each finite inequality side j (a two-sided constraint has two): its constraint, its sign
   // (+1 lower: s = v - bound, -1 upper: s = bound - v) and bound, so that s = sign (v - bound).
   // The per-side vectors are sized for every constraint's two sides; the first sides_ are used.
@@ -179,11 +204,12 @@ class BandedIpmQpSolver final : public Solver {
   // The iterate: x, per side the slack s and multiplier l, per constraint the equality
   // multipliers w (zero elsewhere).
   Eigen::VectorXd x_, s_, l_, w_;
-  // Per side 1 / s, the residual sign (v - bound) - s, the complementarity targets and the step;
-  // whether the last step changed the multiplier relatively more than the slack (the side is
-  // active by Tapia's indicator).
-  Eigen::VectorXd inverse_s_, r_, rc_, ds_, dl_;
-  std::vector<char> multiplier_leads_;
+  // Per side 1 / s and 1 / l (at the last factorisation), the residual sign (v - bound) - s,
+  // the complementarity targets and the step; whether the last step changed the multiplier
+  // relatively more than the slack (the side is active by Tapia's indicator).
+  Eigen::VectorXd inverse_s_, inverse_l_, r_, rc_, ds_, dl_;
+  std::vector<int> multiplier_leads_;
+  double step_rate_ = 0.0;  // the last direction's fastest relative decrease of a slack or multiplier
   // Per constraint: values v = a_k'x, D, the right-hand side's term e, the step's dv and dw, the
   // duals in SolveResult's convention. Per variable: H x, the dual residual H x + g + A'y + z.
   Eigen::VectorXd v_, d_, e_, dv_, dw_, y_, hx_, r_dual_;
@@ -194,6 +220,10 @@ class BandedIpmQpSolver final : public Solver {
   Eigen::VectorXd xp_, yp_, vp_, hxp_, rdp_, target_;
   Measures measures_, polish_measures_;
   double next_polish_mu_ = kInf;
+  // The last solve ended solved (its x_, y_ and active_ are a warm start's guess).
+  bool last_solved_ = false;
+  // Whether the last solve ended in the polish of the solve before's active set.
+  bool warm_started_ = false;
   double mu_ = 0.0;
   double rho_ = 0.0, delta_ = 0.0;
   int iterations_ = 0;

