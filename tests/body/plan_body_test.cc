@@ -280,6 +280,41 @@ TEST_CASE("with leg rows the robot starts standing clear of the stairs, and a ba
   CHECK(LargestBackwardMove(result.plan.body) < 0.01);
 }
 
+TEST_CASE("the default's plans never move the body back along the travel by more than 1 cm, over a grid of stairs",
+          "[body][progress]") {
+  // Issue 18's bound, on rises 0.12 and 0.20 m by runs 0.24 and 0.32 m, up and down, facing
+  // forward and backward, four steps each: every plan that validates (the gentle rise's eight
+  // all do). The normal build only (16 plans; minutes under the sanitizers, where "with leg rows
+  // the robot starts standing clear of the stairs, and a backward climb validates" checks one).
+  if (testing::kSanitized) return;
+  int validated = 0;
+  for (const double rise : {0.12, 0.20}) {
+    for (const double run : {0.24, 0.32}) {
+      for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
+        for (const Facing facing : {Facing::kForward, Facing::kBackward}) {
+          StairSpec spec;
+          spec.steps = 4;
+          spec.rise = rise;
+          spec.run = run;
+          spec.direction = direction;
+          PipelineOptions options;
+          options.facing = facing;
+          const PipelineResult result = RunPipeline(BuiltinRobot(), Staircase(spec), options);
+          INFO("rise " << rise << " run " << run << (direction == TravelDirection::kUp ? " up " : " down ")
+                       << (facing == Facing::kForward ? "forward" : "backward") << ": " << result.plan.status_reason
+                       << " " << FirstViolation(result.validation));
+          const bool valid = result.plan.status == PlanStatus::kOk && result.validated && result.validation.ok;
+          if (rise < 0.15) CHECK(valid);
+          if (!valid) continue;
+          ++validated;
+          CHECK(LargestBackwardMove(result.plan.body) < 0.01);
+        }
+      }
+    }
+  }
+  CHECK(validated >= 8);
+}
+
 TEST_CASE("with leg rows every cycle's QP solves on Unitree A1's descent", "[body][stance_rows]") {
   // From t = 3.475 s on this descent the per-cycle QP has a degenerate optimum: a knot's elastic
   // variable at its bound 1, where the rows the previous plan meets exactly pin it as well. The
