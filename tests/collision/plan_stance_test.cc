@@ -193,9 +193,13 @@ double SmallestSupportInradius(const Plan& plan) {
 TEST_CASE("no crawl swing stands on a support triangle too thin for the centre of mass", "[plan_stance]") {
   for (const auto& [label, direction] : {std::make_pair("unitree_go2", TravelDirection::kUp),
                                          std::make_pair("unitree_a1", TravelDirection::kDown)}) {
+    // Under the sanitizers Go2's climb alone, of three steps (the whole test took two minutes
+    // there): the same code.
+    if (testing::kSanitized && std::string(label) != "unitree_go2") continue;
     StairSpec low;
     low.rise = 0.10;
     low.run = 0.28;
+    low.steps = testing::FullOrSanitized(low.steps, 3);
     low.direction = direction;
     const CrawlPair plans = CrawlWithAndWithout(label, Staircase{low}, [](CrawlSettings& s) { s.fit_footholds = 0; });
     if (!plans.found) return;

@@ -40,11 +40,14 @@ std::vector<std::vector<std::string>> Rows(const std::string& csv) {
 TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-validate", "[sweep][cli]") {
   const std::string dir = MakeTempDir("sweep-threads");
   // A 3 x 3 grid of 4-step flights and 4 of its valid rows re-validated; under the sanitizers,
-  // where every point plans ~20x slower, a 2 x 2 grid of 2-step flights and one re-validation.
+  // where every point plans 20-50x slower, two 2-step flights of one run and no re-validation
+  // (the CLI tests plan and validate under the sanitizers too).
   const std::size_t n = FullOrSanitized<std::size_t>(3, 2);
-  const int wanted = FullOrSanitized(4, 1);
+  const std::size_t n_run = FullOrSanitized<std::size_t>(3, 1);
+  const int wanted = FullOrSanitized(4, 0);
   const std::string steps = FullOrSanitized<std::string>("4", "2");
-  const std::string grid = "sweep --rise 0.12:0.20:" + std::to_string(n) + " --run 0.25:0.33:" + std::to_string(n) + " --steps " + steps;
+  const std::string run = FullOrSanitized<std::string>("0.25:0.33:", "0.29:0.29:");
+  const std::string grid = "sweep --rise 0.12:0.20:" + std::to_string(n) + " --run " + run + std::to_string(n_run) + " --steps " + steps;
   REQUIRE(Run(grid + " --threads 1 --csv " + dir + "/one.csv --svg " + dir + "/map.svg", dir) == 0);
   // Its summary of the success region. (On these gentle stairs the default's plan at rise 0.20,
   // run 0.33 puts the left hind leg 0.4 degrees past a joint limit as it lifts, where run 0.29 is
@@ -64,7 +67,7 @@ TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-vali
                                   std::to_string(stairplan::kSchemaVersion) + "\n"));
   CHECK_THAT(ReadFile(dir + "/map.svg"), Catch::Contains("US residential"));
   const auto rows = Rows(one);
-  REQUIRE(rows.size() == n * n);
+  REQUIRE(rows.size() == n * n_run);
   int checked = 0;
   for (const auto& r : rows) {
     if (r[6] != "valid" || checked >= wanted) continue;
@@ -81,20 +84,20 @@ TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-vali
 TEST_CASE("sweep shards merged equal the unsharded sweep", "[sweep][cli]") {
   const std::string dir = MakeTempDir("sweep-shards");
   // A 3 x 3 grid over the whole range, steep points the validator rejects among them: shards of
-  // five and four points. Under the sanitizers
-  // a 2 x 2 grid of moderate 2-step stairs: a point the validator rejects is planned again in up
-  // to seven postures, each most of a minute there.
+  // five and four points. Under the sanitizers, where a point plans 20-50x slower, two moderate
+  // 2-step stairs of one run: shards of one point each, the same sharding and merging code.
   const std::size_t n = FullOrSanitized<std::size_t>(3, 2);
+  const std::size_t n_run = FullOrSanitized<std::size_t>(3, 1);
   const std::string rise = FullOrSanitized<std::string>("0.10:0.25:", "0.12:0.17:");
-  const std::string run = FullOrSanitized<std::string>("0.20:0.35:", "0.26:0.32:");
-  const std::string grid = "sweep --rise " + rise + std::to_string(n) + " --run " + run + std::to_string(n) +
+  const std::string run = FullOrSanitized<std::string>("0.20:0.35:", "0.29:0.29:");
+  const std::string grid = "sweep --rise " + rise + std::to_string(n) + " --run " + run + std::to_string(n_run) +
                            " --steps " + FullOrSanitized<std::string>("3", "2") + " --validation-step 0.1";
   REQUIRE(Run(grid + " --csv " + dir + "/all.csv --threads 2", dir) == 0);
   REQUIRE(Run(grid + " --shard 0/2 --csv " + dir + "/a.csv", dir) == 0);
   REQUIRE(Run(grid + " --shard 1/2 --csv " + dir + "/b.csv", dir) == 0);
   REQUIRE(Run("sweep-merge --csv " + dir + "/merged.csv " + dir + "/b.csv " + dir + "/a.csv", dir) == 0);
-  CHECK_THAT(ReadFile(dir + "/out.txt"), Catch::Contains("/" + std::to_string(n * n) + " valid; "));  // the whole sweep's summary
-  CHECK(Rows(ReadFile(dir + "/all.csv")).size() == n * n);
+  CHECK_THAT(ReadFile(dir + "/out.txt"), Catch::Contains("/" + std::to_string(n * n_run) + " valid; "));  // the whole sweep's summary
+  CHECK(Rows(ReadFile(dir + "/all.csv")).size() == n * n_run);
   CHECK(ReadFile(dir + "/merged.csv") == ReadFile(dir + "/all.csv"));
   CHECK(Run("sweep --rise 0.1:0.2:x --csv " + dir + "/bad.csv", dir) == 2);
   CHECK_THAT(ReadFile(dir + "/err.txt"), Catch::Contains("--rise"));
