@@ -25,13 +25,14 @@
 #include <string>
 #include <vector>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/body/body_nlp.h"
-#include "planning/body/body_planner.h"
-#include "planning/body/kinematic_body_bounds.h"
-#include "planning/crawl_planner.h"
-#include "planning/optim/clp_solver.h"
-#include "planning/optim/qp_benchmark.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/body_nlp/body_nlp.h"
+#include "stairplan/planning/body/body_planner.h"
+#include "stairplan/planning/body/kinematic_body_bounds.h"
+#include "stairplan/planning/crawl_planner.h"
+#include "stairplan/solvers/clp_solver.h"
+#include "stairplan/solvers/qp_benchmark.h"
+#include "stairplan/solvers/make_solver.h"
 
 using namespace stairplan;
 

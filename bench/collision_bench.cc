@@ -4,9 +4,9 @@
 #include <benchmark/benchmark.h>
 #include <fcl/geometry/shape/box.h>
 
-#include "collision/signed_distance.h"
-#include "collision/stance_check.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/collision/signed_distance.h"
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/kinematics/builtin_robot.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_kinematics.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_kinematics.h"
 
 namespace {
 

@@ -12,9 +12,9 @@
 #include <benchmark/benchmark.h>
 #include <fcl/geometry/shape/box.h>
 
-#include "collision/signed_distance.h"
-#include "collision/stance_check.h"
-#include "planning/plan_pipeline.h"
+#include "stairplan/collision/signed_distance.h"
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/pipeline/plan_pipeline.h"
 
 namespace {
 

@@ -5,10 +5,10 @@
 
 #include <benchmark/benchmark.h>
 
-#include "geometry/depth_sensor.h"
-#include "geometry/footfall_stairs.h"
-#include "geometry/footfall_walk.h"
-#include "geometry/stair_perception.h"
+#include "stairplan/perception/depth_sensor.h"
+#include "stairplan/perception/footfall_stairs.h"
+#include "stairplan/perception/footfall_walk.h"
+#include "stairplan/perception/stair_perception.h"
 
 namespace {
 

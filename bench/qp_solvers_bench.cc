@@ -1,4 +1,4 @@
-// QP solvers regime by regime (planning/optim/solve_regime.h): our active-set solver, our banded
+// QP solvers regime by regime (stairplan/solvers/solve_regime.h): our active-set solver, our banded
 // interior point (warm: the last active set tried first by one equality-constrained solve, the
 // interior point from its own start when that fails), Ipopt and CLP on (a) the
 // body-planner-shaped QP (40 knots, 3 variables each, banded rows) along 200 cycles
@@ -21,11 +21,12 @@
 #include <string>
 #include <vector>
 
-#include "planning/optim/body_qp_example.h"
-#include "planning/optim/clp_solver.h"
-#include "planning/optim/oqp_reader.h"
-#include "planning/optim/qp_benchmark.h"
-#include "planning/optim/qps_reader.h"
+#include "stairplan/optim/body_qp_example.h"
+#include "stairplan/solvers/clp_solver.h"
+#include "stairplan/optim/oqp_reader.h"
+#include "stairplan/solvers/qp_benchmark.h"
+#include "stairplan/optim/qps_reader.h"
+#include "stairplan/solvers/make_solver.h"
 
 using namespace stairplan::optim;
 

@@ -27,11 +27,11 @@
 #include <string>
 #include <vector>
 
-#include "geometry/constrained_map.h"
-#include "geometry/staircase.h"
-#include "kinematics/builtin_robot.h"
-#include "planning/body/body_planner.h"
-#include "planning/crawl_planner.h"
+#include "stairplan/geometry/constrained_map.h"
+#include "stairplan/geometry/staircase.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body/body_planner.h"
+#include "stairplan/planning/crawl_planner.h"
 
 using namespace stairplan;
 

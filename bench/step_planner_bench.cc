@@ -8,9 +8,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/step/step_planner.h"
-#include "planning/step/step_planner_driver.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/step/step_planner.h"
+#include "stairplan/planning/step/step_planner_driver.h"
 
 namespace {
 

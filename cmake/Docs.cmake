@@ -1,18 +1,15 @@
 # API documentation with Doxygen (FindDoxygen; Debian's doxygen): `cmake --build build --target docs`
 # writes build/docs/html/index.html from the /// comments of the installed headers. The target is
 # not part of the default build; tests/docs runs the same configuration and fails on any warning.
-# Included after cmake/Install.cmake, whose install rules it mirrors: the four module folders
-# without cli/ and without the internal headers listed there, plus the generated version.h.
+# Included after cmake/Install.cmake, whose install rules it mirrors: the include root stairplan/
+# without node_modules and the internal headers listed there, plus the generated version.h.
 if(NOT internal_headers)
   message(FATAL_ERROR "cmake/Docs.cmake needs the internal_headers of cmake/Install.cmake: include it after")
 endif()
 set(STAIRPLAN_DOCS_DIR ${PROJECT_BINARY_DIR}/docs)
 set(STAIRPLAN_DOCS_INPUT "")
-foreach(dir geometry kinematics collision planning)
-  string(APPEND STAIRPLAN_DOCS_INPUT "${PROJECT_SOURCE_DIR}/${dir} ")
-endforeach()
-string(APPEND STAIRPLAN_DOCS_INPUT "${PROJECT_BINARY_DIR}/generated/stairplan/version.h")
-set(STAIRPLAN_DOCS_EXCLUDE "*/cli/*")
+set(STAIRPLAN_DOCS_INPUT "${PROJECT_SOURCE_DIR}/stairplan ${PROJECT_BINARY_DIR}/generated/stairplan/version.h")
+set(STAIRPLAN_DOCS_EXCLUDE "*/node_modules/*")
 foreach(header ${internal_headers})
   string(APPEND STAIRPLAN_DOCS_EXCLUDE " */${header}")
 endforeach()

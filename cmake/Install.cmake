@@ -16,12 +16,9 @@ set(exclude_internal "")
 foreach(header ${internal_headers})
   list(APPEND exclude_internal PATTERN ${header} EXCLUDE)
 endforeach()
-foreach(dir geometry kinematics collision planning)
-  install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stairplan/${dir}
-    FILES_MATCHING PATTERN "*.h" PATTERN "cli" EXCLUDE ${exclude_internal})
-endforeach()
-install(FILES ${PROJECT_BINARY_DIR}/generated/stairplan/version.h
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stairplan/stairplan)
+install(DIRECTORY stairplan/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stairplan
+  FILES_MATCHING PATTERN "*.h" PATTERN "node_modules" EXCLUDE ${exclude_internal})
+install(FILES ${PROJECT_BINARY_DIR}/generated/stairplan/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stairplan)
 install(DIRECTORY data/ DESTINATION ${CMAKE_INSTALL_DATADIR}/stairplan)
 install(EXPORT stairplanTargets NAMESPACE stairplan::
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/stairplan)

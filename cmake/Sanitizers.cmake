@@ -74,7 +74,7 @@ function(stairplan_quick_test_build target)
   else()
     target_precompile_headers(${target} PRIVATE
       <catch2/catch.hpp> <Eigen/Dense> <nlohmann/json.hpp> <random> <fstream> <sstream> <string> <vector>
-      [["kinematics/robot_kinematics.h"]] [["collision/stair_collision_model.h"]] [["planning/plan.h"]])
+      [["stairplan/kinematics/robot_kinematics.h"]] [["stairplan/collision/stair_collision_model.h"]] [["stairplan/planning/plan.h"]])
     set_property(GLOBAL PROPERTY STAIRPLAN_TEST_PCH_TARGET ${target})
   endif()
 endfunction()

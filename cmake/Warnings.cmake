@@ -14,7 +14,7 @@ function(stairplan_add_module name)
   target_include_directories(stairplan_${name} PUBLIC
     $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
     $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>
-    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/stairplan>)
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   stairplan_set_warnings(stairplan_${name})
   stairplan_unity_sources(stairplan_${name})
   set_property(GLOBAL APPEND PROPERTY STAIRPLAN_MODULES stairplan_${name})

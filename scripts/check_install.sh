@@ -11,10 +11,21 @@ cmake -S examples/find_package -B "$example_build" -DCMAKE_PREFIX_PATH="$prefix"
 cmake --build "$example_build" -j 2 >/dev/null
 "$example_build/stair_summary" "$prefix/share/stairplan/robots/stairbot.urdf"
 echo "find_package example built and ran against the install prefix"
+# Built with the core and planning components only, the control loop links none of the heavy
+# back-ends: the optimisation core needs Eigen alone, the NLP solvers and MuJoCo are components
+# of their own.
+heavy=$(ldd "$example_build/control_loop" | grep -Ei 'mujoco|ipopt|nlopt' || true)
+if [ -n "$heavy" ]; then
+  echo "check_install: the control loop built from core and planning links:" >&2
+  echo "$heavy" >&2
+  exit 1
+fi
+"$example_build/control_loop" >/dev/null
+echo "control loop from core and planning ran; ldd shows no MuJoCo, Ipopt or NLopt"
 
 # No header of the implementation is installed: every header ours that an installed header
 # includes is installed as well (the internal ones are listed in cmake/Install.cmake).
-include_root="$prefix/include/stairplan"
+include_root="$prefix/include"
 missing=0
 while IFS= read -r header; do
   while IFS= read -r included; do
@@ -24,7 +35,7 @@ while IFS= read -r header; do
     fi
   done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$header")
 done < <(find "$include_root" -name '*.h')
-for internal in planning/body/body_nlp_internal.h kinematics/urdf_parse.h geometry/lzf.h; do
+for internal in stairplan/body_nlp/body_nlp_internal.h stairplan/kinematics/urdf_parse.h stairplan/perception/lzf.h; do
   if [ -e "$include_root/$internal" ]; then
     echo "check_install: the internal header $internal is installed" >&2
     missing=1

@@ -34,8 +34,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 # The browser viewer's three.js (and esbuild, which bundles it into the page at build time), as
-# planning/viewer/package-lock.json pins them.
-viewer="$(cd "$(dirname "$0")/.." && pwd)/planning/viewer"
+# stairplan/viewer/package-lock.json pins them.
+viewer="$(cd "$(dirname "$0")/.." && pwd)/stairplan/viewer"
 if [ ! -f "$viewer/node_modules/.package-lock.json" ] || [ "$viewer/package-lock.json" -nt "$viewer/node_modules/.package-lock.json" ]; then
   (cd "$viewer" && npm ci --no-audit --no-fund --loglevel=error)
 fi

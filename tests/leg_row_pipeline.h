@@ -3,7 +3,7 @@
 // defaults become.
 #pragma once
 
-#include "planning/plan_pipeline.h"
+#include "stairplan/pipeline/plan_pipeline.h"
 
 namespace stairplan::testing {
 

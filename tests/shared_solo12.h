@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "kinematics/robot_meshes.h"
-#include "kinematics/robot_model.h"
+#include "stairplan/kinematics/robot_meshes.h"
+#include "stairplan/kinematics/robot_model.h"
 #include "test_paths.h"
 
 namespace stairplan::testing {

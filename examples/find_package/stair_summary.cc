@@ -2,10 +2,10 @@
 // that every footstep landed in a step region. Exit 0 when it did.
 #include <iostream>
 
-#include "geometry/constrained_map.h"
-#include "geometry/staircase.h"
-#include "kinematics/robot_model.h"
-#include "planning/crawl_planner.h"
+#include "stairplan/geometry/constrained_map.h"
+#include "stairplan/geometry/staircase.h"
+#include "stairplan/kinematics/robot_model.h"
+#include "stairplan/planning/crawl_planner.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

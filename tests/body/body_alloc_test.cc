@@ -5,9 +5,9 @@
 #include <utility>
 
 #include "alloc_counter.h"
-#include "kinematics/builtin_robot.h"
-#include "planning/body/body_planner.h"
-#include "planning/crawl_planner.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body/body_planner.h"
+#include "stairplan/planning/crawl_planner.h"
 #include "sanitized.h"
 
 using namespace stairplan;
@@ -21,7 +21,7 @@ std::pair<std::size_t, int> CountAllocations(const BodyPlannerSettings& given, d
   const Staircase stairs{StairSpec{}};
   const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
   // The default crawl: its legs graze and penetrate stairs in some of the planner's candidate
-  // postures, which is where FCL's contact computation used to allocate (collision/signed_distance.cc).
+  // postures, which is where FCL's contact computation used to allocate (stairplan/collision/signed_distance.cc).
   const Plan footsteps = PlanCrawl(robot, stairs, map);
   REQUIRE(footsteps.status == PlanStatus::kOk);
   BodyPlannerSettings settings = given;

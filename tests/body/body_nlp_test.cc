@@ -7,11 +7,11 @@
 #include <cmath>
 #include <memory>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/body/body_nlp.h"
-#include "planning/body/kinematic_body_bounds.h"
-#include "planning/body/plan_body.h"
-#include "planning/crawl_planner.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/body_nlp/body_nlp.h"
+#include "stairplan/planning/body/kinematic_body_bounds.h"
+#include "stairplan/planning/body/plan_body.h"
+#include "stairplan/planning/crawl_planner.h"
 
 using namespace stairplan;
 

@@ -5,12 +5,12 @@
 
 #include <cmath>
 
-#include "geometry/field_error.h"
-#include "kinematics/builtin_robot.h"
-#include "kinematics/body_pose.h"
-#include "planning/body/body_planner.h"
-#include "planning/body/plan_body.h"
-#include "planning/crawl_planner.h"
+#include "stairplan/geometry/field_error.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/body_pose.h"
+#include "stairplan/planning/body/body_planner.h"
+#include "stairplan/planning/body/plan_body.h"
+#include "stairplan/planning/crawl_planner.h"
 #include "sanitized.h"
 
 using namespace stairplan;

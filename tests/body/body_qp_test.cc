@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "planning/body/body_qp.h"
+#include "stairplan/planning/body/body_qp.h"
 
 using namespace stairplan;
 

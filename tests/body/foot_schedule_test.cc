@@ -1,11 +1,11 @@
 // The feet's timeline read from a footstep plan: stances, swings, the neutral body and the slope.
 #include <catch2/catch.hpp>
 
-#include "kinematics/builtin_robot.h"
+#include "stairplan/kinematics/builtin_robot.h"
 #include <algorithm>
 #include <limits>
 
-#include "planning/body/foot_schedule.h"
+#include "stairplan/planning/body/foot_schedule.h"
 
 using namespace stairplan;
 

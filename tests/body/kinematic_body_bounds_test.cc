@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/body/kinematic_body_bounds.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body/kinematic_body_bounds.h"
 
 using namespace stairplan;
 

@@ -1,4 +1,4 @@
-// The leg rows carried from one cycle to the next (planning/body/knot_row_cache.h): taken over only
+// The leg rows carried from one cycle to the next (stairplan/planning/body/knot_row_cache.h): taken over only
 // at the same instant (the passing rows: the same interval, for the same legs) and near the same
 // centre, their relaxation re-evaluated there; and over a climb, plans made with them are the plans
 // made without, at a fraction of the linearisations.
@@ -9,10 +9,10 @@
 #include <cmath>
 #include <vector>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/body/body_planner.h"
-#include "planning/body/knot_row_cache.h"
-#include "planning/crawl_planner.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body/body_planner.h"
+#include "stairplan/planning/body/knot_row_cache.h"
+#include "stairplan/planning/crawl_planner.h"
 #include "sanitized.h"
 
 using namespace stairplan;

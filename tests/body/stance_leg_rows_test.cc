@@ -7,9 +7,9 @@
 #include <random>
 #include <string>
 
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_kinematics.h"
-#include "planning/body/stance_leg_rows.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_kinematics.h"
+#include "stairplan/planning/body/stance_leg_rows.h"
 #include "test_paths.h"
 
 using namespace stairplan;

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "planning/plan.h"
+#include "stairplan/planning/plan.h"
 #include "sanitized.h"
 #include "test_paths.h"
 

@@ -8,11 +8,11 @@
 #include <optional>
 #include <random>
 
-#include "collision/clearance.h"
-#include "collision/shape_support.h"
-#include "collision/signed_distance.h"
-#include "collision/stance_check.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/collision/clearance.h"
+#include "stairplan/collision/shape_support.h"
+#include "stairplan/collision/signed_distance.h"
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/kinematics/builtin_robot.h"
 #include "sanitized.h"
 #include "shared_solo12.h"
 

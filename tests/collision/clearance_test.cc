@@ -7,8 +7,8 @@
 #include <random>
 
 #include "../kinematics/robot_files.h"
-#include "collision/clearance.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/collision/clearance.h"
+#include "stairplan/kinematics/builtin_robot.h"
 
 using namespace stairplan;
 

@@ -7,9 +7,9 @@
 #include <fcl/geometry/shape/sphere.h>
 
 #include "alloc_counter.h"
-#include "collision/signed_distance.h"
-#include "collision/stance_check.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/collision/signed_distance.h"
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/kinematics/builtin_robot.h"
 
 TEST_CASE("clearance and stance queries allocate nothing after warm-up", "[alloc][clearance]") {
   using namespace stairplan;

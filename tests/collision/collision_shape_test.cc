@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "collision/collision_shape.h"
+#include "stairplan/collision/collision_shape.h"
 
 using namespace stairplan;
 

@@ -6,12 +6,12 @@
 #include <random>
 #include <vector>
 
-#include "collision/convex_hull.h"
-#include "collision/mesh_shape.h"
-#include "collision/robot_collision_model.h"
-#include "collision/signed_distance.h"
-#include "collision/stance_check.h"
-#include "kinematics/mesh_loader.h"
+#include "stairplan/collision/convex_hull.h"
+#include "stairplan/collision/mesh_shape.h"
+#include "stairplan/collision/robot_collision_model.h"
+#include "stairplan/collision/signed_distance.h"
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/kinematics/mesh_loader.h"
 #include "mesh_files.h"
 #include "sanitized.h"
 #include "shared_solo12.h"

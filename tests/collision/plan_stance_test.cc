@@ -15,10 +15,10 @@
 
 #include "../kinematics/robot_files.h"
 #include "leg_row_pipeline.h"
-#include "collision/stance_check.h"
-#include "kinematics/builtin_robot.h"
-#include "planning/body_path.h"
-#include "planning/plan_pipeline.h"
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body_path.h"
+#include "stairplan/pipeline/plan_pipeline.h"
 #include "sanitized.h"
 
 using namespace stairplan;

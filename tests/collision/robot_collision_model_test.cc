@@ -5,8 +5,8 @@
 #include <set>
 #include <string>
 
-#include "collision/robot_collision_model.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/collision/robot_collision_model.h"
+#include "stairplan/kinematics/builtin_robot.h"
 #include "../kinematics/robot_files.h"
 
 using stairplan::RobotCollisionModel;

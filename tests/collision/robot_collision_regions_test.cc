@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "collision/robot_collision_regions.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/collision/robot_collision_regions.h"
+#include "stairplan/kinematics/builtin_robot.h"
 #include "test_paths.h"
 
 using namespace stairplan;

@@ -11,8 +11,8 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
-#include "collision/signed_distance.h"
-#include "collision/stair_collision_model.h"
+#include "stairplan/collision/signed_distance.h"
+#include "stairplan/collision/stair_collision_model.h"
 
 using stairplan::SignedDistance;
 using stairplan::SignedDistanceHints;

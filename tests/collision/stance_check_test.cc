@@ -1,8 +1,8 @@
 // StanceCheck: IK of all four feet for a body pose, limits and clearances.
 #include <catch2/catch.hpp>
 
-#include "collision/stance_check.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/kinematics/builtin_robot.h"
 
 using namespace stairplan;
 

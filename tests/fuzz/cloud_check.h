@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "geometry/point_cloud.h"
+#include "stairplan/perception/point_cloud.h"
 
 namespace stairplan::fuzz {
 

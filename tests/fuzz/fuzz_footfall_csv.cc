@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "fuzz_check.h"
-#include "geometry/footfall.h"
+#include "stairplan/perception/footfall.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "fuzz_check.h"
-#include "kinematics/mesh_loader.h"
+#include "stairplan/kinematics/mesh_loader.h"
 
 namespace {
 

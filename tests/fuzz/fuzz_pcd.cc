@@ -2,7 +2,7 @@
 // decoder).
 #include "cloud_check.h"
 #include "fuzz_check.h"
-#include "geometry/pcd_io.h"
+#include "stairplan/perception/pcd_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

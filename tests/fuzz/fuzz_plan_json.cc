@@ -3,8 +3,8 @@
 #include <cstdio>
 
 #include "fuzz_check.h"
-#include "geometry/staircase.h"
-#include "planning/plan_json_reader.h"
+#include "stairplan/geometry/staircase.h"
+#include "stairplan/planning/plan_json_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -1,7 +1,7 @@
 // libFuzzer target: the PLY point-cloud reader (ascii and binary little-endian).
 #include "cloud_check.h"
 #include "fuzz_check.h"
-#include "geometry/ply_io.h"
+#include "stairplan/perception/ply_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -1,6 +1,6 @@
 // libFuzzer target: the QPS reader (Maros-Meszaros format) into a Program.
 #include "fuzz_check.h"
-#include "planning/optim/qps_reader.h"
+#include "stairplan/optim/qps_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -3,8 +3,8 @@
 #include <cstdio>
 
 #include "fuzz_check.h"
-#include "geometry/stair_spec_yaml.h"
-#include "geometry/staircase.h"
+#include "stairplan/geometry/stair_spec_yaml.h"
+#include "stairplan/geometry/staircase.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   stairplan::StairSpec spec;

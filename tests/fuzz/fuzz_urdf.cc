@@ -5,8 +5,8 @@
 #include <cstdlib>
 
 #include "fuzz_check.h"
-#include "kinematics/checked_xml.h"
-#include "kinematics/robot_model.h"
+#include "stairplan/kinematics/checked_xml.h"
+#include "stairplan/kinematics/robot_model.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // libFuzzer target: the whitespace XYZ point-cloud reader.
 #include "cloud_check.h"
 #include "fuzz_check.h"
-#include "geometry/xyz_io.h"
+#include "stairplan/perception/xyz_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -8,7 +8,7 @@
 #include <limits>
 #include <string>
 
-#include "planning/gait/crawl_stability.h"
+#include "stairplan/planning/gait/crawl_stability.h"
 
 using namespace stairplan;
 

@@ -6,9 +6,9 @@
 #include <random>
 #include <string>
 
-#include "planning/gait/feasibility_figure.h"
-#include "planning/gait/feasibility_volume.h"
-#include "planning/gait/gait_design.h"
+#include "stairplan/planning/gait/feasibility_figure.h"
+#include "stairplan/planning/gait/feasibility_volume.h"
+#include "stairplan/planning/gait/gait_design.h"
 
 using namespace stairplan;
 

@@ -6,7 +6,7 @@
 #include <random>
 #include <string>
 
-#include "planning/gait/gait_design.h"
+#include "stairplan/planning/gait/gait_design.h"
 
 using namespace stairplan;
 

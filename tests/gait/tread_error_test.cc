@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "planning/gait/tread_error.h"
+#include "stairplan/planning/gait/tread_error.h"
 
 using namespace stairplan;
 

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "geometry/constrained_map.h"
+#include "stairplan/geometry/constrained_map.h"
 
 using namespace stairplan;
 

@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "geometry/field_error.h"
-#include "geometry/stair_spec_yaml.h"
+#include "stairplan/geometry/field_error.h"
+#include "stairplan/geometry/stair_spec_yaml.h"
 
 using namespace stairplan;
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/field_error.h"
-#include "geometry/staircase.h"
+#include "stairplan/geometry/field_error.h"
+#include "stairplan/geometry/staircase.h"
 
 using stairplan::FieldError;
 using stairplan::Staircase;

@@ -9,14 +9,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/constrained_map.h"
-#include "geometry/staircase.h"
-#include "kinematics/builtin_robot.h"
-#include "planning/body/body_planner.h"
-#include "planning/crawl_planner.h"
-#include "planning/optim/ipopt_solver.h"
-#include "planning/optim/program.h"
-#include "planning/optim/solver.h"
+#include "stairplan/geometry/constrained_map.h"
+#include "stairplan/geometry/staircase.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body/body_planner.h"
+#include "stairplan/planning/crawl_planner.h"
+#include "stairplan/solvers/ipopt_solver.h"
+#include "stairplan/optim/program.h"
+#include "stairplan/optim/solver.h"
+#include "stairplan/solvers/make_solver.h"
 #include "sanitized.h"
 
 using namespace stairplan;

@@ -9,14 +9,14 @@
 #include <filesystem>
 #include <fstream>
 
-#include "geometry/footfall.h"
-#include "geometry/footfall_stairs.h"
-#include "geometry/stair_spec_yaml.h"
-#include "kinematics/builtin_robot.h"
-#include "kinematics/mesh_loader.h"
-#include "kinematics/robot_model.h"
-#include "planning/optim/oqp_reader.h"
-#include "planning/plan_json_reader.h"
+#include "stairplan/perception/footfall.h"
+#include "stairplan/perception/footfall_stairs.h"
+#include "stairplan/geometry/stair_spec_yaml.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/mesh_loader.h"
+#include "stairplan/kinematics/robot_model.h"
+#include "stairplan/optim/oqp_reader.h"
+#include "stairplan/planning/plan_json_reader.h"
 #include "test_paths.h"
 
 using namespace stairplan;

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "planning/impact/impact_response.h"
+#include "stairplan/planning/impact/impact_response.h"
 
 using namespace stairplan;
 

@@ -12,8 +12,8 @@
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
-#include "kinematics/builtin_robot.h"
-#include "kinematics/checked_xml.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/checked_xml.h"
 #include "test_paths.h"
 
 namespace checked_xml_test {

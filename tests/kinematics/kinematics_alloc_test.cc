@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include "alloc_counter.h"
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_kinematics.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_kinematics.h"
 
 TEST_CASE("leg kinematics queries allocate nothing after warm-up", "[alloc][leg_kinematics]") {
   const stairplan::RobotKinematics kinematics(stairplan::BuiltinRobot());

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <random>
 
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_kinematics.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_kinematics.h"
 #include "robot_files.h"
 
 using stairplan::IkResult;

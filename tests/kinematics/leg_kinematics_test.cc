@@ -8,8 +8,8 @@
 
 #include <tinyxml.h>
 
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_kinematics.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_kinematics.h"
 #include "robot_files.h"
 
 using stairplan::LegKinematics;

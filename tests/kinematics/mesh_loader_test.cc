@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "kinematics/mesh_loader.h"
-#include "kinematics/package_path.h"
+#include "stairplan/kinematics/mesh_loader.h"
+#include "stairplan/kinematics/package_path.h"
 #include "mesh_files.h"
 #include "test_paths.h"
 

@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "kinematics/builtin_robot.h"
+#include "stairplan/kinematics/builtin_robot.h"
 #include "robot_files.h"
 #include "sanitized.h"
 

@@ -1,8 +1,8 @@
 // Whole-robot kinematics: IK for world targets under a body pose, reachable body heights.
 #include <catch2/catch.hpp>
 
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_kinematics.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_kinematics.h"
 
 using stairplan::BodyPose;
 using stairplan::RobotKinematics;

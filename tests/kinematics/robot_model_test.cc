@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_model.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_model.h"
 #include "robot_files.h"
 
 using stairplan::BuiltinRobot;

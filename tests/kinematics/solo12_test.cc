@@ -8,8 +8,8 @@
 #include <optional>
 #include <random>
 
-#include "kinematics/robot_kinematics.h"
-#include "kinematics/robot_model.h"
+#include "stairplan/kinematics/robot_kinematics.h"
+#include "stairplan/kinematics/robot_model.h"
 #include "test_paths.h"
 
 using stairplan::FootContact;

@@ -4,9 +4,9 @@
 #include <kdl/tree.hpp>
 #include <urdf_model/model.h>
 
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_model.h"
-#include "kinematics/urdf_to_kdl.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_model.h"
+#include "stairplan/kinematics/urdf_to_kdl.h"
 #include "robot_files.h"
 
 TEST_CASE("the KDL tree has one segment per joint and the URDF's masses", "[urdf_to_kdl]") {

@@ -9,7 +9,7 @@
 #include <random>
 #include <string>
 
-#include "planning/optim/active_set_qp_solver.h"
+#include "stairplan/optim/active_set_qp_solver.h"
 #include "test_paths.h"
 
 using namespace stairplan::optim;

@@ -6,9 +6,10 @@
 #include <cmath>
 #include <random>
 
-#include "planning/optim/active_set_qp_solver.h"
-#include "planning/optim/body_qp_example.h"
-#include "planning/optim/ipopt_solver.h"
+#include "stairplan/optim/active_set_qp_solver.h"
+#include "stairplan/optim/body_qp_example.h"
+#include "stairplan/solvers/ipopt_solver.h"
+#include "stairplan/solvers/make_solver.h"
 #include "kkt_check.h"
 
 using namespace stairplan::optim;

@@ -8,7 +8,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "planning/optim/band_cholesky.h"
+#include "stairplan/optim/band_cholesky.h"
 
 using stairplan::optim::BandCholesky;
 

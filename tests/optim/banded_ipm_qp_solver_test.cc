@@ -9,14 +9,15 @@
 #include <random>
 #include <string>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/body/body_planner.h"
-#include "planning/crawl_planner.h"
-#include "planning/optim/active_set_qp_solver.h"
-#include "planning/optim/banded_ipm_qp_solver.h"
-#include "planning/optim/body_qp_example.h"
-#include "planning/optim/qp_residuals.h"
-#include "planning/optim/qps_reader.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body/body_planner.h"
+#include "stairplan/planning/crawl_planner.h"
+#include "stairplan/optim/active_set_qp_solver.h"
+#include "stairplan/optim/banded_ipm_qp_solver.h"
+#include "stairplan/optim/body_qp_example.h"
+#include "stairplan/optim/qp_residuals.h"
+#include "stairplan/optim/qps_reader.h"
+#include "stairplan/solvers/make_solver.h"
 #include "kkt_check.h"
 #include "maros_meszaros_index.h"
 #include "test_paths.h"

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "planning/optim/packed_rows.h"
+#include "stairplan/optim/packed_rows.h"
 
 using stairplan::optim::PackedRows;
 

@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "planning/optim/clp_solver.h"
-#include "planning/optim/qp_residuals.h"
-#include "planning/optim/qps_reader.h"
+#include "stairplan/solvers/clp_solver.h"
+#include "stairplan/optim/qp_residuals.h"
+#include "stairplan/optim/qps_reader.h"
 #include "test_paths.h"
 
 using namespace stairplan::optim;

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "planning/optim/program.h"
-#include "planning/optim/solve_result.h"
+#include "stairplan/optim/program.h"
+#include "stairplan/optim/solve_result.h"
 
 namespace stairplan::testing {
 

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "planning/optim/active_set_qp_solver.h"
-#include "planning/optim/ipopt_solver.h"
-#include "planning/optim/qp_residuals.h"
-#include "planning/optim/qps_reader.h"
+#include "stairplan/optim/active_set_qp_solver.h"
+#include "stairplan/solvers/ipopt_solver.h"
+#include "stairplan/optim/qp_residuals.h"
+#include "stairplan/optim/qps_reader.h"
 #include "maros_meszaros_index.h"
 #include "test_paths.h"
 

@@ -5,8 +5,9 @@
 #include <cmath>
 #include <memory>
 
-#include "planning/optim/ipopt_solver.h"
-#include "planning/optim/nlopt_solver.h"
+#include "stairplan/solvers/ipopt_solver.h"
+#include "stairplan/solvers/nlopt_solver.h"
+#include "stairplan/solvers/make_solver.h"
 
 using namespace stairplan::optim;
 

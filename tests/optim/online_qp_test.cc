@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <string>
 
-#include "planning/optim/active_set_qp_solver.h"
-#include "planning/optim/oqp_reader.h"
+#include "stairplan/optim/active_set_qp_solver.h"
+#include "stairplan/optim/oqp_reader.h"
 #include "test_paths.h"
 
 using namespace stairplan::optim;

@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "planning/optim/oqp_reader.h"
+#include "stairplan/optim/oqp_reader.h"
 #include "test_paths.h"
 
 using namespace stairplan::optim;

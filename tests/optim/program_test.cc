@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "planning/optim/program.h"
+#include "stairplan/optim/program.h"
 
 using namespace stairplan::optim;
 

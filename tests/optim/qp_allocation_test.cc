@@ -6,9 +6,9 @@
 #include <catch2/catch.hpp>
 
 #include "alloc_counter.h"
-#include "planning/optim/active_set_qp_solver.h"
-#include "planning/optim/banded_ipm_qp_solver.h"
-#include "planning/optim/body_qp_example.h"
+#include "stairplan/optim/active_set_qp_solver.h"
+#include "stairplan/optim/banded_ipm_qp_solver.h"
+#include "stairplan/optim/body_qp_example.h"
 
 using namespace stairplan::optim;
 using stairplan::testing::AllocationScope;

@@ -5,10 +5,10 @@
 
 #include <cmath>
 
-#include "planning/optim/active_set_qp_solver.h"
-#include "planning/optim/body_qp_example.h"
-#include "planning/optim/ipopt_solver.h"
-#include "planning/optim/qp_benchmark.h"
+#include "stairplan/optim/active_set_qp_solver.h"
+#include "stairplan/optim/body_qp_example.h"
+#include "stairplan/solvers/ipopt_solver.h"
+#include "stairplan/solvers/qp_benchmark.h"
 
 using namespace stairplan::optim;
 

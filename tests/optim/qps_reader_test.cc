@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "planning/optim/qps_reader.h"
+#include "stairplan/optim/qps_reader.h"
 
 using namespace stairplan::optim;
 

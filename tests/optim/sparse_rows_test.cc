@@ -9,8 +9,8 @@
 
 #include <Eigen/Core>
 
-#include "planning/optim/program.h"
-#include "planning/optim/sparse_rows.h"
+#include "stairplan/optim/program.h"
+#include "stairplan/optim/sparse_rows.h"
 
 using stairplan::optim::SparseRows;
 

@@ -11,9 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/footfall.h"
-#include "geometry/ply_io.h"
-#include "geometry/stair_spec_yaml.h"
+#include "stairplan/perception/footfall.h"
+#include "stairplan/perception/ply_io.h"
+#include "stairplan/geometry/stair_spec_yaml.h"
 #include "perception/footfall_scenes.h"
 #include "perception/pcd_files.h"
 #include "perception/perception_scenes.h"

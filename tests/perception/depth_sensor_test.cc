@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "geometry/depth_sensor.h"
+#include "stairplan/perception/depth_sensor.h"
 #include "perception/perception_scenes.h"
 
 using namespace stairplan;

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "geometry/footfall_walk.h"
+#include "stairplan/perception/footfall_walk.h"
 
 namespace stairplan::testing {
 

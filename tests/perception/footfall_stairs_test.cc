@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "geometry/field_error.h"
-#include "geometry/footfall_stairs.h"
+#include "stairplan/geometry/field_error.h"
+#include "stairplan/perception/footfall_stairs.h"
 #include "perception/footfall_scenes.h"
 
 using namespace stairplan;

@@ -12,10 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/footfall.h"
-#include "geometry/stair_mode.h"
-#include "geometry/stair_spec_yaml.h"
-#include "planning/plan_pipeline.h"
+#include "stairplan/perception/footfall.h"
+#include "stairplan/geometry/stair_mode.h"
+#include "stairplan/geometry/stair_spec_yaml.h"
+#include "stairplan/pipeline/plan_pipeline.h"
 #include "perception/footfall_scenes.h"
 #include "perception/path_baseline_flags.h"
 #include "sanitized.h"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/gap_fill.h"
+#include "stairplan/perception/gap_fill.h"
 #include "perception/perception_scenes.h"
 
 using namespace stairplan;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/height_map.h"
+#include "stairplan/perception/height_map.h"
 #include "perception/perception_scenes.h"
 
 using namespace stairplan;

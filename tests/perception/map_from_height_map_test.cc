@@ -8,7 +8,7 @@
 #include <cmath>
 #include <functional>
 
-#include "geometry/stair_perception.h"
+#include "stairplan/perception/stair_perception.h"
 #include "perception/perception_scenes.h"
 
 using namespace stairplan;

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/pcd_io.h"
-#include "geometry/point_cloud.h"
+#include "stairplan/perception/pcd_io.h"
+#include "stairplan/perception/point_cloud.h"
 
 namespace stairplan::testing {
 

@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "geometry/field_error.h"
-#include "geometry/lzf.h"
-#include "geometry/pcd_io.h"
-#include "geometry/ply_io.h"
-#include "geometry/point_cloud.h"
+#include "stairplan/geometry/field_error.h"
+#include "stairplan/perception/lzf.h"
+#include "stairplan/perception/pcd_io.h"
+#include "stairplan/perception/ply_io.h"
+#include "stairplan/perception/point_cloud.h"
 #include "perception/pcd_files.h"
 #include "test_paths.h"
 

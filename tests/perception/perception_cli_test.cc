@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/footfall.h"
-#include "geometry/ply_io.h"
-#include "geometry/xyz_io.h"
+#include "stairplan/perception/footfall.h"
+#include "stairplan/perception/ply_io.h"
+#include "stairplan/perception/xyz_io.h"
 #include "perception/footfall_scenes.h"
 #include "perception/perception_scenes.h"
 #include "test_paths.h"

@@ -4,9 +4,9 @@
 
 #include <random>
 
-#include "geometry/depth_sensor.h"
-#include "geometry/point_cloud.h"
-#include "geometry/staircase.h"
+#include "stairplan/perception/depth_sensor.h"
+#include "stairplan/perception/point_cloud.h"
+#include "stairplan/geometry/staircase.h"
 
 namespace stairplan::testing {
 

@@ -5,13 +5,13 @@
 
 #include <string>
 
-#include "collision/robot_collision_regions.h"
-#include "geometry/depth_sensor.h"
-#include "geometry/stair_perception.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/collision/robot_collision_regions.h"
+#include "stairplan/perception/depth_sensor.h"
+#include "stairplan/perception/stair_perception.h"
+#include "stairplan/kinematics/builtin_robot.h"
 #include "perception/perception_scenes.h"
-#include "planning/plan_pipeline.h"
-#include "planning/validation/traversal_validator.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/validation/traversal_validator.h"
 #include "leg_row_pipeline.h"
 #include "sanitized.h"
 

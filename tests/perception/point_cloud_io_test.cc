@@ -5,10 +5,10 @@
 #include <fstream>
 #include <random>
 
-#include "geometry/field_error.h"
-#include "geometry/ply_io.h"
-#include "geometry/point_cloud.h"
-#include "geometry/xyz_io.h"
+#include "stairplan/geometry/field_error.h"
+#include "stairplan/perception/ply_io.h"
+#include "stairplan/perception/point_cloud.h"
+#include "stairplan/perception/xyz_io.h"
 #include "test_paths.h"
 
 using namespace stairplan;

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/footfall_stairs.h"
-#include "geometry/footfall_track.h"
-#include "geometry/stair_frame.h"
-#include "geometry/stair_mode_engagement.h"
+#include "stairplan/perception/footfall_stairs.h"
+#include "stairplan/perception/footfall_track.h"
+#include "stairplan/geometry/stair_frame.h"
+#include "stairplan/geometry/stair_mode_engagement.h"
 #include "perception/footfall_scenes.h"
 
 using namespace stairplan;

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "geometry/footfall_stairs.h"
-#include "geometry/stair_mode.h"
+#include "stairplan/perception/footfall_stairs.h"
+#include "stairplan/geometry/stair_mode.h"
 #include "perception/footfall_scenes.h"
 
 using namespace stairplan;

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/stair_tracker.h"
+#include "stairplan/perception/stair_tracker.h"
 #include "perception/perception_scenes.h"
 
 using namespace stairplan;

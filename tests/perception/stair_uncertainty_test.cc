@@ -1,4 +1,4 @@
-// The nosing uncertainty the fitters write (geometry/stair_uncertainty.h) is a property of the
+// The nosing uncertainty the fitters write (stairplan/geometry/stair_uncertainty.h) is a property of the
 // estimate: on noisy footfalls and camera scans of known stairs, the true nosings lie within it of
 // the fitted ones, in the world and relative to the fitted origin where a plan's frame sits.
 #include <catch2/catch.hpp>
@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "geometry/footfall_stairs.h"
-#include "geometry/footfall_walk.h"
-#include "geometry/stair_perception.h"
-#include "geometry/stair_uncertainty.h"
+#include "stairplan/perception/footfall_stairs.h"
+#include "stairplan/perception/footfall_walk.h"
+#include "stairplan/perception/stair_perception.h"
+#include "stairplan/geometry/stair_uncertainty.h"
 #include "perception/footfall_scenes.h"
 #include "perception/perception_scenes.h"
 #include "sanitized.h"

@@ -1,12 +1,12 @@
-// The alignment stance stands the robot with the planner's kinematics (planning/stair_alignment.h):
+// The alignment stance stands the robot with the planner's kinematics (stairplan/planning/stair_alignment.h):
 // it builds no KDL tree and leg chains of its own, which every plan would pay for again.
 #include <catch2/catch.hpp>
 
 #include "alloc_counter.h"
-#include "kinematics/builtin_robot.h"
-#include "kinematics/robot_kinematics.h"
-#include "planning/plan_pipeline.h"
-#include "planning/stair_alignment.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/kinematics/robot_kinematics.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/stair_alignment.h"
 
 using namespace stairplan;
 

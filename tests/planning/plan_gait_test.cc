@@ -2,10 +2,10 @@
 // step planner's controllers refusing the paper's crawls (they are not controllers).
 #include <catch2/catch.hpp>
 
-#include "geometry/field_error.h"
-#include "planning/plan_gait.h"
-#include "planning/step/gait_pattern.h"
-#include "planning/step/step_planner_settings.h"
+#include "stairplan/geometry/field_error.h"
+#include "stairplan/planning/plan_gait.h"
+#include "stairplan/planning/step/gait_pattern.h"
+#include "stairplan/planning/step/step_planner_settings.h"
 
 using namespace stairplan;
 

@@ -8,10 +8,10 @@
 #include <cmath>
 #include <string>
 
-#include "geometry/stair_frame.h"
-#include "geometry/stair_mode.h"
-#include "kinematics/builtin_robot.h"
-#include "planning/plan_pipeline.h"
+#include "stairplan/geometry/stair_frame.h"
+#include "stairplan/geometry/stair_mode.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/plan_pipeline.h"
 #include "sanitized.h"
 
 using namespace stairplan;

@@ -9,8 +9,8 @@
 #include <optional>
 #include <vector>
 
-#include "planning/plan_pipeline.h"
-#include "planning/step/step_height.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/step/step_height.h"
 #include "sanitized.h"
 #include "leg_row_pipeline.h"
 #include "shared_solo12.h"

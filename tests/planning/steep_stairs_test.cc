@@ -9,12 +9,12 @@
 #include <algorithm>
 #include <string>
 
-#include "collision/stance_check.h"
-#include "kinematics/builtin_robot.h"
-#include "planning/body_path.h"
-#include "planning/crawl_planner.h"
-#include "planning/plan_pipeline.h"
-#include "planning/swing_trajectory.h"
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body_path.h"
+#include "stairplan/planning/crawl_planner.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/swing_trajectory.h"
 #include "leg_row_pipeline.h"
 #include "sanitized.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "planning/simulation/impact_detection.h"
+#include "stairplan/simulation/impact_detection.h"
 
 using namespace stairplan;
 

@@ -8,11 +8,11 @@
 #include <utility>
 #include <vector>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/plan_pipeline.h"
-#include "planning/simulation/impact_detection.h"
-#include "planning/simulation/plan_executor.h"
-#include "planning/simulation/sim_outcome_json.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/simulation/impact_detection.h"
+#include "stairplan/simulation/plan_executor.h"
+#include "stairplan/simulation/sim_outcome_json.h"
 #include "leg_row_pipeline.h"
 
 using namespace stairplan;

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <string>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/plan_pipeline.h"
-#include "planning/simulation/impact_detection.h"
-#include "planning/simulation/plan_executor.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/simulation/impact_detection.h"
+#include "stairplan/simulation/plan_executor.h"
 #include "sanitized.h"
 
 using namespace stairplan;

@@ -9,8 +9,8 @@
 #include <mujoco/mujoco.h>
 #include <unistd.h>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/simulation/mujoco_world.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/simulation/mujoco_world.h"
 #include "test_paths.h"
 
 using namespace stairplan;

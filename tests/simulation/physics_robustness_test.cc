@@ -4,10 +4,10 @@
 // long for a unit test; this keeps its direction.
 #include <catch2/catch.hpp>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/plan_pipeline.h"
-#include "planning/robustness.h"
-#include "planning/simulation/physics_robustness.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/pipeline/robustness.h"
+#include "stairplan/simulation/physics_robustness.h"
 #include "sanitized.h"
 
 using namespace stairplan;

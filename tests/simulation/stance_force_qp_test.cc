@@ -2,8 +2,8 @@
 // ground balanced by the normal forces, friction pyramids, swing feet and motor room respected.
 #include <catch2/catch.hpp>
 
-#include "planning/simulation/body_reference.h"
-#include "planning/simulation/stance_force_qp.h"
+#include "stairplan/simulation/body_reference.h"
+#include "stairplan/simulation/stance_force_qp.h"
 
 using namespace stairplan;
 

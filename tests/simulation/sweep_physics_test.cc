@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/simulation/sweep_physics.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/simulation/sweep_physics.h"
 
 using namespace stairplan;
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "planning/simulation/verdict_agreement.h"
+#include "stairplan/simulation/verdict_agreement.h"
 
 using namespace stairplan;
 

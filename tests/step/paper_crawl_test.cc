@@ -1,4 +1,4 @@
-// The 2012 paper's crawl as a footstep source (planning/step/paper_crawl.h): footholds at the
+// The 2012 paper's crawl as a footstep source (stairplan/planning/step/paper_crawl.h): footholds at the
 // paper's contact offsets, its swing order and its timing (5)-(7), on the robot of its dimensions.
 #include <catch2/catch.hpp>
 
@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "kinematics/robot_kinematics.h"
-#include "planning/gait/crawl_stability.h"
-#include "planning/plan_pipeline.h"
-#include "planning/step/paper_crawl.h"
-#include "planning/swing_trajectory.h"
-#include "planning/validation/traversal_validator.h"
+#include "stairplan/kinematics/robot_kinematics.h"
+#include "stairplan/planning/gait/crawl_stability.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/step/paper_crawl.h"
+#include "stairplan/planning/swing_trajectory.h"
+#include "stairplan/planning/validation/traversal_validator.h"
 #include "sanitized.h"
 #include "test_paths.h"
 

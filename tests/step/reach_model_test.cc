@@ -3,11 +3,11 @@
 
 #include <random>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/step/ground_profile.h"
-#include "planning/step/ik_reach_model.h"
-#include "planning/step/reach_model.h"
-#include "planning/step/step_planner_driver.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/step/ground_profile.h"
+#include "stairplan/planning/step/ik_reach_model.h"
+#include "stairplan/planning/step/reach_model.h"
+#include "stairplan/planning/step/step_planner_driver.h"
 #include "step_test_util.h"
 
 using namespace stairplan;

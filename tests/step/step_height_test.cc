@@ -1,4 +1,4 @@
-// The step-height rule over a whole flight (planning/step/step_height.h): the first rise higher
+// The step-height rule over a whole flight (stairplan/planning/step/step_height.h): the first rise higher
 // than the lowest-stepping leg can step is found, up and down, wherever it is in the flight, and
 // the offline driver refuses such a flight before its first cycle, naming that rise.
 #include <catch2/catch.hpp>
@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <random>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/step/step_height.h"
-#include "planning/step/step_planner_driver.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/step/step_height.h"
+#include "stairplan/planning/step/step_planner_driver.h"
 
 using namespace stairplan;
 

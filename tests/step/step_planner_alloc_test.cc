@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include "alloc_counter.h"
-#include "kinematics/builtin_robot.h"
-#include "planning/step/step_planner.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/step/step_planner.h"
 
 using namespace stairplan;
 

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <map>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/plan_json.h"
-#include "planning/step/step_planner_driver.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/plan_json.h"
+#include "stairplan/planning/step/step_planner_driver.h"
 #include "step_test_util.h"
 #include "test_paths.h"
 

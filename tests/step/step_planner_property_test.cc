@@ -5,8 +5,8 @@
 
 #include <random>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/step/step_planner_driver.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/step/step_planner_driver.h"
 #include "sanitized.h"
 #include "step_test_util.h"
 

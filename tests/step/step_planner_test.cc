@@ -5,9 +5,9 @@
 #include <map>
 #include <set>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/step/step_planner.h"
-#include "planning/step/step_planner_driver.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/step/step_planner.h"
+#include "stairplan/planning/step/step_planner_driver.h"
 #include "step_test_util.h"
 
 using namespace stairplan;

@@ -7,10 +7,10 @@
 
 #include <Eigen/Geometry>
 
-#include "geometry/constrained_map.h"
-#include "kinematics/robot_model.h"
-#include "planning/plan.h"
-#include "planning/step/reach_model.h"
+#include "stairplan/geometry/constrained_map.h"
+#include "stairplan/kinematics/robot_model.h"
+#include "stairplan/planning/plan.h"
+#include "stairplan/planning/step/reach_model.h"
 
 namespace stairplan::testing {
 

@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "planning/plan_json.h"
-#include "planning/plan_json_reader.h"
-#include "planning/swing_trajectory.h"
+#include "stairplan/planning/plan_json.h"
+#include "stairplan/planning/plan_json_reader.h"
+#include "stairplan/planning/swing_trajectory.h"
 
 using namespace stairplan;
 

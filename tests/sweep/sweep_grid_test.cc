@@ -4,9 +4,9 @@
 #include <set>
 #include <tuple>
 
-#include "geometry/field_error.h"
-#include "planning/sweep/sweep_merge.h"
-#include "planning/sweep/sweep_runner.h"
+#include "stairplan/geometry/field_error.h"
+#include "stairplan/sweep/sweep_merge.h"
+#include "stairplan/sweep/sweep_runner.h"
 
 using namespace stairplan;
 

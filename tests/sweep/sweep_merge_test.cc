@@ -5,9 +5,9 @@
 
 #include <stdexcept>
 
-#include "planning/sweep/sweep_atlas.h"
-#include "planning/sweep/sweep_merge.h"
-#include "planning/sweep/sweep_runner.h"
+#include "stairplan/sweep/sweep_atlas.h"
+#include "stairplan/sweep/sweep_merge.h"
+#include "stairplan/sweep/sweep_runner.h"
 
 using namespace stairplan;
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "planning/sweep/sweep_region.h"
+#include "stairplan/sweep/sweep_region.h"
 
 using namespace stairplan;
 

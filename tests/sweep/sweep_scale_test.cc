@@ -7,9 +7,9 @@
 
 #include <fstream>
 
-#include "planning/simulation/sweep_physics.h"
-#include "planning/sweep/sweep_manifest.h"
-#include "planning/sweep/sweep_runner.h"
+#include "stairplan/simulation/sweep_physics.h"
+#include "stairplan/sweep/sweep_manifest.h"
+#include "stairplan/sweep/sweep_runner.h"
 #include "sanitized.h"
 #include "test_paths.h"
 

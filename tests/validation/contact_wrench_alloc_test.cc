@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "alloc_counter.h"
-#include "kinematics/builtin_robot.h"
+#include "stairplan/kinematics/builtin_robot.h"
 #include "nominal_stance.h"
-#include "planning/validation/contact_wrench_check.h"
+#include "stairplan/planning/validation/contact_wrench_check.h"
 
 using namespace stairplan;
 

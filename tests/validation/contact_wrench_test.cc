@@ -7,12 +7,12 @@
 #include <regex>
 #include <string>
 
-#include "geometry/shapes.h"
-#include "kinematics/builtin_robot.h"
-#include "planning/plan_pipeline.h"
-#include "planning/validation/contact_wrench_check.h"
-#include "planning/validation/contact_wrench_qp.h"
-#include "planning/validation/traversal_validator.h"
+#include "stairplan/geometry/shapes.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/validation/contact_wrench_check.h"
+#include "stairplan/planning/validation/contact_wrench_qp.h"
+#include "stairplan/planning/validation/traversal_validator.h"
 #include "nominal_stance.h"
 #include "sanitized.h"
 

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/body_path.h"
-#include "planning/plan_pipeline.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body_path.h"
+#include "stairplan/pipeline/plan_pipeline.h"
 #include "leg_row_pipeline.h"
 #include "sanitized.h"
 

@@ -2,7 +2,7 @@
 // input: for tests of ContactWrenchCheck that need real leg Jacobians.
 #pragma once
 
-#include "planning/validation/contact_wrench_check.h"
+#include "stairplan/planning/validation/contact_wrench_check.h"
 
 namespace stairplan::testing {
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/robustness.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/robustness.h"
 #include "sanitized.h"
 
 using namespace stairplan;

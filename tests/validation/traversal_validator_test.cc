@@ -3,9 +3,9 @@
 
 #include <iostream>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/plan_pipeline.h"
-#include "planning/validation/traversal_validator.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/validation/traversal_validator.h"
 
 using namespace stairplan;
 

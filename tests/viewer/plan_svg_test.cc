@@ -2,8 +2,8 @@
 // is ringed in the side and the top view, and the top view shows the feet apart across the stairs.
 #include <catch2/catch.hpp>
 
-#include "planning/plan_json_reader.h"
-#include "planning/plan_svg.h"
+#include "stairplan/planning/plan_json_reader.h"
+#include "stairplan/planning/plan_svg.h"
 #include "test_paths.h"
 
 namespace {

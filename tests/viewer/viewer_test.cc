@@ -8,11 +8,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "kinematics/builtin_robot.h"
-#include "planning/plan_json_reader.h"
-#include "planning/viewer/viewer_page.h"
-#include "planning/viewer/viewer_robot.h"
-#include "planning/viewer/viewer_scene.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/plan_json_reader.h"
+#include "stairplan/viewer/viewer_page.h"
+#include "stairplan/viewer/viewer_robot.h"
+#include "stairplan/viewer/viewer_scene.h"
 #include "test_paths.h"
 
 namespace {

@@ -1,0 +1,29 @@
+// The exact test of a body trajectory: at every sample, every stance leg must reach its contact
+// point by IK within the joint limits and keep every link at least a margin from the stairs
+// (FCL). PlanBody runs it on the QP's plan (the QP's bounds are linearised and cached; this is
+// the independent re-check) and the NLP reports against it.
+#pragma once
+
+#include <string>
+
+#include "stairplan/planning/body/kinematic_body_bounds.h"
+#include "stairplan/planning/body/foot_schedule.h"
+#include "stairplan/planning/plan.h"
+
+namespace stairplan {
+
+/// What CheckBodyTrajectory() found.
+struct BodyPlanCheck {
+  int samples = 0;              ///< body samples checked
+  int violations = 0;           ///< stance legs failing IK or the clearance
+  double min_clearance = 0.0;   ///< smallest stance-leg clearance seen [m]
+  std::string first_violation;  ///< e.g. "t=2.350 s, LF: joint_limits"; empty when none
+  /// True when no stance leg failed.
+  bool ok() const { return violations == 0; }
+};
+
+/// Checks every sample of `body` against the feet of `schedule` with the models in `bounds`.
+BodyPlanCheck CheckBodyTrajectory(KinematicBodyBounds& bounds, const FootSchedule& schedule,
+                                  const std::vector<BodyState>& body, double min_clearance);
+
+}  // namespace stairplan

@@ -1,0 +1,29 @@
+// The body planner's offline driver: runs the receding-horizon planner along a footstep plan (as
+// the control loop would, one cycle per knot) and writes the executed body trajectory, with its
+// com_shift, into the plan; then re-checks it exactly (IK and FCL). `stairplan plan` calls it.
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "stairplan/geometry/constrained_map.h"
+#include "stairplan/geometry/staircase.h"
+#include "stairplan/kinematics/robot_model.h"
+#include "stairplan/planning/body/body_planner_settings.h"
+#include "stairplan/planning/plan.h"
+
+namespace stairplan {
+
+/// Fills `footsteps_plan.body` (one sample per knot_dt) from the body planner and returns the
+/// plan. Its status becomes infeasible, with the reason, when a cycle finds no valid body height
+/// for a stance leg, a QP fails, or the exact re-check finds a stance leg out of reach or closer
+/// to the stairs than settings.clearance_margin. A plan that is already infeasible is returned as
+/// it is. Throws std::invalid_argument naming the field for bad settings. `standing_xy`, where
+/// known, is where the robot's body stands at the start (the alignment pose it walked to): the
+/// plan starts there, its offset from the neutral body as the start's weight shifts; otherwise it
+/// starts over the feet (BodyPlanner::StartState()).
+Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan footsteps_plan,
+              const BodyPlannerSettings& settings = {}, const std::optional<Eigen::Vector2d>& standing_xy = std::nullopt);
+
+}  // namespace stairplan

@@ -1,0 +1,35 @@
+// The gait a plan walks: one enum for the step planner's controllers, the plans they make, the
+// validator that judges them and the files that carry them.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+namespace stairplan {
+
+/// Which legs swing together and in which order. The crawl of Chen, Ko, Li, Lin 2012, "Stair
+/// Climbing in a Quadruped Robot": one leg at a time, rear right, rear left, fore right, fore left;
+/// its alternative with the fore pair switched; a trot with diagonal pairs. kPaperCrawl and
+/// kPaperCrawlAlternate are the same two crawls with the paper's own footholds and timing
+/// (stairplan/planning/step/paper_crawl.h).
+enum class Gait { kCrawl, kCrawlAlternate, kTrot, kPaperCrawl, kPaperCrawlAlternate };
+
+/// Every gait, in the enum's order.
+inline constexpr std::array<Gait, 5> kAllGaits = {Gait::kCrawl, Gait::kCrawlAlternate, Gait::kTrot, Gait::kPaperCrawl,
+                                                  Gait::kPaperCrawlAlternate};
+
+/// "crawl", "crawl_alt", "trot", "paper_crawl" or "paper_crawl_alt".
+const char* ToString(Gait gait);
+
+/// The gait ToString() names `text`; none for any other text.
+std::optional<Gait> ParseGait(std::string_view text);
+
+/// True for the crawls (one leg at a time, the body balanced over three feet), which the validator
+/// holds quasi-static: the body's acceleration bounded, the COM over the support polygon.
+bool IsQuasiStatic(Gait gait);
+
+/// ToString() of a plan's gait; "" when it has none (no controller was chosen).
+const char* GaitName(const std::optional<Gait>& gait);
+
+}  // namespace stairplan
