@@ -131,6 +131,13 @@ void LegKinematics::BuildFkSegments(LegWorkspace& ws) {
   // pose at q = 0 and R the turn by q about the axis through o. KDL's joints may carry a scale or
   // offset this leaves out: the frames must agree with KDL's solver over the joints' ranges.
   fk_segments_ = std::move(segments);
+  if (!FkSegmentsAgreeWithKdl(ws)) fk_segments_.clear();
+  ws.frames_current_ = false;
+}
+
+bool LegKinematics::FkSegmentsAgreeWithKdl(LegWorkspace& ws) const {
+  // Three levels per joint across its range (27 configurations), shifted so that no joint sits
+  // at its zero, where a wrong axis sign would go unseen.
   for (int k = 0; k < 27; ++k) {
     Eigen::Vector3d q;
     for (int j = 0; j < kDof; ++j) {
@@ -139,22 +146,18 @@ void LegKinematics::BuildFkSegments(LegWorkspace& ws) {
       ws.q_(static_cast<unsigned>(j)) = q(j);
     }
     ws.fk_->JntToCart(ws.q_, ws.frames_);
-    std::vector<KDL::Frame> kdl = ws.frames_;
+    const std::vector<KDL::Frame> kdl = ws.frames_;
     ws.frames_current_ = false;
     SegmentFrames(q, ws);
     for (std::size_t i = 0; i < kdl.size(); ++i) {
       for (int r = 0; r < 3; ++r) {
         bool agree = std::abs(kdl[i].p(r) - ws.frames_[i].p(r)) <= 1e-12;
         for (int c = 0; c < 3; ++c) agree = agree && std::abs(kdl[i].M(r, c) - ws.frames_[i].M(r, c)) <= 1e-12;
-        if (!agree) {
-          fk_segments_.clear();
-          ws.frames_current_ = false;
-          return;
-        }
+        if (!agree) return false;
       }
     }
   }
-  ws.frames_current_ = false;
+  return true;
 }
 
 Eigen::Vector3d LegKinematics::SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const {

@@ -116,6 +116,8 @@ class LegKinematics {
   Eigen::Vector3d SegmentFrames(const Eigen::Vector3d& q, LegWorkspace& ws) const;
   // Fills fk_segments_ from the chain and keeps them where they reproduce KDL's frames.
   void BuildFkSegments(LegWorkspace& ws);
+  // Whether the frames from fk_segments_ equal KDL's solver's within 1e-12 over the joints' ranges.
+  bool FkSegmentsAgreeWithKdl(LegWorkspace& ws) const;
   // Movable joint j's line in the base frame, from the frames SegmentFrames left in `ws`.
   JointLine JointLineFromFrames(const LegWorkspace& ws, int j) const;
   // The foot Jacobian from the frames SegmentFrames left in `ws`: per joint, its axis crossed with
