@@ -299,6 +299,11 @@ bool BandedIpmQpSolver::Converged(const Measures& e) const {
          e.gap <= tol + rel * e.gap_scale;
 }
 
+bool BandedIpmQpSolver::ConvergedAbsolute(const Measures& e) const {
+  const double tol = settings_.tolerance;
+  return e.primal <= tol && e.dual <= tol && e.gap <= tol;
+}
+
 bool BandedIpmQpSolver::IsInfeasible() const {
   // Growing multipliers y with A'y + z ~ 0 and a negative support value prove that no x meets
   // the constraints (Farkas): y'(A x) <= support(y) < 0 = (A'y + z)'x would be needed.
@@ -501,10 +506,19 @@ SolveStatus BandedIpmQpSolver::Iterate() {
     const int changes = UpdateActiveSides();
     if (Converged(measures_)) return SolveStatus::kSolved;
     // Polish once the active set has settled (the same two iterations running), and again after
-    // a failed polish only when mu has fallen much further.
+    // a failed polish only when mu has fallen much further. Each time mu has fallen by
+    // kPolishProgress (from the start, then from the last such try) the polish is also tried on
+    // an active set that has not settled yet: the set is often right an iteration before it is
+    // seen twice. Such a polish is kept only within the absolute tolerance (one at a large
+    // program's round-off floor waits for a settled set, from a closer iterate), and its
+    // failure changes nothing the iterations use, so they run as without it.
+    if (iterations_ == 0) early_polish_mu_ = kPolishProgress * mu_;
     if (changes == 0 && iterations_ > 0 && mu_ <= next_polish_mu_) {
       if (Polish()) return SolveStatus::kSolved;
       next_polish_mu_ = kPolishProgress * mu_;
+    } else if (iterations_ > 0 && mu_ <= early_polish_mu_) {
+      if (Polish(/*strict=*/true)) return SolveStatus::kSolved;
+      early_polish_mu_ = kPolishProgress * mu_;
     }
     if (IsInfeasible()) return SolveStatus::kInfeasible;
     if (IsUnbounded()) return SolveStatus::kUnbounded;
@@ -570,7 +584,7 @@ int BandedIpmQpSolver::UpdateActiveSides() {
   return changes;
 }
 
-bool BandedIpmQpSolver::Polish() {
+bool BandedIpmQpSolver::Polish(bool strict) {
   // The equality-constrained QP on the active set the iterate points at, solved by iterative
   // refinement of its regularised KKT system: H dx + A'dy = r1, A dx - delta dy = r2, with r1
   // and r2 the unregularised residuals, so the refinement converges to the exact KKT point.
@@ -604,7 +618,7 @@ bool BandedIpmQpSolver::Polish() {
     const bool equality = lower_[k] == upper_[k];  // its multiplier has no sign
     if (!equality && active_[static_cast<std::size_t>(k)] * yp_[k] < -settings_.tolerance) return false;
   }
-  if (!Converged(polish_measures_)) return false;
+  if (!Converged(polish_measures_) || (strict && !ConvergedAbsolute(polish_measures_))) return false;
   x_ = xp_;
   y_ = yp_;
   v_ = vp_;
