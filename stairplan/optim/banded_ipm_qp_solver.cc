@@ -239,7 +239,7 @@ void BandedIpmQpSolver::Analyse() {
 }
 
 void BandedIpmQpSolver::ComputeValues(const Eigen::VectorXd& x, Eigen::VectorXd* values) const {
-  for (int k = 0; k < m_; ++k) (*values)[k] = rows_.RowDot(k, x);
+  rows_.Multiply(x, values);
   values->tail(n_) = x;
 }
 
@@ -267,7 +267,8 @@ void BandedIpmQpSolver::Residuals(const Eigen::VectorXd& x, const Eigen::VectorX
   ComputeValues(x, values);
   hessian_rows_.Multiply(x, hx);
   const Eigen::VectorXd& g = program_->linear_cost();
-  for (int j = 0; j < n_; ++j) (*r_dual)[j] = (*hx)[j] + g[j] + columns_.RowDot(j, y) + y[m_ + j];
+  columns_.Multiply(y, r_dual);  // A'y
+  for (int j = 0; j < n_; ++j) (*r_dual)[j] = (*hx)[j] + g[j] + (*r_dual)[j] + y[m_ + j];
 }
 
 BandedIpmQpSolver::Measures BandedIpmQpSolver::Measure(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -403,7 +404,8 @@ void BandedIpmQpSolver::Direction() {
   double* e = e_.data();
   for (int j = 0; j < n; ++j) e[constraint[j]] += sign[j] * (rc[j] + l[j] * r[j]) * inv_s[j];
   for (const int k : equalities_) e_[k] = (v_[k] - lower_[k]) / delta_;
-  for (int i = 0; i < n_; ++i) rhs_[i] = -r_dual_[i] - columns_.RowDot(i, e_) - e_[m_ + i];
+  columns_.Multiply(e_, &rhs_);  // A'e
+  for (int i = 0; i < n_; ++i) rhs_[i] = -r_dual_[i] - rhs_[i] - e_[m_ + i];
   SolveReduced();
   ComputeValues(dx_, &dv_);
   const double* dv = dv_.data();
