@@ -148,31 +148,44 @@ bool BandedIpmQpSolver::Prepare(const Program& program) {
 }
 
 void BandedIpmQpSolver::LoadBounds(const Program& program) {
+  // Each side is written at the next free place and kept by advancing sides_ when its bound is
+  // finite: no branch on which bounds a constraint has (a branch per side mispredicted on the
+  // body QP's mix of bounded and free variables). The per-side vectors have room for two sides
+  // per constraint, so the writes past the kept ones stay inside them.
   sides_ = 0;
   equalities_.clear();
-  bounds_consistent_ = true;
-  const auto add_side = [this](int k, double sign, double bound) {
-    side_constraint_[static_cast<std::size_t>(sides_)] = k;
-    side_sign_[sides_] = sign;
-    side_bound_[sides_] = bound;
-    ++sides_;
-  };
-  for (int k = 0; k < n_ + m_; ++k) {
-    const double lo = NormalizeBound(k < m_ ? program.row_lower()[k] : program.variable_lower()[k - m_]);
-    const double up = NormalizeBound(k < m_ ? program.row_upper()[k] : program.variable_upper()[k - m_]);
+  bool consistent = true;
+  int* constraint = side_constraint_.data();
+  double* sign = side_sign_.data();
+  double* bound = side_bound_.data();
+  int sides = 0;
+  const auto load = [&](int k, double lo, double up) {
+    lo = NormalizeBound(lo);
+    up = NormalizeBound(up);
+    const bool finite_lo = std::isfinite(lo), finite_up = std::isfinite(up);
     lower_[k] = lo;
     upper_[k] = up;
-    finite_lower_[k] = std::isfinite(lo) ? lo : 0.0;
-    finite_upper_[k] = std::isfinite(up) ? up : 0.0;
-    bounded_[k] = std::isfinite(lo) || std::isfinite(up) ? 1.0 : 0.0;
-    if (lo > up) bounds_consistent_ = false;
-    if (lo == up) {
-      equalities_.push_back(k);  // within the reserved capacity
-      continue;
-    }
-    if (std::isfinite(lo)) add_side(k, 1.0, lo);
-    if (std::isfinite(up)) add_side(k, -1.0, up);
-  }
+    finite_lower_[k] = finite_lo ? lo : 0.0;
+    finite_upper_[k] = finite_up ? up : 0.0;
+    bounded_[k] = finite_lo || finite_up ? 1.0 : 0.0;
+    consistent = consistent && !(lo > up);
+    const bool equality = lo == up;
+    if (equality) equalities_.push_back(k);  // within the reserved capacity
+    constraint[sides] = k;
+    sign[sides] = 1.0;
+    bound[sides] = lo;
+    sides += finite_lo && !equality ? 1 : 0;
+    constraint[sides] = k;
+    sign[sides] = -1.0;
+    bound[sides] = up;
+    sides += finite_up && !equality ? 1 : 0;
+  };
+  const Eigen::VectorXd &row_lower = program.row_lower(), &row_upper = program.row_upper();
+  const Eigen::VectorXd &variable_lower = program.variable_lower(), &variable_upper = program.variable_upper();
+  for (int k = 0; k < m_; ++k) load(k, row_lower[k], row_upper[k]);
+  for (int j = 0; j < n_; ++j) load(m_ + j, variable_lower[j], variable_upper[j]);
+  sides_ = sides;
+  bounds_consistent_ = consistent;
 }
 
 void BandedIpmQpSolver::Analyse() {
