@@ -41,6 +41,13 @@ constexpr double kCombinationTol = 1e-9;
 // round-off; the polish's own measures decide whether it is kept.)
 constexpr int kPolishSteps = 3;
 constexpr double kPolishProgress = 1e-2;
+// The polish is tried on a set that has not settled only when the duality gap is at most this
+// fraction of its terms: far from the optimum the set is a guess, and a failed try costs about
+// half an iteration.
+constexpr double kEarlyPolishGap = 1e-3;
+// Such a polish stops after its first step when a multiplier has the wrong sign or an inactive
+// constraint is violated by this much relative to their size (ClearlyWrongSet()).
+constexpr double kWrongSetMargin = 1e-6;
 // Iterates beyond this size make a ray of unboundedness worth checking.
 constexpr double kLargePrimal = 1e8;
 
@@ -313,9 +320,28 @@ bool BandedIpmQpSolver::Converged(const Measures& e) const {
          e.gap <= tol + rel * e.gap_scale;
 }
 
+bool BandedIpmQpSolver::NearOptimum(const Measures& e) const {
+  return e.gap <= settings_.tolerance + kEarlyPolishGap * e.gap_scale;
+}
+
 bool BandedIpmQpSolver::ConvergedAbsolute(const Measures& e) const {
   const double tol = settings_.tolerance;
   return e.primal <= tol && e.dual <= tol && e.gap <= tol;
+}
+
+bool BandedIpmQpSolver::ClearlyWrongSet() const {
+  // After the polish's first step its point is the regularised system's solution, within about
+  // delta of the exact one, which the further steps only refine: a multiplier of the wrong sign
+  // or an inactive constraint violated by kWrongSetMargin of their size will still be there.
+  const double y_margin = kWrongSetMargin * (1.0 + yp_.lpNorm<Eigen::Infinity>());
+  for (int k = 0; k < n_ + m_; ++k) {
+    const ActiveSide side = active_[static_cast<std::size_t>(k)];
+    const double v = vp_[k] + dv_[k];  // the values at the new point
+    const double v_margin = kWrongSetMargin * (1.0 + std::abs(v));
+    if (side == 0 && (v < lower_[k] - v_margin || v > upper_[k] + v_margin)) return true;
+    if (side != 0 && lower_[k] != upper_[k] && side * yp_[k] < -y_margin) return true;
+  }
+  return false;
 }
 
 bool BandedIpmQpSolver::IsInfeasible() const {
@@ -522,16 +548,17 @@ SolveStatus BandedIpmQpSolver::Iterate() {
     if (Converged(measures_)) return SolveStatus::kSolved;
     // Polish once the active set has settled (the same two iterations running), and again after
     // a failed polish only when mu has fallen much further. Each time mu has fallen by
-    // kPolishProgress (from the start, then from the last such try) the polish is also tried on
-    // an active set that has not settled yet: the set is often right an iteration before it is
-    // seen twice. Such a polish is kept only within the absolute tolerance (one at a large
-    // program's round-off floor waits for a settled set, from a closer iterate), and its
-    // failure changes nothing the iterations use, so they run as without it.
+    // kPolishProgress (from the start, then from the last such try) and the gap is small
+    // (NearOptimum()), the polish is also tried on an active set that has not settled yet: the
+    // set is often right an iteration before it is seen twice. Such a polish is kept only within
+    // the absolute tolerance (one at a large program's round-off floor waits for a settled set,
+    // from a closer iterate), stops early on a clearly wrong set, and its failure changes
+    // nothing the iterations use, so they run as without it.
     if (iterations_ == 0) early_polish_mu_ = kPolishProgress * mu_;
     if (changes == 0 && iterations_ > 0 && mu_ <= next_polish_mu_) {
       if (Polish()) return SolveStatus::kSolved;
       next_polish_mu_ = kPolishProgress * mu_;
-    } else if (iterations_ > 0 && mu_ <= early_polish_mu_) {
+    } else if (iterations_ > 0 && mu_ <= early_polish_mu_ && NearOptimum(measures_)) {
       if (Polish(/*strict=*/true)) return SolveStatus::kSolved;
       early_polish_mu_ = kPolishProgress * mu_;
     }
@@ -627,6 +654,7 @@ bool BandedIpmQpSolver::Polish(bool strict) {
     for (int k = 0; k < n_ + m_; ++k) {
       if (active_[static_cast<std::size_t>(k)] != 0) yp_[k] += (dv_[k] - (target_[k] - vp_[k])) / delta_;
     }
+    if (strict && step == 0 && ClearlyWrongSet()) return false;
   }
   polish_measures_ = Measure(xp_, yp_, &vp_, &hxp_, &rdp_);
   for (int k = 0; k < n_ + m_; ++k) {
