@@ -41,6 +41,13 @@ constexpr double kCombinationTol = 1e-9;
 // round-off; the polish's own measures decide whether it is kept.)
 constexpr int kPolishSteps = 3;
 constexpr double kPolishProgress = 1e-2;
+// The polish is tried on a set that has not settled only when the duality gap is at most this
+// fraction of its terms: far from the optimum the set is a guess, and a failed try costs about
+// half an iteration.
+constexpr double kEarlyPolishGap = 1e-3;
+// Such a polish stops after its first step when a multiplier has the wrong sign or an inactive
+// constraint is violated by this much relative to their size (ClearlyWrongSet()).
+constexpr double kWrongSetMargin = 1e-6;
 // Iterates beyond this size make a ray of unboundedness worth checking.
 constexpr double kLargePrimal = 1e8;
 
@@ -148,31 +155,44 @@ bool BandedIpmQpSolver::Prepare(const Program& program) {
 }
 
 void BandedIpmQpSolver::LoadBounds(const Program& program) {
+  // Each side is written at the next free place and kept by advancing sides_ when its bound is
+  // finite: no branch on which bounds a constraint has (a branch per side mispredicted on the
+  // body QP's mix of bounded and free variables). The per-side vectors have room for two sides
+  // per constraint, so the writes past the kept ones stay inside them.
   sides_ = 0;
   equalities_.clear();
-  bounds_consistent_ = true;
-  const auto add_side = [this](int k, double sign, double bound) {
-    side_constraint_[static_cast<std::size_t>(sides_)] = k;
-    side_sign_[sides_] = sign;
-    side_bound_[sides_] = bound;
-    ++sides_;
-  };
-  for (int k = 0; k < n_ + m_; ++k) {
-    const double lo = NormalizeBound(k < m_ ? program.row_lower()[k] : program.variable_lower()[k - m_]);
-    const double up = NormalizeBound(k < m_ ? program.row_upper()[k] : program.variable_upper()[k - m_]);
+  bool consistent = true;
+  int* constraint = side_constraint_.data();
+  double* sign = side_sign_.data();
+  double* bound = side_bound_.data();
+  int sides = 0;
+  const auto load = [&](int k, double lo, double up) {
+    lo = NormalizeBound(lo);
+    up = NormalizeBound(up);
+    const bool finite_lo = std::isfinite(lo), finite_up = std::isfinite(up);
     lower_[k] = lo;
     upper_[k] = up;
-    finite_lower_[k] = std::isfinite(lo) ? lo : 0.0;
-    finite_upper_[k] = std::isfinite(up) ? up : 0.0;
-    bounded_[k] = std::isfinite(lo) || std::isfinite(up) ? 1.0 : 0.0;
-    if (lo > up) bounds_consistent_ = false;
-    if (lo == up) {
-      equalities_.push_back(k);  // within the reserved capacity
-      continue;
-    }
-    if (std::isfinite(lo)) add_side(k, 1.0, lo);
-    if (std::isfinite(up)) add_side(k, -1.0, up);
-  }
+    finite_lower_[k] = finite_lo ? lo : 0.0;
+    finite_upper_[k] = finite_up ? up : 0.0;
+    bounded_[k] = finite_lo || finite_up ? 1.0 : 0.0;
+    consistent = consistent && !(lo > up);
+    const bool equality = lo == up;
+    if (equality) equalities_.push_back(k);  // within the reserved capacity
+    constraint[sides] = k;
+    sign[sides] = 1.0;
+    bound[sides] = lo;
+    sides += finite_lo && !equality ? 1 : 0;
+    constraint[sides] = k;
+    sign[sides] = -1.0;
+    bound[sides] = up;
+    sides += finite_up && !equality ? 1 : 0;
+  };
+  const Eigen::VectorXd &row_lower = program.row_lower(), &row_upper = program.row_upper();
+  const Eigen::VectorXd &variable_lower = program.variable_lower(), &variable_upper = program.variable_upper();
+  for (int k = 0; k < m_; ++k) load(k, row_lower[k], row_upper[k]);
+  for (int j = 0; j < n_; ++j) load(m_ + j, variable_lower[j], variable_upper[j]);
+  sides_ = sides;
+  bounds_consistent_ = consistent;
 }
 
 void BandedIpmQpSolver::Analyse() {
@@ -239,7 +259,7 @@ void BandedIpmQpSolver::Analyse() {
 }
 
 void BandedIpmQpSolver::ComputeValues(const Eigen::VectorXd& x, Eigen::VectorXd* values) const {
-  for (int k = 0; k < m_; ++k) (*values)[k] = rows_.RowDot(k, x);
+  rows_.Multiply(x, values);
   values->tail(n_) = x;
 }
 
@@ -267,7 +287,8 @@ void BandedIpmQpSolver::Residuals(const Eigen::VectorXd& x, const Eigen::VectorX
   ComputeValues(x, values);
   hessian_rows_.Multiply(x, hx);
   const Eigen::VectorXd& g = program_->linear_cost();
-  for (int j = 0; j < n_; ++j) (*r_dual)[j] = (*hx)[j] + g[j] + columns_.RowDot(j, y) + y[m_ + j];
+  columns_.Multiply(y, r_dual);  // A'y
+  for (int j = 0; j < n_; ++j) (*r_dual)[j] = (*hx)[j] + g[j] + (*r_dual)[j] + y[m_ + j];
 }
 
 BandedIpmQpSolver::Measures BandedIpmQpSolver::Measure(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -297,6 +318,30 @@ bool BandedIpmQpSolver::Converged(const Measures& e) const {
   const double tol = settings_.tolerance, rel = settings_.relative_tolerance;
   return e.primal <= tol + rel * e.primal_scale && e.dual <= tol + rel * e.dual_scale &&
          e.gap <= tol + rel * e.gap_scale;
+}
+
+bool BandedIpmQpSolver::NearOptimum(const Measures& e) const {
+  return e.gap <= settings_.tolerance + kEarlyPolishGap * e.gap_scale;
+}
+
+bool BandedIpmQpSolver::ConvergedAbsolute(const Measures& e) const {
+  const double tol = settings_.tolerance;
+  return e.primal <= tol && e.dual <= tol && e.gap <= tol;
+}
+
+bool BandedIpmQpSolver::ClearlyWrongSet() const {
+  // After the polish's first step its point is the regularised system's solution, within about
+  // delta of the exact one, which the further steps only refine: a multiplier of the wrong sign
+  // or an inactive constraint violated by kWrongSetMargin of their size will still be there.
+  const double y_margin = kWrongSetMargin * (1.0 + yp_.lpNorm<Eigen::Infinity>());
+  for (int k = 0; k < n_ + m_; ++k) {
+    const ActiveSide side = active_[static_cast<std::size_t>(k)];
+    const double v = vp_[k] + dv_[k];  // the values at the new point
+    const double v_margin = kWrongSetMargin * (1.0 + std::abs(v));
+    if (side == 0 && (v < lower_[k] - v_margin || v > upper_[k] + v_margin)) return true;
+    if (side != 0 && lower_[k] != upper_[k] && side * yp_[k] < -y_margin) return true;
+  }
+  return false;
 }
 
 bool BandedIpmQpSolver::IsInfeasible() const {
@@ -398,7 +443,8 @@ void BandedIpmQpSolver::Direction() {
   double* e = e_.data();
   for (int j = 0; j < n; ++j) e[constraint[j]] += sign[j] * (rc[j] + l[j] * r[j]) * inv_s[j];
   for (const int k : equalities_) e_[k] = (v_[k] - lower_[k]) / delta_;
-  for (int i = 0; i < n_; ++i) rhs_[i] = -r_dual_[i] - columns_.RowDot(i, e_) - e_[m_ + i];
+  columns_.Multiply(e_, &rhs_);  // A'e
+  for (int i = 0; i < n_; ++i) rhs_[i] = -r_dual_[i] - rhs_[i] - e_[m_ + i];
   SolveReduced();
   ComputeValues(dx_, &dv_);
   const double* dv = dv_.data();
@@ -501,10 +547,20 @@ SolveStatus BandedIpmQpSolver::Iterate() {
     const int changes = UpdateActiveSides();
     if (Converged(measures_)) return SolveStatus::kSolved;
     // Polish once the active set has settled (the same two iterations running), and again after
-    // a failed polish only when mu has fallen much further.
+    // a failed polish only when mu has fallen much further. Each time mu has fallen by
+    // kPolishProgress (from the start, then from the last such try) and the gap is small
+    // (NearOptimum()), the polish is also tried on an active set that has not settled yet: the
+    // set is often right an iteration before it is seen twice. Such a polish is kept only within
+    // the absolute tolerance (one at a large program's round-off floor waits for a settled set,
+    // from a closer iterate), stops early on a clearly wrong set, and its failure changes
+    // nothing the iterations use, so they run as without it.
+    if (iterations_ == 0) early_polish_mu_ = kPolishProgress * mu_;
     if (changes == 0 && iterations_ > 0 && mu_ <= next_polish_mu_) {
       if (Polish()) return SolveStatus::kSolved;
       next_polish_mu_ = kPolishProgress * mu_;
+    } else if (iterations_ > 0 && mu_ <= early_polish_mu_ && NearOptimum(measures_)) {
+      if (Polish(/*strict=*/true)) return SolveStatus::kSolved;
+      early_polish_mu_ = kPolishProgress * mu_;
     }
     if (IsInfeasible()) return SolveStatus::kInfeasible;
     if (IsUnbounded()) return SolveStatus::kUnbounded;
@@ -570,7 +626,7 @@ int BandedIpmQpSolver::UpdateActiveSides() {
   return changes;
 }
 
-bool BandedIpmQpSolver::Polish() {
+bool BandedIpmQpSolver::Polish(bool strict) {
   // The equality-constrained QP on the active set the iterate points at, solved by iterative
   // refinement of its regularised KKT system: H dx + A'dy = r1, A dx - delta dy = r2, with r1
   // and r2 the unregularised residuals, so the refinement converges to the exact KKT point.
@@ -598,13 +654,14 @@ bool BandedIpmQpSolver::Polish() {
     for (int k = 0; k < n_ + m_; ++k) {
       if (active_[static_cast<std::size_t>(k)] != 0) yp_[k] += (dv_[k] - (target_[k] - vp_[k])) / delta_;
     }
+    if (strict && step == 0 && ClearlyWrongSet()) return false;
   }
   polish_measures_ = Measure(xp_, yp_, &vp_, &hxp_, &rdp_);
   for (int k = 0; k < n_ + m_; ++k) {
     const bool equality = lower_[k] == upper_[k];  // its multiplier has no sign
     if (!equality && active_[static_cast<std::size_t>(k)] * yp_[k] < -settings_.tolerance) return false;
   }
-  if (!Converged(polish_measures_)) return false;
+  if (!Converged(polish_measures_) || (strict && !ConvergedAbsolute(polish_measures_))) return false;
   x_ = xp_;
   y_ = yp_;
   v_ = vp_;

@@ -21,7 +21,9 @@
 // active set (Tapia's indicator: sides whose slack shrinks faster than their multiplier) stops
 // changing, an equality-constrained solve on it (the polish) is tried: kept when it meets the
 // tolerance with duals of the right signs, it ends the solve at an active-set solver's accuracy
-// a few iterations before the interior point would get there.
+// a few iterations before the interior point would get there. Near the optimum (a small gap)
+// it is also tried without waiting for the set to settle, each time mu has fallen a hundredfold
+// (kept then only within the absolute tolerance).
 //
 // Outcomes: kSolved when qpbenchmark's primal residual, dual residual and duality gap are all
 // within tolerance; kInfeasible when the multipliers grow into a Farkas certificate (A'y + z ~ 0
@@ -132,8 +134,17 @@ class BandedIpmQpSolver final : public Solver {
   // The iterate's duals, residuals, complementarity and measures.
   void ComputeResiduals();
   bool Converged(const Measures& measures) const;
-  // The active-set polish (see Polish() in the .cc); true when it solved the program.
-  bool Polish();
+  // The duality gap small beside its terms (see kEarlyPolishGap in the .cc): when the polish
+  // is worth trying on a set that has not settled.
+  bool NearOptimum(const Measures& measures) const;
+  // Converged() without the relative tolerance.
+  bool ConvergedAbsolute(const Measures& measures) const;
+  // The active-set polish (see Polish() in the .cc); true when it solved the program. `strict`:
+  // kept only within the absolute tolerance (Converged() without its relative part).
+  bool Polish(bool strict = false);
+  // After the polish's first step: a multiplier of the wrong sign or an inactive constraint
+  // violated beyond round-off (see the .cc), which the remaining steps cannot mend.
+  bool ClearlyWrongSet() const;
   // The sides the iterate holds active (multiplier above slack) into active_; returns how many
   // constraints changed side.
   int UpdateActiveSides();
@@ -220,6 +231,8 @@ class BandedIpmQpSolver final : public Solver {
   Eigen::VectorXd xp_, yp_, vp_, hxp_, rdp_, target_;
   Measures measures_, polish_measures_;
   double next_polish_mu_ = kInf;
+  // mu at or below which the polish is tried on a set that has not settled (see Iterate()).
+  double early_polish_mu_ = 0.0;
   // The last solve ended solved (its x_, y_ and active_ are a warm start's guess).
   bool last_solved_ = false;
   // Whether the last solve ended in the polish of the solve before's active set.

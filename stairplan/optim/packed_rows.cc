@@ -1,5 +1,6 @@
 #include "stairplan/optim/packed_rows.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -15,7 +16,62 @@ inline std::uint64_t MagnitudeBits(const double* x) {
 
 constexpr int kChunk = 8;
 
+// Rows padded to at most this many entries, and only while padding at most doubles the entries
+// (plus one per row).
+constexpr int kMaxPaddedWidth = 8;
+
+template <int kWidth>
+void MultiplyPadded(const int* column, const double* value, int rows, const double* x, double* y) {
+  for (int k = 0; k < rows; ++k) {
+    const int* c = column + static_cast<std::ptrdiff_t>(k) * kWidth;
+    const double* v = value + static_cast<std::ptrdiff_t>(k) * kWidth;
+    double sum = 0.0;
+    for (int t = 0; t < kWidth; ++t) sum += v[t] * x[c[t]];
+    y[k] = sum;
+  }
+}
+
 }  // namespace
+
+void PackedRows::Multiply(const Eigen::VectorXd& x, Eigen::VectorXd* y) const {
+  const int* c = padded_column_.data();
+  const double* v = padded_value_.data();
+  double* out = y->data();
+  switch (padded_width_) {
+    case 1: return MultiplyPadded<1>(c, v, m_, x.data(), out);
+    case 2: return MultiplyPadded<2>(c, v, m_, x.data(), out);
+    case 3: return MultiplyPadded<3>(c, v, m_, x.data(), out);
+    case 4: return MultiplyPadded<4>(c, v, m_, x.data(), out);
+    case 5: return MultiplyPadded<5>(c, v, m_, x.data(), out);
+    case 6: return MultiplyPadded<6>(c, v, m_, x.data(), out);
+    case 7: return MultiplyPadded<7>(c, v, m_, x.data(), out);
+    case 8: return MultiplyPadded<8>(c, v, m_, x.data(), out);
+    default:
+      for (int k = 0; k < m_; ++k) out[k] = RowDot(k, x);
+  }
+}
+
+void PackedRows::Pad() {
+  const auto size = [](int v) { return static_cast<std::size_t>(v); };
+  int width = 0;
+  for (int k = 0; k < m_; ++k) width = std::max(width, RowEnd(k) - RowBegin(k));
+  const long padded = static_cast<long>(width) * m_;
+  padded_width_ = 0;
+  if (width == 0 || width > kMaxPaddedWidth || padded > 2L * nonzeros() + m_) return;
+  if (padded_column_.size() < size(static_cast<int>(padded))) padded_column_.resize(size(static_cast<int>(padded)));
+  if (padded_value_.size() < size(static_cast<int>(padded))) padded_value_.resize(size(static_cast<int>(padded)));
+  for (int k = 0; k < m_; ++k) {
+    const int begin = RowBegin(k), end = RowEnd(k);
+    const int pad_column = begin < end ? ColumnAt(begin) : 0;
+    const std::size_t row = size(k) * size(width);
+    for (int t = 0; t < width; ++t) {
+      const bool real = begin + t < end;
+      padded_column_[row + size(t)] = real ? ColumnAt(begin + t) : pad_column;
+      padded_value_[row + size(t)] = real ? ValueAt(begin + t) : 0.0;
+    }
+  }
+  padded_width_ = width;
+}
 
 void PackedRows::Assign(const Eigen::MatrixXd& a) { Take(a, false); }
 
@@ -81,6 +137,7 @@ void PackedRows::Take(const Eigen::MatrixXd& a, bool symmetric) {
       value_[slot] = scratch_value_[f];
     }
   }
+  Pad();
 }
 
 void PackedRows::AssignTransposeOf(const PackedRows& a) {
@@ -101,6 +158,7 @@ void PackedRows::AssignTransposeOf(const PackedRows& a) {
       value_[slot] = a.ValueAt(e);
     }
   }
+  Pad();
 }
 
 }  // namespace stairplan::optim

@@ -123,6 +123,18 @@ Program KnotQp(const KnotQpOptions& o) {
   return p;
 }
 
+// The body planner on the default staircase, forward, with the builtin robot's crawl: the
+// planner whose per-cycle QPs the flight tests solve, beside the stairs, map and footsteps it
+// was built from. One per test.
+struct BodyPlannerFlight {
+  const stairplan::Staircase stairs{stairplan::StairSpec{}};
+  const stairplan::ConstrainedMap map = stairplan::ConstrainedMap::FromStaircase(stairs, stairplan::Facing::kForward);
+  const stairplan::Plan footsteps = stairplan::PlanCrawl(stairplan::BuiltinRobot(), stairs, map);
+  stairplan::BodyPlanner planner{stairplan::BuiltinRobot(), stairs, map, footsteps, stairplan::BodyPlannerSettings{}};
+};
+// The planner's cycle [s] in the flight tests.
+constexpr double kPeriod = 0.003;
+
 }  // namespace
 
 TEST_CASE("BandedIpmQpSolver: the body QP example's optimum and KKT conditions", "[banded-ipm]") {
@@ -182,12 +194,9 @@ TEST_CASE("BandedIpmQpSolver: a dense row falls back to the full band and stays 
 }
 
 TEST_CASE("BandedIpmQpSolver: the body planner's own QP along a flight", "[banded-ipm]") {
-  const stairplan::Staircase stairs{stairplan::StairSpec{}};
-  const stairplan::ConstrainedMap map = stairplan::ConstrainedMap::FromStaircase(stairs, stairplan::Facing::kForward);
-  const stairplan::Plan footsteps = stairplan::PlanCrawl(stairplan::BuiltinRobot(), stairs, map);
-  stairplan::BodyPlanner planner(stairplan::BuiltinRobot(), stairs, map, footsteps, stairplan::BodyPlannerSettings{});
+  BodyPlannerFlight flight;
+  stairplan::BodyPlanner& planner = flight.planner;
   stairplan::BodyState state = planner.StartState();
-  constexpr double kPeriod = 0.003;
   int checked = 0;
   for (int cycle = 0; cycle * kPeriod < 4.0; ++cycle) {
     const double now = cycle * kPeriod;
@@ -305,12 +314,9 @@ TEST_CASE("BandedIpmQpSolver: settings name the field they reject, MakeSolver kn
 }
 
 TEST_CASE("BandedIpmQpSolver: warm along the body planner's cycles, the last active set first", "[banded-ipm]") {
-  const stairplan::Staircase stairs{stairplan::StairSpec{}};
-  const stairplan::ConstrainedMap map = stairplan::ConstrainedMap::FromStaircase(stairs, stairplan::Facing::kForward);
-  const stairplan::Plan footsteps = stairplan::PlanCrawl(stairplan::BuiltinRobot(), stairs, map);
-  stairplan::BodyPlanner planner(stairplan::BuiltinRobot(), stairs, map, footsteps, stairplan::BodyPlannerSettings{});
+  BodyPlannerFlight flight;
+  stairplan::BodyPlanner& planner = flight.planner;
   stairplan::BodyState state = planner.StartState();
-  constexpr double kPeriod = 0.003;
   BandedIpmQpSolver warm;
   BandedIpmQpSettings cold_settings;
   cold_settings.warm_start = false;
