@@ -47,9 +47,9 @@ endif()
 string(REPLACE ";" " " pc_dependency_libs "$<TARGET_LINKER_FILE:mujoco::mujoco>;${STAIRPLAN_PC_FCL_LDFLAGS};${IPOPT_LDFLAGS}")
 string(APPEND STAIRPLAN_PC_LIBS "${pc_dependency_libs}")
 # CLP and EGL are optional: required only when the solvers archive holds the CLP back-end or the
-# simulation archive the offscreen renderer. In the separate objects of a normal build a consumer that never names
-# ClpSolver or OffscreenRenderer left their objects out of its link and the missing entry went
-# unseen; a unity build merges them with code every consumer needs.
+# simulation archive the offscreen renderer. In the separate objects of a normal build a consumer
+# that never names ClpSolver or OffscreenRenderer left their objects out of its link and the
+# missing entry went unseen; a unity build merges them with code every consumer needs.
 set(STAIRPLAN_PC_OPTIONAL_REQUIRES "")
 if(STAIRPLAN_HAS_CLP)
   string(APPEND STAIRPLAN_PC_OPTIONAL_REQUIRES " clp")
