@@ -1,9 +1,10 @@
-// The exact test of a body trajectory: at every sample, every stance leg must reach its contact
-// point by IK within the joint limits and keep every link at least a margin from the stairs
-// (FCL). PlanBody runs it on the QP's plan (the QP's bounds are linearised and cached; this is
+// The exact test of a body trajectory: at every sample, the body must keep at least a margin
+// from the stairs, and every stance leg must reach its contact point by IK within the joint
+// limits and keep every link at least that margin from them (FCL). PlanBody runs it on the QP's plan (the QP's bounds are linearised and cached; this is
 // the independent re-check) and the NLP reports against it.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "stairplan/planning/body/kinematic_body_bounds.h"
@@ -15,12 +16,17 @@ namespace stairplan {
 /// What CheckBodyTrajectory() found.
 struct BodyPlanCheck {
   int samples = 0;              ///< body samples checked
-  int violations = 0;           ///< stance legs failing IK or the clearance
-  double min_clearance = 0.0;   ///< smallest stance-leg clearance seen [m]
+  int violations = 0;           ///< bodies too near the stairs and stance legs failing IK or the clearance
+  /// Smallest stance-leg clearance seen [m] (infinite before any).
+  double min_clearance = std::numeric_limits<double>::infinity();
   std::string first_violation;  ///< e.g. "t=2.350 s, LF: joint_limits"; empty when none
   /// True when no stance leg failed.
   bool ok() const { return violations == 0; }
 };
+
+/// Checks one sample of a body trajectory into `check`, as CheckBodyTrajectory() checks each.
+void CheckBodySample(KinematicBodyBounds& bounds, const FootSchedule& schedule, const BodyState& sample,
+                     double min_clearance, BodyPlanCheck& check);
 
 /// Checks every sample of `body` against the feet of `schedule` with the models in `bounds`.
 BodyPlanCheck CheckBodyTrajectory(KinematicBodyBounds& bounds, const FootSchedule& schedule,

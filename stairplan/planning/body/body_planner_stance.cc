@@ -62,9 +62,10 @@ BodyPose Moved(const BodyPose& at, int v, double step) {
 double BodyPlanner::StandingHeight(const BodyState& start) const {
   // Knot 0 is the state, which no row can move: the robot must stand in a posture its legs hold.
   // The nominal hip height can put a leading knee against the first riser (facing backward the
-  // hind knees point at it), so the start takes the nearest height, in centimetre steps, at which
-  // every leg reaches its foot within its limits and as clear of the stairs as the clearance rows
-  // keep it; none: the nominal one.
+  // hind knees point at it, and a long head can overhang the first nosing), so the start takes
+  // the nearest height, in centimetre steps, at which the body and every leg are as clear of the
+  // stairs as the clearance rows keep them and every leg reaches its foot within its limits;
+  // none: the nominal one.
   constexpr double kStep = 0.01;
   constexpr int kSteps = 15;
   BodyPose pose;
@@ -73,9 +74,10 @@ double BodyPlanner::StandingHeight(const BodyState& start) const {
   pose.yaw = start.yaw;
   for (int i = 0; i <= 2 * kSteps; ++i) {
     pose.position_W.z() = start.z + (i % 2 == 1 ? 1.0 : -1.0) * ((i + 1) / 2) * kStep;
-    bool stands = true;
+    const double keep = settings_.clearance_margin + kClearanceInset;
+    bool stands = BodyStairClearance(robot_->collision_model(), robot_->stair_model(), pose, {}).distance >= keep;
     for (int l = 0; l < kBodyLegs && stands; ++l) {
-      stands = robot_->CheckLeg(l, schedule_.Phase(l, 0.0).foot_W, pose).ok(settings_.clearance_margin + kClearanceInset);
+      stands = robot_->CheckLeg(l, schedule_.Phase(l, 0.0).foot_W, pose).ok(keep);
     }
     if (stands) return pose.position_W.z();
   }
