@@ -99,6 +99,43 @@ Plan FootstepPlan(const RobotModel& robot, const Staircase& stairs, const Constr
   return SelectedCrawlPlan(robot, stairs, map, options);
 }
 
+bool SameFootholds(const Plan& a, const Plan& b) {
+  if (a.initial_feet_W != b.initial_feet_W || a.footsteps.size() != b.footsteps.size()) return false;
+  for (std::size_t i = 0; i < a.footsteps.size(); ++i) {
+    if (a.footsteps[i].leg != b.footsteps[i].leg || a.footsteps[i].position_W != b.footsteps[i].position_W) return false;
+  }
+  return true;
+}
+
+// The body optimisation on the crawl's footholds. Which tread each foot takes is a choice the
+// continuous optimisation cannot make, and only it can tell whether a body exists on them: where
+// it finds none on the footholds given, the crawl's other layouts fitted to the robot are planned
+// in turn, up to body_layouts of them, and the first on which it finds a body is the plan.
+Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                         const Plan& footsteps, const PipelineOptions& options, const std::optional<Eigen::Vector2d>& standing) {
+  Plan first = PlanBody(robot, stairs, map, footsteps, options.body_qp, standing);
+  if (first.status == PlanStatus::kOk || options.footsteps != FootstepSource::kSelectedCrawl) return first;
+  const auto t_layouts = std::chrono::steady_clock::now();
+  CrawlSettings crawl = options.crawl;
+  crawl.swing_duration = footsteps.cadence_s;
+  int tried = 0;
+  for (const CrawlSettings& layout : FittedLayouts(robot, stairs, map, crawl)) {
+    if (tried >= options.body_layouts) break;
+    Plan candidate = PlanCrawl(robot, stairs, map, layout);
+    if (candidate.status != PlanStatus::kOk || SameFootholds(candidate, footsteps)) continue;
+    ++tried;
+    candidate.controllers = footsteps.controllers;
+    candidate.selected = footsteps.selected;
+    Plan bodied = PlanBody(robot, stairs, map, std::move(candidate), options.body_qp, standing, true);
+    if (bodied.status != PlanStatus::kOk) continue;
+    bodied.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
+    return bodied;
+  }
+  if (tried > 0) first.status_reason += "; none on " + std::to_string(tried) + " other foothold layouts either";
+  first.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
+  return first;
+}
+
 // Rejected for body jumps, legs at their reach or limits or on the stairs alone (BodyPosture).
 bool IsNearMiss(const ValidationReport& report) {
   return std::all_of(report.violations.begin(), report.violations.end(), [](const Violation& v) {
@@ -137,6 +174,7 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
                         PipelineOptions options) {
   const RobotModel& robot = kinematics.robot();
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
+  RequireInRange("body_layouts", options.body_layouts, 0, 100);
   if (stairs.direction() == TravelDirection::kDown) {
     options.crawl.shift_duration = std::max(options.crawl.shift_duration, options.descent_shift_duration);
   }
@@ -158,7 +196,7 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
     // over the feet.
     std::optional<Eigen::Vector2d> standing;
     if (options.start_at_alignment && aligned.found) standing = aligned.position.head<2>();
-    result.plan = PlanBody(robot, stairs, result.map, result.plan, options.body_qp, standing);
+    result.plan = BodyOnFittedLayouts(robot, stairs, result.map, result.plan, options, standing);
     if (!options.body_nlp.empty() && result.plan.status == PlanStatus::kOk) {
       BodyNlpSettings nlp = options.nlp;
       nlp.solver = options.body_nlp;

@@ -87,6 +87,12 @@ struct PipelineOptions {
   /// Which planner makes the body trajectory; the paper's crawl always plans its own path.
   BodySource body = BodySource::kRecedingHorizonQp;
   BodyPlannerSettings body_qp = LegRowBodySettings();  ///< for kRecedingHorizonQp (knots = the horizon)
+  /// Where the body optimisation finds no body on the crawl's footholds, it plans on up to this
+  /// many of the crawl's other layouts fitted to the robot (FittedLayouts()) and keeps the first
+  /// on which it finds one: Unitree Go2 climbs the default stairs with its front feet one tread
+  /// ahead of its hind ones, not two (there its front shanks, reaching far ahead of the hips,
+  /// lie on the nosings behind the feet). 0: the crawl's footholds only.
+  int body_layouts = 12;
   std::string body_nlp;          ///< "", "ipopt" or "nlopt": refine the QP body with the NLP
   BodyNlpSettings nlp;  ///< the NLP's solver settings, with body_nlp
   ConstrainedMapSettings map;  ///< the analytic map's margins

@@ -431,6 +431,16 @@ class TouchdownChecker {
 
 }  // namespace
 
+std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                                         const CrawlSettings& settings) {
+  std::vector<CrawlSettings> fitted;
+  for (const FootholdLayout& layout : CandidateLayouts(robot, stairs, map, settings)) {
+    fitted.push_back(layout.Apply(settings));
+    fitted.back().fit_footholds = 0;
+  }
+  return fitted;
+}
+
 Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const CrawlSettings& settings) {
   settings.Validate();
   Plan best = PlanCrawlLayout(robot, stairs, map, settings, &stairs);

@@ -86,6 +86,15 @@ struct CrawlSettings {
   void Validate() const;
 };
 
+/// The foothold layouts fitted to the robot's hip spacing that the crawl's foothold search tries
+/// (see fit_footholds), as `settings` that plan each of them with no search of their own, the
+/// most promising first: the number of treads between the leading and the trailing feet nearest
+/// the hip spacing along the pitched body, then one fewer and one more, each with the pairs'
+/// offsets in their step regions that fit it best, the most the regions allow the other way, and
+/// none, and with the trailing legs' first stride whole and halved.
+std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                                         const CrawlSettings& settings);
+
 /// Plans a crawl over `stairs` for `robot` on `map`. Never throws for geometry it cannot
 /// handle: the plan's status says infeasible and why.
 Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,

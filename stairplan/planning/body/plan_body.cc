@@ -26,7 +26,8 @@ bool AtRest(const std::vector<BodyState>& body) {
 }  // namespace
 
 Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan plan,
-              const BodyPlannerSettings& settings, const std::optional<Eigen::Vector2d>& standing_xy) {
+              const BodyPlannerSettings& settings, const std::optional<Eigen::Vector2d>& standing_xy,
+              bool stop_at_first_violation) {
   settings.Validate();
   if (plan.status != PlanStatus::kOk) return plan;
   const auto start = std::chrono::steady_clock::now();
@@ -48,6 +49,10 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   // Cycles whose next knot had no valid body height under the (conservative, linearised) bounds.
   int conflict_cycles = 0, stale_cycles = 0;
   std::string first_conflict, solver_failure;
+  // The plan stands or falls by the exact re-check: the cached bounds are conservative, so a
+  // cycle may report a conflict the exact kinematics do not have.
+  auto& bounds = static_cast<KinematicBodyBounds&>(planner.bounds());
+  BodyPlanCheck check;
   // Cycle c's time: on the knots up to the flight's end, then from the end on.
   const auto time_of = [&](int c) { return c < cycles ? c * dt : end + (c - cycles) * dt; };
   for (int c = 0; c <= cycles + settle_cycles; ++c) {
@@ -71,16 +76,17 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
         {now, out.status, out.solves, out.iterations, out.timings.solve_us, out.timings.total_us, out.relaxation});
     body.push_back(out.knots[0]);
     body.back().t = now;
+    if (stop_at_first_violation) {
+      CheckBodySample(bounds, planner.schedule(), body.back(), settings.clearance_margin, check);
+      if (!check.ok() || !solver_failure.empty()) break;
+    }
     if (c >= cycles && AtRest(body)) break;
     state = planner.Interpolate(time_of(c + 1));
   }
   plan.body = std::move(body);
   plan.body_planner = BodyPlannerKind::kRecedingHorizonQp;
   const double plan_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-  // The plan stands or falls by the exact re-check: the cached bounds are conservative, so a
-  // cycle may report a conflict the exact kinematics do not have.
-  auto& bounds = static_cast<KinematicBodyBounds&>(planner.bounds());
-  const BodyPlanCheck check = CheckBodyTrajectory(bounds, planner.schedule(), plan.body, settings.clearance_margin);
+  if (!stop_at_first_violation) check = CheckBodyTrajectory(bounds, planner.schedule(), plan.body, settings.clearance_margin);
   std::string reason = solver_failure;
   if (reason.empty() && !check.ok()) {
     reason = "body re-check: " + check.first_violation + " (" + std::to_string(check.violations) + " violations";

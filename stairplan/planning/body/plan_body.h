@@ -22,8 +22,11 @@ namespace stairplan {
 /// it is. Throws std::invalid_argument naming the field for bad settings. `standing_xy`, where
 /// known, is where the robot's body stands at the start (the alignment pose it walked to): the
 /// plan starts there, its offset from the neutral body as the start's weight shifts; otherwise it
-/// starts over the feet (BodyPlanner::StartState()).
+/// starts over the feet (BodyPlanner::StartState()). With `stop_at_first_violation`, each sample
+/// is re-checked as it is planned and the plan ends, infeasible, at the first that fails: for a
+/// caller that needs the verdict only (a search over footholds), not the count of violations.
 Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan footsteps_plan,
-              const BodyPlannerSettings& settings = {}, const std::optional<Eigen::Vector2d>& standing_xy = std::nullopt);
+              const BodyPlannerSettings& settings = {}, const std::optional<Eigen::Vector2d>& standing_xy = std::nullopt,
+              bool stop_at_first_violation = false);
 
 }  // namespace stairplan
