@@ -1,11 +1,29 @@
 #include "stairplan/planning/body/body_check.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
+#include <string>
+#include <utility>
 
 #include "stairplan/collision/clearance.h"
 
 namespace stairplan {
+
+namespace {
+
+// A foot sphere this deep in its tread still only touches it (the validator's tolerance) [m].
+constexpr double kTouchTolerance = 1e-4;
+
+// Notes a violation; the first one's text becomes the check's first_violation.
+void Violated(BodyPlanCheck& check, double t, const std::string& part, const char* what) {
+  if (check.violations++ > 0) return;
+  char text[160];
+  std::snprintf(text, sizeof(text), "t=%.3f s, %s: %s", t, part.c_str(), what);
+  check.first_violation = text;
+}
+
+}  // namespace
 
 void CheckBodySample(KinematicBodyBounds& bounds, const FootSchedule& schedule, const BodyState& b, double min_clearance,
                      BodyPlanCheck& check) {
@@ -14,27 +32,34 @@ void CheckBodySample(KinematicBodyBounds& bounds, const FootSchedule& schedule, 
   pose.position_W = Eigen::Vector3d(b.x, b.y, b.z);
   pose.pitch = b.pitch;
   pose.yaw = b.yaw;
-  ClearanceOptions body_options;
-  body_options.prune_above = min_clearance;
-  const double body_clearance =
-      BodyStairClearance(bounds.collision_model(), bounds.stair_model(), pose, body_options).distance;
-  if (!(body_clearance >= min_clearance) && check.violations++ == 0) {
-    char text[160];
-    std::snprintf(text, sizeof(text), "t=%.3f s, body: clearance below the margin", b.t);
-    check.first_violation = text;
-  }
-  for (int l = 0; l < schedule.leg_count(); ++l) {
+  // Every leg where the schedule has its foot: on its contact, or along its swing.
+  std::array<Eigen::Vector3d, 4> feet;
+  for (int l = 0; l < schedule.leg_count() && l < 4; ++l) {
     const LegPhase phase = schedule.Phase(l, b.t);
-    if (!phase.stance) continue;
-    const StanceLegCheck leg = bounds.CheckLeg(l, phase.foot_W, pose);
-    if (leg.ik.ok()) check.min_clearance = std::min(check.min_clearance, leg.clearance);
-    if (leg.ok(min_clearance)) continue;
-    if (check.violations++ == 0) {
-      char text[160];
-      std::snprintf(text, sizeof(text), "t=%.3f s, %s: %s", b.t, bounds.kinematics().leg(l).name().c_str(),
-                    leg.ik.ok() ? "clearance below the margin" : ToString(leg.ik.status));
-      check.first_violation = text;
+    feet[static_cast<std::size_t>(l)] = phase.stance ? phase.foot_W : schedule.SwingFoot(l, phase);
+  }
+  const StanceResult r = bounds.CheckFeet(pose, feet, min_clearance);
+  if (!(r.body.distance >= min_clearance)) Violated(check, b.t, "body", "clearance below the margin");
+  const RobotCollisionModel& model = bounds.collision_model();
+  for (int l = 0; l < schedule.leg_count() && l < 4; ++l) {
+    const LegStance& leg = r.legs[static_cast<std::size_t>(l)];
+    const std::string& name = bounds.kinematics().leg(l).name();
+    if (!leg.ik.ok()) {
+      Violated(check, b.t, name, ToString(leg.ik.status));
+      continue;
     }
+    // A foot lifting off or touching down grazes its tread by design: only penetration counts.
+    const auto& shapes = model.leg_shapes(l);
+    const bool foot_on_tread = leg.stairs.shape >= 0 && shapes[static_cast<std::size_t>(leg.stairs.shape)].foot_contact &&
+                               leg.stairs.part == StairPart::kTread;
+    if (foot_on_tread && leg.stairs.distance > -kTouchTolerance) continue;
+    check.min_clearance = std::min(check.min_clearance, leg.stairs.distance);
+    if (!(leg.stairs.distance >= min_clearance)) Violated(check, b.t, name, "clearance below the margin");
+  }
+  const std::array<std::pair<const char*, const Clearance*>, 4> pairs = {
+      {{"LF/RF", &r.front_pair}, {"LH/RH", &r.hind_pair}, {"LF/LH", &r.left_pair}, {"RF/RH", &r.right_pair}}};
+  for (const auto& [name, pair] : pairs) {
+    if (!(pair->distance >= min_clearance)) Violated(check, b.t, name, "legs closer than the margin");
   }
 }
 

@@ -1,7 +1,9 @@
-// The exact test of a body trajectory: at every sample, the body must keep at least a margin
-// from the stairs, and every stance leg must reach its contact point by IK within the joint
-// limits and keep every link at least that margin from them (FCL). PlanBody runs it on the QP's plan (the QP's bounds are linearised and cached; this is
-// the independent re-check) and the NLP reports against it.
+// The exact test of a body trajectory: at every sample, with every foot where the schedule puts
+// it (on its contact or along its swing), every leg must reach its foot by IK within the joint
+// limits, and the body, every leg link and each pair of neighbouring legs must keep at least a
+// margin from the stairs and from each other (FCL): the validator's stance checks, without its
+// stability and step regions. PlanBody runs it on the QP's plan (the QP's rows are linearised
+// and cached; this is the independent re-check) and the NLP reports against it.
 #pragma once
 
 #include <limits>
@@ -16,11 +18,11 @@ namespace stairplan {
 /// What CheckBodyTrajectory() found.
 struct BodyPlanCheck {
   int samples = 0;              ///< body samples checked
-  int violations = 0;           ///< bodies too near the stairs and stance legs failing IK or the clearance
-  /// Smallest stance-leg clearance seen [m] (infinite before any).
+  int violations = 0;           ///< legs failing IK, and clearances (legs, pairs, body) below the margin
+  /// Smallest leg-to-stairs clearance seen [m] (infinite before any).
   double min_clearance = std::numeric_limits<double>::infinity();
   std::string first_violation;  ///< e.g. "t=2.350 s, LF: joint_limits"; empty when none
-  /// True when no stance leg failed.
+  /// True when nothing failed.
   bool ok() const { return violations == 0; }
 };
 

@@ -100,6 +100,13 @@ StanceLegCheck KinematicBodyBounds::CheckLeg(int leg, const Eigen::Vector3d& con
   return check;
 }
 
+StanceResult KinematicBodyBounds::CheckFeet(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W,
+                                            double min_clearance) {
+  StanceSettings stance;
+  stance.min_clearance = min_clearance;
+  return CheckStance(*kinematics_, *collision_, *stairs_, body, contacts_W, *ws_, stance);
+}
+
 const KinematicBodyBounds::ReachNode& KinematicBodyBounds::FillReach(ReachNode& node, int leg, int i, int j) {
   node.done = true;
   ++reach_computed_;

@@ -8,11 +8,13 @@
 // the bounds vary monotonically between nodes; the margins absorb the rest.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
 #include "stairplan/collision/robot_collision_model.h"
 #include "stairplan/collision/stair_collision_model.h"
+#include "stairplan/collision/stance_check.h"
 #include "stairplan/geometry/constrained_map.h"
 #include "stairplan/geometry/staircase.h"
 #include "stairplan/kinematics/body_pose.h"
@@ -48,6 +50,10 @@ class KinematicBodyBounds final : public BodyBounds {
   /// IK (as the stance check does it: the foot's sphere resting on the contact point) and the
   /// clearance of leg `leg` with its foot on `contact_W` and the body at `body`. Not per cycle.
   StanceLegCheck CheckLeg(int leg, const Eigen::Vector3d& contact_W, const BodyPose& body);
+
+  /// CheckStance() with these models: the four feet on `contacts_W` (stance or swing), every leg's
+  /// IK and clearance to the stairs, the neighbouring legs' clearances and the body's. Not per cycle.
+  StanceResult CheckFeet(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W, double min_clearance);
 
   /// The robot's leg kinematics.
   const RobotKinematics& kinematics() const { return *kinematics_; }

@@ -1,0 +1,81 @@
+// The exact re-check of a body trajectory (body_check.h): every leg, stance or swing, the body
+// and the pairs of neighbouring legs.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <string>
+
+#include "stairplan/collision/stance_check.h"
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/planning/body/body_check.h"
+
+using namespace stairplan;
+
+namespace {
+
+// The built-in robot standing in its nominal stance on the landing before the default stairs,
+// as a plan with no footsteps, and the body there.
+struct Standing {
+  Plan plan;
+  BodyState body;
+};
+
+Standing StandingAt(const RobotKinematics& kinematics, double x) {
+  RobotWorkspace ws(kinematics);
+  const NominalStance nominal = NominalStanceAt(kinematics, ws, x);
+  Standing s;
+  for (int l = 0; l < 4; ++l) {
+    s.plan.legs.push_back(kinematics.leg(l).name());
+    s.plan.initial_feet_W.push_back(nominal.contacts_W[static_cast<std::size_t>(l)]);
+  }
+  s.body.x = nominal.body.position_W.x();
+  s.body.y = nominal.body.position_W.y();
+  s.body.z = nominal.body.position_W.z();
+  return s;
+}
+
+BodyPlanCheck Check(const Standing& s, const Staircase& stairs) {
+  KinematicBodyBounds bounds(BuiltinRobot(), stairs, Facing::kForward);
+  return CheckBodyTrajectory(bounds, FootSchedule(BuiltinRobot(), s.plan), {s.body}, 0.005);
+}
+
+}  // namespace
+
+TEST_CASE("the body re-check passes the nominal stance and names the legs of a crossed pair", "[body][check]") {
+  const Staircase stairs{StairSpec{}};
+  const RobotKinematics kinematics(BuiltinRobot());
+  Standing s = StandingAt(kinematics, -1.0);
+  const BodyPlanCheck nominal = Check(s, stairs);
+  INFO(nominal.first_violation);
+  CHECK(nominal.ok());
+  CHECK(nominal.samples == 1);
+  CHECK(nominal.min_clearance > 0.005);
+
+  // The right hind foot moved up to 3 cm behind the right front one, under the body's middle:
+  // both legs reach, and their shanks stand side by side.
+  const int rf = kinematics.LegIndex("RF"), rh = kinematics.LegIndex("RH");
+  Eigen::Vector3d& hind = s.plan.initial_feet_W[static_cast<std::size_t>(rh)];
+  const Eigen::Vector3d& front = s.plan.initial_feet_W[static_cast<std::size_t>(rf)];
+  hind.x() = s.body.x - 0.015;
+  s.plan.initial_feet_W[static_cast<std::size_t>(rf)].x() = s.body.x + 0.015;
+  REQUIRE(hind.x() < front.x());
+  const BodyPlanCheck crossed = Check(s, stairs);
+  INFO(crossed.first_violation);
+  CHECK_FALSE(crossed.ok());
+  CHECK(crossed.first_violation == "t=0.000 s, RF/RH: legs closer than the margin");
+}
+
+TEST_CASE("the body re-check keeps the body itself off the stairs", "[body][check]") {
+  // Standing with its body centre over the first nosing, 2 cm above the first tread: the legs
+  // stand on the landing, the body is in the first step.
+  const Staircase stairs{StairSpec{}};
+  const RobotKinematics kinematics(BuiltinRobot());
+  Standing s = StandingAt(kinematics, -1.0);
+  const BodyPlanCheck far = Check(s, stairs);
+  REQUIRE(far.ok());
+  s.body.x = 0.0;
+  s.body.z = stairs.spec().rise + 0.02;
+  const BodyPlanCheck into = Check(s, stairs);
+  CHECK_FALSE(into.ok());
+  CHECK_THAT(into.first_violation, Catch::StartsWith("t=0.000 s, body: clearance below the margin"));
+}
