@@ -4,6 +4,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "stairplan/collision/stance_check.h"
 #include "stairplan/kinematics/builtin_robot.h"
@@ -63,6 +64,23 @@ TEST_CASE("the body re-check passes the nominal stance and names the legs of a c
   INFO(crossed.first_violation);
   CHECK_FALSE(crossed.ok());
   CHECK(crossed.first_violation == "t=0.000 s, RF/RH: legs closer than the margin");
+}
+
+TEST_CASE("the body re-check looks between the body's samples: two instants in each interval", "[body][check]") {
+  // Three samples 50 ms apart, the middle one raised 4 cm: each interval is checked at its thirds
+  // too, and the body there is between its samples (a leg that reaches both ends reaches them).
+  const Staircase stairs{StairSpec{}};
+  const RobotKinematics kinematics(BuiltinRobot());
+  const Standing s = StandingAt(kinematics, -1.0);
+  std::vector<BodyState> body(3, s.body);
+  for (std::size_t i = 0; i < body.size(); ++i) body[i].t = 0.05 * static_cast<double>(i);
+  body[1].z += 0.04;
+  KinematicBodyBounds bounds(BuiltinRobot(), stairs, Facing::kForward);
+  const BodyPlanCheck check = CheckBodyTrajectory(bounds, FootSchedule(BuiltinRobot(), s.plan), body, 0.005);
+  INFO(check.first_violation);
+  CHECK(check.ok());
+  CHECK(check.samples == 3);
+  CHECK(check.instants == 1 + 2 * 3);
 }
 
 TEST_CASE("the body re-check keeps the body itself off the stairs", "[body][check]") {

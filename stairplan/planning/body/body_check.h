@@ -17,7 +17,8 @@ namespace stairplan {
 
 /// What CheckBodyTrajectory() found.
 struct BodyPlanCheck {
-  int samples = 0;              ///< body samples checked
+  int samples = 0;              ///< body samples checked (each with the interval before it)
+  int instants = 0;             ///< instants checked: the samples and those between them
   int violations = 0;           ///< legs failing IK, and clearances (legs, pairs, body) below the margin
   /// Smallest leg-to-stairs clearance seen [m] (infinite before any).
   double min_clearance = std::numeric_limits<double>::infinity();
@@ -26,11 +27,14 @@ struct BodyPlanCheck {
   bool ok() const { return violations == 0; }
 };
 
-/// Checks one sample of a body trajectory into `check`, as CheckBodyTrajectory() checks each.
-void CheckBodySample(KinematicBodyBounds& bounds, const FootSchedule& schedule, const BodyState& sample,
-                     double min_clearance, BodyPlanCheck& check);
+/// Checks sample i of `body` into `check`, and the motion since sample i - 1 at instants a third
+/// of the interval apart (the body interpolated as BodyPoseAt() does), as CheckBodyTrajectory()
+/// checks each sample: for a planner that checks its samples as it makes them.
+void CheckBodySample(KinematicBodyBounds& bounds, const FootSchedule& schedule, const std::vector<BodyState>& body,
+                     std::size_t i, double min_clearance, BodyPlanCheck& check);
 
-/// Checks every sample of `body` against the feet of `schedule` with the models in `bounds`.
+/// Checks every sample of `body`, and the motion between them, against the feet of `schedule`
+/// with the models in `bounds`.
 BodyPlanCheck CheckBodyTrajectory(KinematicBodyBounds& bounds, const FootSchedule& schedule,
                                   const std::vector<BodyState>& body, double min_clearance);
 

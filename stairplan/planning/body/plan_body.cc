@@ -77,7 +77,7 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
     body.push_back(out.knots[0]);
     body.back().t = now;
     if (stop_at_first_violation) {
-      CheckBodySample(bounds, planner.schedule(), body.back(), settings.clearance_margin, check);
+      CheckBodySample(bounds, planner.schedule(), body, body.size() - 1, settings.clearance_margin, check);
       if (!check.ok() || !solver_failure.empty()) break;
     }
     if (c >= cycles && AtRest(body)) break;
