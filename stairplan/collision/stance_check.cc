@@ -24,6 +24,13 @@ void StanceSettings::Validate() const {
   }
 }
 
+bool FootGrazesTread(const RobotCollisionModel& robot, int leg, const Clearance& stairs) {
+  constexpr double kTouchTolerance = 1e-4;  // a foot sphere this deep in its tread still only touches [m]
+  if (stairs.shape < 0 || stairs.part != StairPart::kTread) return false;
+  const auto& shapes = robot.leg_shapes(leg);
+  return shapes.at(static_cast<std::size_t>(stairs.shape)).foot_contact && stairs.distance > -kTouchTolerance;
+}
+
 Eigen::Vector3d FootOriginForContact(const LegModel& leg, const Eigen::Vector3d& contact_W,
                                      const Eigen::Matrix3d& foot_rotation_W) {
   const Eigen::Vector3d centre_W = contact_W + Eigen::Vector3d(0.0, 0.0, leg.foot_radius);

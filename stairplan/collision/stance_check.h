@@ -102,6 +102,11 @@ class StanceChecker {
   RobotWorkspace ws_;
 };
 
+/// Whether leg `leg`'s clearance `stairs` (from CheckStance or LegStairClearance) is its foot
+/// grazing a tread, up to 0.1 mm deep: a foot lifting off or touching down touches its tread by
+/// design, so only deeper penetration counts against a plan.
+bool FootGrazesTread(const RobotCollisionModel& robot, int leg, const Clearance& stairs);
+
 /// Where the foot link origin must be for the foot's sphere to rest on `contact_W`, given the
 /// foot's orientation in the world (the sphere centre may be offset from the link origin).
 Eigen::Vector3d FootOriginForContact(const LegModel& leg, const Eigen::Vector3d& contact_W,

@@ -13,8 +13,6 @@ namespace stairplan {
 
 namespace {
 
-// A foot sphere this deep in its tread still only touches it (the validator's tolerance) [m].
-constexpr double kTouchTolerance = 1e-4;
 // Instants checked per interval between two body samples, its end included: a swing foot moves
 // up to 2 cm in a 50 ms knot, and a link can pass a nosing between two samples that both keep
 // the margin. Thirds of a 50 ms knot are finer than the validator's 20 ms replay.
@@ -29,7 +27,7 @@ void Violated(BodyPlanCheck& check, double t, const std::string& part, const cha
 }
 
 // Checks the body at `pose` at time t.
-void CheckPose(KinematicBodyBounds& bounds, const FootSchedule& schedule, double t, const BodyPose& pose,
+void CheckBodyAt(KinematicBodyBounds& bounds, const FootSchedule& schedule, double t, const BodyPose& pose,
                double min_clearance, BodyPlanCheck& check) {
   // Every leg where the schedule has its foot: on its contact, or along its swing.
   std::array<Eigen::Vector3d, 4> feet;
@@ -39,7 +37,6 @@ void CheckPose(KinematicBodyBounds& bounds, const FootSchedule& schedule, double
   }
   const StanceResult r = bounds.CheckFeet(pose, feet, min_clearance);
   if (!(r.body.distance >= min_clearance)) Violated(check, t, "body", "clearance below the margin");
-  const RobotCollisionModel& model = bounds.collision_model();
   for (int l = 0; l < schedule.leg_count() && l < 4; ++l) {
     const LegStance& leg = r.legs[static_cast<std::size_t>(l)];
     const std::string& name = bounds.kinematics().leg(l).name();
@@ -47,11 +44,7 @@ void CheckPose(KinematicBodyBounds& bounds, const FootSchedule& schedule, double
       Violated(check, t, name, ToString(leg.ik.status));
       continue;
     }
-    // A foot lifting off or touching down grazes its tread by design: only penetration counts.
-    const auto& shapes = model.leg_shapes(l);
-    const bool foot_on_tread = leg.stairs.shape >= 0 && shapes[static_cast<std::size_t>(leg.stairs.shape)].foot_contact &&
-                               leg.stairs.part == StairPart::kTread;
-    if (foot_on_tread && leg.stairs.distance > -kTouchTolerance) continue;
+    if (FootGrazesTread(bounds.collision_model(), l, leg.stairs)) continue;
     check.min_clearance = std::min(check.min_clearance, leg.stairs.distance);
     if (!(leg.stairs.distance >= min_clearance)) Violated(check, t, name, "clearance below the margin");
   }
@@ -71,7 +64,7 @@ void CheckBodySample(KinematicBodyBounds& bounds, const FootSchedule& schedule, 
   const double t0 = i > 0 ? body[i - 1].t : b.t;
   for (int k = i > 0 ? 1 : kInstantsPerInterval; k <= kInstantsPerInterval; ++k) {
     const double t = k == kInstantsPerInterval ? b.t : t0 + (b.t - t0) * k / kInstantsPerInterval;
-    CheckPose(bounds, schedule, t, BodyPoseAt(body, t), min_clearance, check);
+    CheckBodyAt(bounds, schedule, t, BodyPoseAt(body, t), min_clearance, check);
     ++check.instants;
   }
 }

@@ -13,7 +13,6 @@
 namespace stairplan {
 namespace {
 
-constexpr double kTouchTolerance = 1e-4;  // a foot sphere this deep in its tread still only touches [m]
 // A replay instant this close to a liftoff or touchdown is that event: footstep times are sums of
 // cadences (8.400000000000002), and a grid instant a rounding error before a touchdown would judge
 // the landing foot in the air and the COM, already shifting for the next swing, against the
@@ -260,11 +259,9 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
     const std::string& name = kinematics.leg(l).name();
     if (leg.ik.status == IkStatus::kOutOfReach) add(name, ViolationKind::kOutOfReach, leg.ik.error, "");
     if (leg.ik.status == IkStatus::kJointLimits) add(name, ViolationKind::kJointLimits, leg.ik.error, "");
+    if (FootGrazesTread(checker_->collision_model(), l, leg.stairs)) continue;
     const auto& shapes = checker_->collision_model().leg_shapes(l);
     const CollisionShape* shape = leg.stairs.shape >= 0 ? &shapes.at(static_cast<std::size_t>(leg.stairs.shape)) : nullptr;
-    // A foot lifting off or touching down grazes its tread by design: only penetration counts.
-    const bool foot_on_tread = shape != nullptr && shape->foot_contact && leg.stairs.part == StairPart::kTread;
-    if (foot_on_tread && leg.stairs.distance > -kTouchTolerance) continue;
     report.min_clearance_m = std::min(report.min_clearance_m, leg.stairs.distance);
     if (!(leg.stairs.distance > settings_.min_clearance)) {
       add(name, ViolationKind::kStairCollision, leg.stairs.distance,
