@@ -21,6 +21,7 @@
 #include "stairplan/planning/validation/traversal_validator.h"
 #include "leg_row_pipeline.h"
 #include "sanitized.h"
+#include "shared_robot.h"
 
 using namespace stairplan;
 
@@ -223,16 +224,6 @@ PipelineResult LegRowClimb(Facing facing, const Staircase& stairs) {
   return result;
 }
 
-// A robot of ../shared/data/robots by file name; none (with a warning) where ../shared is absent.
-std::optional<RobotModel> SharedRobot(const std::string& name) {
-  const std::string path = testing::SharedPath("data/robots/" + name + ".urdf");
-  if (path.empty()) {
-    WARN("shared robots skipped: ../shared not found");
-    return std::nullopt;
-  }
-  return RobotModel::FromUrdfFile(path);
-}
-
 // How far the body ever moves back against the travel (+x) [m]: its largest drop below the
 // farthest x it reached.
 double LargestBackwardMove(const std::vector<BodyState>& body) {
@@ -321,7 +312,7 @@ TEST_CASE("with leg rows every cycle's QP solves on Unitree A1's descent", "[bod
   // active-set solver took the bound's round-off violation (up to 5e-6 after hundreds of
   // changes) for a certificate of infeasibility, cold too, and the cycles kept their previous
   // plans, while Ipopt solved the same QPs.
-  const std::optional<RobotModel> shared = SharedRobot("unitree_a1");
+  const std::optional<RobotModel> shared = testing::SharedRobot("unitree_a1");
   if (!shared) return;
   const RobotModel& robot = *shared;
   PipelineOptions options = testing::LegRowPipeline();
@@ -350,7 +341,7 @@ TEST_CASE("with leg rows Unitree A1 climbs low stairs and validates: a clearance
   // for it at most knots of the horizon, and with it the support rows gave way: the body shifted
   // sideways only when the next liftoff was two knots away and the COM crossed into the triangle
   // 3 mm late (t = 5.62 s on the third step).
-  const std::optional<RobotModel> shared = SharedRobot("unitree_a1");
+  const std::optional<RobotModel> shared = testing::SharedRobot("unitree_a1");
   if (!shared) return;
   const RobotModel& robot = *shared;
   StairSpec spec;
@@ -372,7 +363,7 @@ TEST_CASE("with leg rows and the lateral-sequence crawl Unitree A1 climbs low st
   // feet: the next triangle is a sliver, the body gives up margin (16.4 mm of the 30 asked), and
   // between the sides it swings 22 cm sideways in one four-feet phase (the dynamic check fails 21
   // instants on three steps; MuJoCo falls). Each side's hind then front leg keeps the stance long.
-  const std::optional<RobotModel> shared = SharedRobot("unitree_a1");
+  const std::optional<RobotModel> shared = testing::SharedRobot("unitree_a1");
   if (!shared) return;
   StairSpec spec;
   spec.rise = 0.10;
@@ -429,7 +420,7 @@ TEST_CASE("with leg rows links keep their clearance between the knots: Unitree G
   // cycle's QP solves on Unitree A1's descent" and "with leg rows the robot starts standing clear
   // of the stairs, and a backward climb validates" run the same leg rows through the pipeline.
   if (testing::kSanitized) return;
-  const std::optional<RobotModel> shared = SharedRobot("unitree_go1");
+  const std::optional<RobotModel> shared = testing::SharedRobot("unitree_go1");
   if (!shared) return;
   const RobotModel& robot = *shared;
   PipelineOptions options = testing::FineKnotLegRowPipeline();
@@ -461,7 +452,7 @@ TEST_CASE("with leg rows the plan says where it crosses the support polygon's ma
   // names the body planner and, for the receding horizon, carries every cycle's solve" runs the
   // same relaxation reporting.
   if (testing::kSanitized) return;
-  const std::optional<RobotModel> shared = SharedRobot("unitree_go1");
+  const std::optional<RobotModel> shared = testing::SharedRobot("unitree_go1");
   if (!shared) return;
   // The pairs sequence, whose front feet step down one after the other: the lateral sequence's
   // plan of the same descent keeps the margin throughout and has nothing to report.

@@ -11,20 +11,11 @@
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/pipeline/plan_pipeline.h"
 #include "sanitized.h"
-#include "test_paths.h"
+#include "shared_robot.h"
 
 using namespace stairplan;
 
 namespace {
-
-std::optional<RobotModel> SharedRobot(const std::string& name) {
-  const std::string path = testing::SharedPath("data/robots/" + name + ".urdf");
-  if (path.empty()) {
-    WARN("shared robots skipped: ../shared not found");
-    return std::nullopt;
-  }
-  return RobotModel::FromUrdfFile(path);
-}
 
 // The most stairs a front foot ever stands above the hind foot on its side, at a touchdown.
 int FrontTreadsAhead(const Plan& plan) {
@@ -38,6 +29,27 @@ int FrontTreadsAhead(const Plan& plan) {
   return most;
 }
 
+// The body planned on the crawl's own footholds only (not validated), and with the layout search.
+struct OwnAndSearched {
+  PipelineResult own, searched;
+};
+
+OwnAndSearched PlanBothWays(const RobotModel& robot, const Staircase& stairs) {
+  PipelineOptions own;
+  own.body_layouts = 0;
+  own.validate = false;
+  return {RunPipeline(robot, stairs, own), RunPipeline(robot, stairs, PipelineOptions{})};
+}
+
+// The searched plan found a body, and it validates with the validator's clearance to spare.
+void RequireValid(const PipelineResult& searched) {
+  INFO("searched: " << searched.plan.status_reason);
+  REQUIRE(searched.plan.status == PlanStatus::kOk);
+  REQUIRE(searched.validated);
+  CHECK(searched.validation.ok);
+  CHECK(searched.validation.min_clearance_m >= searched.clearances.validator);
+}
+
 }  // namespace
 
 TEST_CASE("the body optimisation takes Unitree Go2 up the default stairs on footholds it chose among the crawl's layouts",
@@ -47,30 +59,19 @@ TEST_CASE("the body optimisation takes Unitree Go2 up the default stairs on foot
   // plans lifts them (the shank pivots about its foot, and the clearance's gradient in the body's
   // motion is below 0.1). One tread apart, it climbs. Under the sanitizers three steps: the first
   // layout fails there as well.
-  const std::optional<RobotModel> go2 = SharedRobot("unitree_go2");
+  const std::optional<RobotModel> go2 = testing::SharedRobot("unitree_go2");
   if (!go2) return;
   StairSpec spec;
   spec.steps = testing::FullOrSanitized(7, 3);
-  const Staircase stairs(spec);
-
-  PipelineOptions own;
-  own.body_layouts = 0;
-  own.validate = false;
-  const PipelineResult fixed = RunPipeline(*go2, stairs, own);
-  INFO("the crawl's footholds: " << fixed.plan.status_reason);
-  REQUIRE(fixed.plan.status == PlanStatus::kInfeasible);
-  CHECK_THAT(fixed.plan.status_reason, Catch::Contains("RF: clearance below the margin"));
-  CHECK(FrontTreadsAhead(fixed.plan) == 2);
-
-  const PipelineResult chosen = RunPipeline(*go2, stairs, PipelineOptions{});
-  INFO("chosen: " << chosen.plan.status_reason);
-  REQUIRE(chosen.plan.status == PlanStatus::kOk);
-  CHECK(FrontTreadsAhead(chosen.plan) == 1);
-  REQUIRE(chosen.validated);
-  // Among the checks, the body at t = 0: on this layout the robot starts nearer the flight, and
-  // standing at its nominal height its head would overhang the first nosing by 15 mm.
-  CHECK(chosen.validation.ok);
-  CHECK(chosen.validation.min_clearance_m >= chosen.clearances.validator);
+  const OwnAndSearched plans = PlanBothWays(*go2, Staircase(spec));
+  INFO("the crawl's footholds: " << plans.own.plan.status_reason);
+  REQUIRE(plans.own.plan.status == PlanStatus::kInfeasible);
+  CHECK_THAT(plans.own.plan.status_reason, Catch::Contains("RF: clearance below the margin"));
+  CHECK(FrontTreadsAhead(plans.own.plan) == 2);
+  // Among the validator's checks, the body at t = 0: on the layout found the robot starts nearer
+  // the flight, and standing at its nominal height its head would overhang the first nosing by 15 mm.
+  RequireValid(plans.searched);
+  CHECK(FrontTreadsAhead(plans.searched.plan) == 1);
 }
 
 TEST_CASE("the re-check that judges a layout checks swing legs and leg pairs: Unitree Go2 descends the low stairs",
@@ -78,32 +79,21 @@ TEST_CASE("the re-check that judges a layout checks swing legs and leg pairs: Un
   // On the crawl's own footholds the body optimisation plans a descent whose right hind leg,
   // swinging, passes through its standing front leg (-39 mm at 6.16 s). A re-check of the stance
   // legs alone passed it; with the swing legs and the pairs of neighbouring legs it is turned
-  // down, and a later layout keeps them apart. The normal build only (on four steps or fewer
-  // the crawl's footholds plan clear; five take 2 min under the sanitizers): there "the body re-check
+  // down, and a later layout keeps them apart. The normal build only (on four steps or fewer the
+  // crawl's footholds plan clear; five take 2 min under the sanitizers): there "the body re-check
   // passes the nominal stance and names the legs of a crossed pair" checks the pairs.
   if (testing::kSanitized) return;
-  const std::optional<RobotModel> go2 = SharedRobot("unitree_go2");
+  const std::optional<RobotModel> go2 = testing::SharedRobot("unitree_go2");
   if (!go2) return;
   StairSpec spec;
   spec.rise = 0.10;
   spec.run = 0.28;
   spec.direction = TravelDirection::kDown;
-  const Staircase stairs(spec);
-
-  PipelineOptions own;
-  own.body_layouts = 0;
-  own.validate = false;
-  const PipelineResult fixed = RunPipeline(*go2, stairs, own);
-  INFO("the crawl's footholds: " << fixed.plan.status_reason);
-  REQUIRE(fixed.plan.status == PlanStatus::kInfeasible);
-  CHECK_THAT(fixed.plan.status_reason, Catch::Contains("RF/RH: legs closer than the margin"));
-
-  const PipelineResult chosen = RunPipeline(*go2, stairs, PipelineOptions{});
-  INFO("chosen: " << chosen.plan.status_reason);
-  REQUIRE(chosen.plan.status == PlanStatus::kOk);
-  REQUIRE(chosen.validated);
-  CHECK(chosen.validation.ok);
-  CHECK(chosen.validation.min_clearance_m >= chosen.clearances.validator);
+  const OwnAndSearched plans = PlanBothWays(*go2, Staircase(spec));
+  INFO("the crawl's footholds: " << plans.own.plan.status_reason);
+  REQUIRE(plans.own.plan.status == PlanStatus::kInfeasible);
+  CHECK_THAT(plans.own.plan.status_reason, Catch::Contains("RF/RH: legs closer than the margin"));
+  RequireValid(plans.searched);
 }
 
 TEST_CASE("a body the optimisation finds on no layout: the first layout's reason, and how many others failed",
@@ -111,7 +101,7 @@ TEST_CASE("a body the optimisation finds on no layout: the first layout's reason
   // Unitree A1 facing forward up the default stairs: its front shanks reach the nosings on every
   // layout; two others suffice to show the report. The verdict is the rise's: on 0.10 m steps
   // (run 0.28 m) the same robot climbs, and the plan validates. Under the sanitizers two steps.
-  const std::optional<RobotModel> a1 = SharedRobot("unitree_a1");
+  const std::optional<RobotModel> a1 = testing::SharedRobot("unitree_a1");
   if (!a1) return;
   StairSpec spec;
   spec.steps = testing::FullOrSanitized(7, 2);
