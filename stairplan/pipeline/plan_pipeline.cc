@@ -131,7 +131,9 @@ Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const
     bodied.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
     return bodied;
   }
-  if (tried > 0) first.status_reason += "; none on " + std::to_string(tried) + " other foothold layouts either";
+  if (tried > 0) {
+    first.status_reason += "; none on " + std::to_string(tried) + " other foothold layout" + (tried > 1 ? "s" : "") + " either";
+  }
   first.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
   return first;
 }

@@ -57,12 +57,12 @@ TEST_CASE("the body optimisation takes Unitree Go2 up the default stairs on foot
   // On the crawl's own footholds its front feet stand two treads above its hind feet, far ahead of
   // their hips, and the front shanks lie on the nosings behind them: no body the optimisation
   // plans lifts them (the shank pivots about its foot, and the clearance's gradient in the body's
-  // motion is below 0.1). One tread apart, it climbs. Under the sanitizers three steps: the first
-  // layout fails there as well.
+  // motion is below 0.1). One tread apart, it climbs. The normal build only (two minutes under the
+  // sanitizers): there "a body the optimisation finds on no layout" runs the same search.
+  if (testing::kSanitized) return;
   const std::optional<RobotModel> go2 = testing::SharedRobot("unitree_go2");
   if (!go2) return;
   StairSpec spec;
-  spec.steps = testing::FullOrSanitized(7, 3);
   const OwnAndSearched plans = PlanBothWays(*go2, Staircase(spec));
   INFO("the crawl's footholds: " << plans.own.plan.status_reason);
   REQUIRE(plans.own.plan.status == PlanStatus::kInfeasible);
@@ -99,20 +99,22 @@ TEST_CASE("the re-check that judges a layout checks swing legs and leg pairs: Un
 TEST_CASE("a body the optimisation finds on no layout: the first layout's reason, and how many others failed",
           "[planning][layouts]") {
   // Unitree A1 facing forward up the default stairs: its front shanks reach the nosings on every
-  // layout; two others suffice to show the report. The verdict is the rise's: on 0.10 m steps
-  // (run 0.28 m) the same robot climbs, and the plan validates. Under the sanitizers two steps.
+  // layout; one other suffices to show the report. The verdict is the rise's: on 0.10 m steps
+  // (run 0.28 m) the same robot climbs, and the plan validates. Under the sanitizers the report
+  // on two steps only (one step plans).
   const std::optional<RobotModel> a1 = testing::SharedRobot("unitree_a1");
   if (!a1) return;
   StairSpec spec;
   spec.steps = testing::FullOrSanitized(7, 2);
   PipelineOptions options;
   options.validate = false;
-  options.body_layouts = 2;
+  options.body_layouts = 1;
   const PipelineResult r = RunPipeline(*a1, Staircase(spec), options);
   INFO(r.plan.status_reason);
   REQUIRE(r.plan.status == PlanStatus::kInfeasible);
   CHECK_THAT(r.plan.status_reason, Catch::StartsWith("body re-check: t="));
-  CHECK_THAT(r.plan.status_reason, Catch::EndsWith("; none on 2 other foothold layouts either"));
+  CHECK_THAT(r.plan.status_reason, Catch::EndsWith("; none on 1 other foothold layout either"));
+  if (testing::kSanitized) return;
 
   spec.rise = 0.10;
   spec.run = 0.28;
