@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "stairplan/collision/clearance.h"
+#include "stairplan/collision/stance_check.h"
 #include "stairplan/planning/plan_timeline.h"
 
 namespace stairplan {
@@ -28,7 +28,7 @@ void Violated(BodyPlanCheck& check, double t, const std::string& part, const cha
 
 // Checks the body at `pose` at time t.
 void CheckBodyAt(KinematicBodyBounds& bounds, const FootSchedule& schedule, double t, const BodyPose& pose,
-               double min_clearance, BodyPlanCheck& check) {
+                 double min_clearance, BodyPlanCheck& check) {
   // Every leg where the schedule has its foot: on its contact, or along its swing.
   std::array<Eigen::Vector3d, 4> feet;
   for (int l = 0; l < schedule.leg_count() && l < 4; ++l) {

@@ -72,9 +72,9 @@ double BodyPlanner::StandingHeight(const BodyState& start) const {
   pose.position_W = Eigen::Vector3d(start.x, start.y, start.z);
   pose.pitch = start.pitch;
   pose.yaw = start.yaw;
+  const double keep = settings_.clearance_margin + kClearanceInset;
   for (int i = 0; i <= 2 * kSteps; ++i) {
     pose.position_W.z() = start.z + (i % 2 == 1 ? 1.0 : -1.0) * ((i + 1) / 2) * kStep;
-    const double keep = settings_.clearance_margin + kClearanceInset;
     bool stands = BodyStairClearance(robot_->collision_model(), robot_->stair_model(), pose, {}).distance >= keep;
     for (int l = 0; l < kBodyLegs && stands; ++l) {
       stands = robot_->CheckLeg(l, schedule_.Phase(l, 0.0).foot_W, pose).ok(keep);

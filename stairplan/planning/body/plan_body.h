@@ -17,8 +17,8 @@ namespace stairplan {
 
 /// Fills `footsteps_plan.body` (one sample per knot_dt) from the body planner and returns the
 /// plan. Its status becomes infeasible, with the reason, when a cycle finds no valid body height
-/// for a stance leg, a QP fails, or the exact re-check finds a stance leg out of reach or closer
-/// to the stairs than settings.clearance_margin. A plan that is already infeasible is returned as
+/// for a stance leg, a QP fails, or the exact re-check (body_check.h) finds a leg out of reach, or
+/// a leg, a pair of legs or the body closer than settings.clearance_margin. A plan that is already infeasible is returned as
 /// it is. Throws std::invalid_argument naming the field for bad settings. `standing_xy`, where
 /// known, is where the robot's body stands at the start (the alignment pose it walked to): the
 /// plan starts there, its offset from the neutral body as the start's weight shifts; otherwise it
