@@ -41,6 +41,13 @@ OwnAndSearched PlanBothWays(const RobotModel& robot, const Staircase& stairs) {
   return {RunPipeline(robot, stairs, own), RunPipeline(robot, stairs, PipelineOptions{})};
 }
 
+// The plan on the crawl's own footholds found no body, the reason containing `binding`.
+void RequireOwnFails(const PipelineResult& own, const std::string& binding) {
+  INFO("the crawl's footholds: " << own.plan.status_reason);
+  REQUIRE(own.plan.status == PlanStatus::kInfeasible);
+  CHECK_THAT(own.plan.status_reason, Catch::Contains(binding));
+}
+
 // The searched plan found a body, and it validates with the validator's clearance to spare.
 void RequireValid(const PipelineResult& searched) {
   INFO("searched: " << searched.plan.status_reason);
@@ -64,9 +71,7 @@ TEST_CASE("the body optimisation takes Unitree Go2 up the default stairs on foot
   if (!go2) return;
   StairSpec spec;
   const OwnAndSearched plans = PlanBothWays(*go2, Staircase(spec));
-  INFO("the crawl's footholds: " << plans.own.plan.status_reason);
-  REQUIRE(plans.own.plan.status == PlanStatus::kInfeasible);
-  CHECK_THAT(plans.own.plan.status_reason, Catch::Contains("RF: clearance below the margin"));
+  RequireOwnFails(plans.own, "RF: clearance below the margin");
   CHECK(FrontTreadsAhead(plans.own.plan) == 2);
   // Among the validator's checks, the body at t = 0: on the layout found the robot starts nearer
   // the flight, and standing at its nominal height its head would overhang the first nosing by 15 mm.
@@ -90,9 +95,7 @@ TEST_CASE("the re-check that judges a layout checks swing legs and leg pairs: Un
   spec.run = 0.28;
   spec.direction = TravelDirection::kDown;
   const OwnAndSearched plans = PlanBothWays(*go2, Staircase(spec));
-  INFO("the crawl's footholds: " << plans.own.plan.status_reason);
-  REQUIRE(plans.own.plan.status == PlanStatus::kInfeasible);
-  CHECK_THAT(plans.own.plan.status_reason, Catch::Contains("RF/RH: legs closer than the margin"));
+  RequireOwnFails(plans.own, "RF/RH: legs closer than the margin");
   RequireValid(plans.searched);
 }
 
