@@ -62,7 +62,10 @@ Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const C
   if (FirstRiseTooHigh(robot.legs(), map, options.step)) return selection;
   CrawlSettings crawl = options.crawl;
   if (selection.status == PlanStatus::kOk && selection.cadence_s > 0.0) crawl.swing_duration = selection.cadence_s;
-  Plan plan = PlanCrawl(robot, stairs, map, crawl);
+  // The body optimisation judges footholds itself (BodyOnFittedLayouts); the crawl's own search
+  // judges them by the quasi-static path.
+  Plan plan = options.body == BodySource::kRecedingHorizonQp ? PlanCrawlFootholds(robot, stairs, map, crawl)
+                                                              : PlanCrawl(robot, stairs, map, crawl);
   // When no controller is admissible everywhere, the crawl keeps its default cadence and the
   // validator has the last word; the controllers' rule-out reasons stay in the plan.
   plan.controllers = selection.controllers;
@@ -121,7 +124,7 @@ Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const
   int tried = 0;
   for (const CrawlSettings& layout : FittedLayouts(robot, stairs, map, crawl)) {
     if (tried >= options.body_layouts) break;
-    Plan candidate = PlanCrawl(robot, stairs, map, layout);
+    Plan candidate = PlanCrawlFootholds(robot, stairs, map, layout);
     if (candidate.status != PlanStatus::kOk || SameFootholds(candidate, footsteps)) continue;
     ++tried;
     candidate.controllers = footsteps.controllers;

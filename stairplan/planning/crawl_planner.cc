@@ -441,6 +441,12 @@ std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircas
   return fitted;
 }
 
+Plan PlanCrawlFootholds(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                        const CrawlSettings& settings) {
+  settings.Validate();
+  return PlanCrawlLayout(robot, stairs, map, settings, nullptr);
+}
+
 Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const CrawlSettings& settings) {
   settings.Validate();
   Plan best = PlanCrawlLayout(robot, stairs, map, settings, &stairs);

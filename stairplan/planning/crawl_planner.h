@@ -95,6 +95,12 @@ struct CrawlSettings {
 std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                          const CrawlSettings& settings);
 
+/// The crawl's footsteps on the layout `settings` give, for a body planner to carry the body
+/// over: no posture fit and no foothold search (those judge footholds by the quasi-static path).
+/// The plan's body is that path unfitted, a sketch. Never throws for geometry it cannot handle.
+Plan PlanCrawlFootholds(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                        const CrawlSettings& settings = {});
+
 /// Plans a crawl over `stairs` for `robot` on `map`. Never throws for geometry it cannot
 /// handle: the plan's status says infeasible and why.
 Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
