@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "stairplan/body_nlp/body_nlp_internal.h"
+#include "stairplan/planning/body/plan_body.h"
 #include "stairplan/planning/body/kinematic_body_bounds.h"
 
 namespace stairplan {
@@ -94,7 +95,7 @@ Plan RefineBodyNlp(const RobotModel& robot, const Staircase& stairs, const Const
     for (std::size_t k = 0; k < count; ++k) plan.body[i0 + k] = solution.knots[k];
   }
   auto& bounds = static_cast<KinematicBodyBounds&>(planner.bounds());
-  const BodyPlanCheck check = CheckBodyTrajectory(bounds, planner.schedule(), plan.body, settings.clearance_margin);
+  const BodyPlanCheck check = CheckBodyTrajectory(bounds, planner.schedule(), plan.body, RecheckMargins(settings, plan.gait));
   if (!check.ok()) failure = "body NLP re-check: " + check.first_violation;
   plan.status = failure.empty() ? PlanStatus::kOk : PlanStatus::kInfeasible;
   plan.status_reason = failure;

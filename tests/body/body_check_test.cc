@@ -3,10 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "stairplan/collision/stance_check.h"
+#include "stairplan/geometry/shapes.h"
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/planning/body/body_check.h"
 
@@ -37,7 +39,7 @@ Standing StandingAt(const RobotKinematics& kinematics, double x) {
 
 BodyPlanCheck Check(const Standing& s, const Staircase& stairs) {
   KinematicBodyBounds bounds(BuiltinRobot(), stairs, Facing::kForward);
-  return CheckBodyTrajectory(bounds, FootSchedule(BuiltinRobot(), s.plan), {s.body}, 0.005);
+  return CheckBodyTrajectory(bounds, FootSchedule(BuiltinRobot(), s.plan), {s.body}, BodyCheckMargins{0.005});
 }
 
 }  // namespace
@@ -76,7 +78,7 @@ TEST_CASE("the body re-check looks between the body's samples: two instants in e
   for (std::size_t i = 0; i < body.size(); ++i) body[i].t = 0.05 * static_cast<double>(i);
   body[1].z += 0.04;
   KinematicBodyBounds bounds(BuiltinRobot(), stairs, Facing::kForward);
-  const BodyPlanCheck check = CheckBodyTrajectory(bounds, FootSchedule(BuiltinRobot(), s.plan), body, 0.005);
+  const BodyPlanCheck check = CheckBodyTrajectory(bounds, FootSchedule(BuiltinRobot(), s.plan), body, BodyCheckMargins{0.005});
   INFO(check.first_violation);
   CHECK(check.ok());
   CHECK(check.samples == 3);
@@ -96,4 +98,29 @@ TEST_CASE("the body re-check keeps the body itself off the stairs", "[body][chec
   const BodyPlanCheck into = Check(s, stairs);
   CHECK_FALSE(into.ok());
   CHECK_THAT(into.first_violation, Catch::StartsWith("t=0.000 s, body: clearance below the margin"));
+}
+
+TEST_CASE("the body re-check measures the centre of mass inside the standing feet", "[body][check]") {
+  // Standing in its nominal stance the centre of mass is near the middle of the four feet: its
+  // margin is about the body's distance from the nearest side of their rectangle (the legs' links
+  // move it by millimetres). A margin wider than that is refused, naming the body.
+  const Staircase stairs{StairSpec{}};
+  const RobotKinematics kinematics(BuiltinRobot());
+  const Standing s = StandingAt(kinematics, -1.0);
+  std::vector<Eigen::Vector2d> feet;
+  for (const Eigen::Vector3d& f : s.plan.initial_feet_W) feet.push_back(f.head<2>());
+  const double inside = -ConvexHull(feet).SignedDistance({s.body.x, s.body.y});
+  REQUIRE(inside > 0.05);
+  KinematicBodyBounds bounds(BuiltinRobot(), stairs, Facing::kForward);
+  const FootSchedule schedule(BuiltinRobot(), s.plan);
+  const BodyPlanCheck kept = CheckBodyTrajectory(bounds, schedule, {s.body}, BodyCheckMargins{0.005, inside - 0.02});
+  INFO(kept.Summary());
+  CHECK(kept.ok());
+  CHECK(kept.min_stability_margin == Approx(inside).margin(0.01));
+  const BodyPlanCheck refused = CheckBodyTrajectory(bounds, schedule, {s.body}, BodyCheckMargins{0.005, inside + 0.02});
+  CHECK(refused.violations == 1);
+  CHECK(refused.first_violation == "t=0.000 s, body: centre of mass closer than the stability margin to the support's edge");
+  // Not asked for (a dynamic gait's plan): not measured.
+  CHECK(CheckBodyTrajectory(bounds, schedule, {s.body}, BodyCheckMargins{0.005}).min_stability_margin ==
+        std::numeric_limits<double>::infinity());
 }

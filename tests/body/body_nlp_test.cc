@@ -63,7 +63,7 @@ TEST_CASE("the NLP refinement of a whole plan satisfies the exact constraints an
     // Independently of RefineBodyNlp's own verdict: the exact check of the refined trajectory.
     KinematicBodyBounds bounds(robot, s.stairs, Facing::kForward);
     const BodyPlanCheck check =
-        CheckBodyTrajectory(bounds, FootSchedule(robot, s.footsteps), nlp_plan.body, BodyPlannerSettings{}.clearance_margin);
+        CheckBodyTrajectory(bounds, FootSchedule(robot, s.footsteps), nlp_plan.body, BodyCheckMargins{BodyPlannerSettings{}.clearance_margin});
     INFO(check.first_violation);
     CHECK(check.ok());
     CHECK(check.samples == static_cast<int>(nlp_plan.body.size()));
@@ -98,7 +98,7 @@ TEST_CASE("NLopt's SLSQP solves the same horizon NLP to a point inside the exact
     REQUIRE(knots.size() == out.knots.size());
     CHECK(knots[0].z == Approx(out.knots[0].z));  // knot 0 is the state
     const BodyPlanCheck check = CheckBodyTrajectory(static_cast<KinematicBodyBounds&>(planner.bounds()),
-                                                    planner.schedule(), knots, planner.settings().clearance_margin);
+                                                    planner.schedule(), knots, BodyCheckMargins{planner.settings().clearance_margin});
     INFO(check.first_violation);
     CHECK(check.ok());
   }
@@ -234,7 +234,7 @@ TEST_CASE("the NLP in a loop: each window warm-started from the last reaches the
     CHECK(solution.knots[0].z == state.z);  // knot 0 is the state
     for (std::size_t k = 0; k < reference.size(); ++k) CHECK(solution.knots[k].z == Approx(reference[k].z).margin(1e-4));
     const BodyPlanCheck check = CheckBodyTrajectory(static_cast<KinematicBodyBounds&>(f.planner->bounds()),
-                                                    f.planner->schedule(), solution.knots, set.clearance_margin);
+                                                    f.planner->schedule(), solution.knots, BodyCheckMargins{set.clearance_margin});
     INFO(check.first_violation);
     CHECK(check.ok());
     warm_iterations += warm.iterations;

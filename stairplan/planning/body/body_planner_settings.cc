@@ -36,6 +36,7 @@ void BodyPlannerSettings::Validate() const {
   CheckRange("max_shift_accel", max_shift_accel, 0.0, 1e3);
   if (!std::isfinite(stability_margin) || stability_margin > 0.2) throw FieldError("stability_margin", "must be finite and at most 0.2 m");
   CheckRange("min_stability_margin", min_stability_margin, 0.0, 0.2);
+  CheckRange("checked_stability_margin", checked_stability_margin, 0.0, 0.2);
   CheckRange("lateral_weight", lateral_weight, 0.0, 1e9);
   CheckRange("max_lateral_shift", max_lateral_shift, 0.0, 1.0);
   CheckRange("max_lateral_accel", max_lateral_accel, 0.0, 1e3);
@@ -75,7 +76,8 @@ void BodyPlannerSettings::Set(const std::string& name, double value) {
       {"velocity_weight", &velocity_weight}, {"acceleration_weight", &acceleration_weight}, {"max_pitch", &max_pitch},
       {"max_shift", &max_shift}, {"max_height_accel", &max_height_accel}, {"max_pitch_accel", &max_pitch_accel},
       {"max_shift_accel", &max_shift_accel}, {"stability_margin", &stability_margin},
-      {"min_stability_margin", &min_stability_margin}, {"lateral_weight", &lateral_weight},
+      {"min_stability_margin", &min_stability_margin}, {"checked_stability_margin", &checked_stability_margin},
+      {"lateral_weight", &lateral_weight},
       {"max_lateral_shift", &max_lateral_shift}, {"max_lateral_accel", &max_lateral_accel}, {"reach_margin", &reach_margin},
       {"joint_margin", &joint_margin},
       {"clearance_margin", &clearance_margin}, {"grid_dx", &grid_dx}, {"grid_pitch", &grid_pitch},

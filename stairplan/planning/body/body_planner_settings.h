@@ -49,6 +49,11 @@ struct BodyPlannerSettings {
   /// triangle against the sideways-shift bound), the support rows give up margin down to this one,
   /// each metre given up costing BodyQp::kMarginGivePenalty [m].
   double min_stability_margin = 0.015;
+  /// With stability rows, the exact re-check of the plan (body_check.h) asks the centre of mass,
+  /// every leg link placed by IK, to stand this far inside the standing feet's polygon at every
+  /// instant: the validator's margin, which the rows' stability_margin plans for with the COM
+  /// estimate's error and any relaxed knot to spare [m].
+  double checked_stability_margin = 0.01;
   double lateral_weight = 1e3;     ///< per m^2 of sideways weight shift
   double max_lateral_shift = 0.1;  ///< |com_shift_y| bound [m]
   double max_lateral_accel = 6.0;  ///< |com_shift_y''| [m/s^2]

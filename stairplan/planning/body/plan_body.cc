@@ -7,6 +7,7 @@
 #include "stairplan/planning/body/body_check.h"
 #include "stairplan/planning/body/body_planner.h"
 #include "stairplan/planning/body/kinematic_body_bounds.h"
+#include "stairplan/planning/plan_gait.h"
 
 namespace stairplan {
 namespace {
@@ -24,6 +25,13 @@ bool AtRest(const std::vector<BodyState>& body) {
 }
 
 }  // namespace
+
+BodyCheckMargins RecheckMargins(const BodyPlannerSettings& settings, const std::optional<Gait>& gait) {
+  BodyCheckMargins margins;
+  margins.clearance = settings.clearance_margin;
+  if (settings.stability_margin >= 0.0 && gait && IsQuasiStatic(*gait)) margins.stability = settings.checked_stability_margin;
+  return margins;
+}
 
 Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan plan,
               const BodyPlannerSettings& settings, const std::optional<Eigen::Vector2d>& standing_xy,
@@ -52,6 +60,7 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   // The plan stands or falls by the exact re-check: the cached bounds are conservative, so a
   // cycle may report a conflict the exact kinematics do not have.
   auto& bounds = static_cast<KinematicBodyBounds&>(planner.bounds());
+  BodyChecker checker(bounds, planner.schedule(), RecheckMargins(settings, plan.gait));
   BodyPlanCheck check;
   // Cycle c's time: on the knots up to the flight's end, then from the end on.
   const auto time_of = [&](int c) { return c < cycles ? c * dt : end + (c - cycles) * dt; };
@@ -77,7 +86,7 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
     body.push_back(out.knots[0]);
     body.back().t = now;
     if (stop_at_first_violation) {
-      CheckBodySample(bounds, planner.schedule(), body, body.size() - 1, settings.clearance_margin, check);
+      checker.CheckSample(body, body.size() - 1, check);
       if (!check.ok() || !solver_failure.empty()) break;
     }
     if (c >= cycles && AtRest(body)) break;
@@ -86,10 +95,10 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   plan.body = std::move(body);
   plan.body_planner = BodyPlannerKind::kRecedingHorizonQp;
   const double plan_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-  if (!stop_at_first_violation) check = CheckBodyTrajectory(bounds, planner.schedule(), plan.body, settings.clearance_margin);
+  if (!stop_at_first_violation) check = checker.CheckTrajectory(plan.body);
   std::string reason = solver_failure;
   if (reason.empty() && !check.ok()) {
-    reason = "body re-check: " + check.first_violation + " (" + std::to_string(check.violations) + " violations";
+    reason = "body re-check: " + check.Summary() + " (" + std::to_string(check.violations) + " violations";
     if (conflict_cycles > 0) reason += "; " + std::to_string(conflict_cycles) + " cycles found " + first_conflict;
     if (stale_cycles > 0) reason += "; " + std::to_string(stale_cycles) + " cycles kept the previous plan";
     reason += ")";

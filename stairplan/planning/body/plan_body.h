@@ -10,16 +10,23 @@
 #include "stairplan/geometry/constrained_map.h"
 #include "stairplan/geometry/staircase.h"
 #include "stairplan/kinematics/robot_model.h"
+#include "stairplan/planning/body/body_check.h"
 #include "stairplan/planning/body/body_planner_settings.h"
 #include "stairplan/planning/plan.h"
 
 namespace stairplan {
 
+/// What the exact re-check asks of a body planned with `settings` for a plan of `gait`: the
+/// clearance margin, and the checked stability margin where the QP has stability rows and the
+/// gait balances quasi-statically.
+BodyCheckMargins RecheckMargins(const BodyPlannerSettings& settings, const std::optional<Gait>& gait);
+
 /// Fills `footsteps_plan.body` (one sample per knot_dt) from the body planner and returns the
 /// plan. Its status becomes infeasible, with the reason, when a cycle finds no valid body height
-/// for a stance leg, a QP fails, or the exact re-check (body_check.h) finds a leg out of reach, or
-/// a leg, a pair of legs or the body closer than settings.clearance_margin. A plan that is already infeasible is returned as
-/// it is. Throws std::invalid_argument naming the field for bad settings. `standing_xy`, where
+/// for a stance leg, a QP fails, or the exact re-check (body_check.h, with RecheckMargins()) finds
+/// a leg out of reach, a leg, a pair of legs or the body closer than settings.clearance_margin, or
+/// the centre of mass nearer the support's edge than settings.checked_stability_margin. A plan
+/// that is already infeasible is returned as it is. Throws std::invalid_argument naming the field for bad settings. `standing_xy`, where
 /// known, is where the robot's body stands at the start (the alignment pose it walked to): the
 /// plan starts there, its offset from the neutral body as the start's weight shifts; otherwise it
 /// starts over the feet (BodyPlanner::StartState()). With `stop_at_first_violation`, each sample
