@@ -124,3 +124,29 @@ TEST_CASE("the body re-check measures the centre of mass inside the standing fee
   CHECK(CheckBodyTrajectory(bounds, schedule, {s.body}, BodyCheckMargins{0.005}).min_stability_margin ==
         std::numeric_limits<double>::infinity());
 }
+
+TEST_CASE("the body re-check refuses a body that moves back along the travel beyond the bound", "[body][check]") {
+  // Standing, the body sways 2 cm forward and back, then 1.5 cm behind its farthest: measured
+  // from the farthest sample, not the last one.
+  const Staircase stairs{StairSpec{}};
+  const RobotKinematics kinematics(BuiltinRobot());
+  const Standing s = StandingAt(kinematics, -1.0);
+  std::vector<BodyState> body(4, s.body);
+  const std::array<double, 4> x = {0.0, 0.02, 0.012, 0.005};
+  for (std::size_t i = 0; i < body.size(); ++i) {
+    body[i].t = 0.05 * static_cast<double>(i);
+    body[i].x += x[i];
+  }
+  KinematicBodyBounds bounds(BuiltinRobot(), stairs, Facing::kForward);
+  const FootSchedule schedule(BuiltinRobot(), s.plan);
+  BodyCheckMargins margins{0.005};
+  margins.retreat = 0.02;
+  const BodyPlanCheck within = CheckBodyTrajectory(bounds, schedule, body, margins);
+  INFO(within.Summary());
+  CHECK(within.ok());
+  CHECK(within.max_retreat == Approx(0.015));
+  margins.retreat = 0.01;
+  const BodyPlanCheck beyond = CheckBodyTrajectory(bounds, schedule, body, margins);
+  CHECK(beyond.violations == 1);
+  CHECK(beyond.first_violation == "t=0.150 s, body: moved back along the travel by more than the bound");
+}

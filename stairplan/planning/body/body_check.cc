@@ -95,6 +95,10 @@ void BodyChecker::CheckStability(double t, const BodyPose& pose, const StanceRes
 void BodyChecker::CheckSample(const std::vector<BodyState>& body, std::size_t i, BodyPlanCheck& check) {
   ++check.samples;
   const BodyState& b = body[i];
+  // Samples only: between two the body moves on a straight line.
+  farthest_x_ = std::max(farthest_x_, b.x);
+  check.max_retreat = std::max(check.max_retreat, farthest_x_ - b.x);
+  if (!(farthest_x_ - b.x <= margins_.retreat)) Violated(check, b.t, "body", "moved back along the travel by more than the bound");
   const double t0 = i > 0 ? body[i - 1].t : b.t;
   for (int k = i > 0 ? 1 : kInstantsPerInterval; k <= kInstantsPerInterval; ++k) {
     const double t = k == kInstantsPerInterval ? b.t : t0 + (b.t - t0) * k / kInstantsPerInterval;
@@ -105,6 +109,7 @@ void BodyChecker::CheckSample(const std::vector<BodyState>& body, std::size_t i,
 
 BodyPlanCheck BodyChecker::CheckTrajectory(const std::vector<BodyState>& body) {
   BodyPlanCheck check;
+  farthest_x_ = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < body.size(); ++i) CheckSample(body, i, check);
   return check;
 }

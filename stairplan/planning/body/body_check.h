@@ -2,8 +2,9 @@
 // it (on its contact or along its swing), every leg must reach its foot by IK within the joint
 // limits, and the body, every leg link and each pair of neighbouring legs must keep at least a
 // margin from the stairs and from each other (FCL), and, where asked, the centre of mass (every
-// link, legs by their IK) inside the polygon of the standing feet by a margin: the validator's
-// stance and stability checks, without its step regions. PlanBody runs it on the QP's plan (the
+// link, legs by their IK) inside the polygon of the standing feet by a margin, and the body never
+// farther back along the travel than a bound behind where it had been: the validator's stance and
+// stability checks, without its step regions, and the planner's promise of progress. PlanBody runs it on the QP's plan (the
 // QP's rows are linearised and cached, its COM is an affine estimate, and rows it could not keep
 // are relaxed: this is the independent re-check) and the NLP reports against it.
 #pragma once
@@ -29,6 +30,8 @@ struct BodyPlanCheck {
   int violations = 0;
   /// Smallest leg-to-stairs clearance seen [m] (infinite before any).
   double min_clearance = std::numeric_limits<double>::infinity();
+  /// Farthest the body moved back along the travel behind where it had been [m].
+  double max_retreat = 0.0;
   /// Smallest margin of the centre of mass inside the standing feet's polygon [m] (infinite
   /// when not checked, or before any instant with three feet down).
   double min_stability_margin = std::numeric_limits<double>::infinity();
@@ -48,6 +51,9 @@ struct BodyCheckMargins {
   /// The centre of mass this far inside the polygon of the feet standing, at instants with three
   /// or four down [m]. Negative: not checked (a gait whose balance is dynamic).
   double stability = -1.0;
+  /// The body no farther back along the travel (world x, the flight's direction) than this
+  /// behind the farthest it has been [m]. Infinite: not checked.
+  double retreat = std::numeric_limits<double>::infinity();
 };
 
 /// The re-check of one plan's body against its feet (the schedule) with the models of `bounds`.
@@ -59,7 +65,7 @@ class BodyChecker {
 
   /// Checks sample i of `body` into `check`, and the motion since sample i - 1 at instants a third
   /// of the interval apart (the body interpolated as BodyPoseAt() does): for a planner that checks
-  /// its samples as it makes them.
+  /// its samples as it makes them, in order (the retreat is measured from the samples before).
   void CheckSample(const std::vector<BodyState>& body, std::size_t i, BodyPlanCheck& check);
   /// Every sample of `body`, and the motion between them.
   BodyPlanCheck CheckTrajectory(const std::vector<BodyState>& body);
@@ -74,6 +80,7 @@ class BodyChecker {
   BodyCheckMargins margins_;
   ComModel com_;
   RobotWorkspace workspace_;
+  double farthest_x_ = -std::numeric_limits<double>::infinity();  // of the samples checked
 };
 
 /// BodyChecker(bounds, schedule, margins).CheckTrajectory(body).

@@ -37,6 +37,7 @@ void BodyPlannerSettings::Validate() const {
   if (!std::isfinite(stability_margin) || stability_margin > 0.2) throw FieldError("stability_margin", "must be finite and at most 0.2 m");
   CheckRange("min_stability_margin", min_stability_margin, 0.0, 0.2);
   CheckRange("checked_stability_margin", checked_stability_margin, 0.0, 0.2);
+  CheckRange("max_retreat", max_retreat, 0.0, 10.0);
   CheckRange("lateral_weight", lateral_weight, 0.0, 1e9);
   CheckRange("max_lateral_shift", max_lateral_shift, 0.0, 1.0);
   CheckRange("max_lateral_accel", max_lateral_accel, 0.0, 1e3);
@@ -77,6 +78,7 @@ void BodyPlannerSettings::Set(const std::string& name, double value) {
       {"max_shift", &max_shift}, {"max_height_accel", &max_height_accel}, {"max_pitch_accel", &max_pitch_accel},
       {"max_shift_accel", &max_shift_accel}, {"stability_margin", &stability_margin},
       {"min_stability_margin", &min_stability_margin}, {"checked_stability_margin", &checked_stability_margin},
+      {"max_retreat", &max_retreat},
       {"lateral_weight", &lateral_weight},
       {"max_lateral_shift", &max_lateral_shift}, {"max_lateral_accel", &max_lateral_accel}, {"reach_margin", &reach_margin},
       {"joint_margin", &joint_margin},

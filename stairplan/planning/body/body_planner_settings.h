@@ -54,6 +54,9 @@ struct BodyPlannerSettings {
   /// instant: the validator's margin, which the rows' stability_margin plans for with the COM
   /// estimate's error and any relaxed knot to spare [m].
   double checked_stability_margin = 0.01;
+  /// With stance rows (which price the body's motion against the travel), the re-check refuses a
+  /// plan whose body moves back along the travel farther than this behind where it had been [m].
+  double max_retreat = 0.01;
   double lateral_weight = 1e3;     ///< per m^2 of sideways weight shift
   double max_lateral_shift = 0.1;  ///< |com_shift_y| bound [m]
   double max_lateral_accel = 6.0;  ///< |com_shift_y''| [m/s^2]

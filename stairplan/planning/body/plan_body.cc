@@ -30,6 +30,7 @@ BodyCheckMargins RecheckMargins(const BodyPlannerSettings& settings, const std::
   BodyCheckMargins margins;
   margins.clearance = settings.clearance_margin;
   if (settings.stability_margin >= 0.0 && gait && IsQuasiStatic(*gait)) margins.stability = settings.checked_stability_margin;
+  if (settings.stance_rows) margins.retreat = settings.max_retreat;
   return margins;
 }
 
