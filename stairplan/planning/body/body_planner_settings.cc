@@ -102,6 +102,10 @@ BodyPlannerSettings LegRowBodySettings() {
   s.hip_height_fraction = 0.6;
   s.max_shift = 0.15;
   s.max_lateral_shift = 0.15;
+  // Sideways no faster than fore-aft: the crawl crosses the body 13 cm sideways between support
+  // triangles, and at 6 m/s^2 the pendulum's ZMP of Go2's crossing lay 0.19 m outside its support
+  // (it fell in MuJoCo, up and down); at the fore-aft bound it walks both.
+  s.max_lateral_accel = s.max_shift_accel;
   s.acceleration_weight = 1.0;
   s.knots = 20;
   s.knot_dt = 0.05;

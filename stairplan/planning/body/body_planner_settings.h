@@ -107,6 +107,7 @@ struct BodyPlannerSettings {
 /// (PipelineOptions::body_qp; `stairplan plan --body qp`): the defaults above with every leg's
 /// rows (stance_rows), the support rows 3 cm inside the polygon, hips at 0.6 of the legs' reach,
 /// shift boxes of 0.15 m (the leg rows hold the reach, so the boxes only keep out of their way),
+/// the sideways shift's acceleration bounded as the fore-aft one's,
 /// acceleration priced at 1 (the pendulum turns it into the ZMP's distance from the COM), and a
 /// knot every 50 ms over a 1 s horizon, the trust regions doubled with the cycle so the body may
 /// move as fast per second as with knots 25 ms apart.
