@@ -237,6 +237,10 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       const Eigen::Vector3d& hip_B = hips_B_[static_cast<std::size_t>(l)];
       qp.height_ref[k * kBodyLegs + l] = phase.foot_W.z() + hip_height_ + command.height_offset - (HipDzAt(hip_B, turn_m) - c * pm);
       if (k == 0) continue;
+      // With leg rows each leg's reach, limits and clearance are exact rows of their own, KDL and
+      // FCL linearised each cycle: no tabulated hip-height range guides or bounds the plan (its
+      // grid is coarse where the rows are exact, and filling it took half the planning time).
+      if (leg_rows) continue;
       // The exact hip offsets over the pitch interval: sampled at its ends and middle, padded by
       // the curvature bound (|hip_B| (w/2)^2 / 8 per half).
       const double pad = hip_B.norm() * (ph - pl) * (ph - pl) / 32.0;
@@ -276,10 +280,6 @@ void BodyPlanner::Linearise(const BodyState& state, const BodyCommand& command, 
       const double inset = std::min(kReferenceInset, 0.5 * (hi - lo));
       double& ref = qp.height_ref[k * kBodyLegs + l];
       ref = std::clamp(ref, lo + inset, hi - inset);
-      // With leg rows each leg's reach, limits and clearance are exact rows of their own: the
-      // tabulated range only guides the height reference (and the shift, RestoreShift), it does
-      // not bound the plan, whose exact rows it would contradict where its grid is coarse.
-      if (leg_rows) continue;
       double row_lo = std::max(qp.hip_lo[row], lo), row_hi = std::min(qp.hip_hi[row], hi);
       if (has_previous_) {
         // Where the previous plan breaks the bound, the plan must come back by pull_in_ per

@@ -5,7 +5,10 @@
 // query touches it and kept, in storage sized when the footholds are set, so queries never
 // allocate; PlanBody (or a first pass of the control loop) fills the nodes a traversal needs.
 // A query returns the worst case over the nodes around its box, which is conservative as long as
-// the bounds vary monotonically between nodes; the margins absorb the rest.
+// the bounds vary monotonically between nodes; the margins absorb the rest. With leg rows
+// (BodyPlannerSettings::stance_rows, the pipeline's body optimisation) the planner reads none of
+// these tables: its rows are the exact kinematics and clearances, linearised each cycle, and the
+// re-check uses CheckFeet().
 #pragma once
 
 #include <array>
