@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "stairplan/body_nlp/body_nlp_internal.h"
-#include "stairplan/planning/body/plan_body.h"
 #include "stairplan/planning/body/kinematic_body_bounds.h"
+#include "stairplan/planning/body/plan_body.h"
 
 namespace stairplan {
 
@@ -96,7 +96,7 @@ Plan RefineBodyNlp(const RobotModel& robot, const Staircase& stairs, const Const
   }
   auto& bounds = static_cast<KinematicBodyBounds&>(planner.bounds());
   const BodyPlanCheck check = CheckBodyTrajectory(bounds, planner.schedule(), plan.body, RecheckMargins(settings, plan.gait));
-  if (!check.ok()) failure = "body NLP re-check: " + check.first_violation;
+  if (!check.ok()) failure = "body NLP re-check: " + check.Summary();
   plan.status = failure.empty() ? PlanStatus::kOk : PlanStatus::kInfeasible;
   plan.status_reason = failure;
   if (worst.windows_refined > 0) plan.body_planner = BodyPlannerKind::kRecedingHorizonNlp;

@@ -23,6 +23,7 @@ constexpr int kInstantsPerInterval = 3;
 void Violated(BodyPlanCheck& check, double t, const std::string& part, const char* what) {
   ++check.violations;
   const std::string kind = part + ": " + what;
+  // Each kept text ends in its kind, after the instant.
   for (const std::string& seen : check.first_of_each) {
     if (seen.size() >= kind.size() && seen.compare(seen.size() - kind.size(), kind.size(), kind) == 0) return;
   }

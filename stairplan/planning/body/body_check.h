@@ -1,12 +1,13 @@
 // The exact test of a body trajectory: at every sample, with every foot where the schedule puts
 // it (on its contact or along its swing), every leg must reach its foot by IK within the joint
 // limits, and the body, every leg link and each pair of neighbouring legs must keep at least a
-// margin from the stairs and from each other (FCL), and, where asked, the centre of mass (every
-// link, legs by their IK) inside the polygon of the standing feet by a margin, and the body never
-// farther back along the travel than a bound behind where it had been: the validator's stance and
-// stability checks, without its step regions, and the planner's promise of progress. PlanBody runs it on the QP's plan (the
-// QP's rows are linearised and cached, its COM is an affine estimate, and rows it could not keep
-// are relaxed: this is the independent re-check) and the NLP reports against it.
+// margin from the stairs and from each other (FCL); where asked, the centre of mass (every link,
+// legs by their IK) must stand inside the polygon of the standing feet by a margin, and the body
+// never farther back along the travel than a bound behind where it had been. That is the
+// validator's stance and stability checks, without its step regions, and the planner's promise of
+// progress. PlanBody runs it on the QP's plan (the QP's rows are linearised and cached, its COM is
+// an affine estimate, and rows it could not keep are relaxed: this is the independent re-check)
+// and the NLP reports against it.
 #pragma once
 
 #include <limits>
@@ -25,8 +26,9 @@ namespace stairplan {
 struct BodyPlanCheck {
   int samples = 0;              ///< body samples checked (each with the interval before it)
   int instants = 0;             ///< instants checked: the samples and those between them
-  /// Legs failing IK, clearances (legs, pairs, body) below the margin, and instants whose centre
-  /// of mass stands less than the stability margin inside the standing feet.
+  /// Legs failing IK, clearances (legs, pairs, body) below the margin, instants whose centre of
+  /// mass stands less than the stability margin inside the standing feet, and samples farther
+  /// back than the retreat bound.
   int violations = 0;
   /// Smallest leg-to-stairs clearance seen [m] (infinite before any).
   double min_clearance = std::numeric_limits<double>::infinity();
