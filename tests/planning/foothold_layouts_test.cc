@@ -130,6 +130,40 @@ TEST_CASE("a body the optimisation finds on no layout: the first layout's reason
   CHECK(low.validation.ok);
 }
 
+TEST_CASE("Unitree Go2 facing backward: no layout keeps its body moving forward on the default stairs, the low ones do",
+          "[planning][layouts][progress]") {
+  // Walking backward up the default stairs, at each front swing the body would have to step back
+  // 2-4 cm to keep the trailing front legs' links the body QP's 5 mm execution margin off the
+  // nosings; the re-check refuses that retreat on every layout, and the reason says so. Without
+  // that margin the climb keeps moving forward and validates. On 0.10 m steps (run 0.28 m) the same robot
+  // climbs backward without stepping back, and the plan validates. The normal build only (a
+  // dozen layouts; "the body re-check refuses a body that moves back along the travel beyond the
+  // bound" checks the refusal under the sanitizers).
+  if (testing::kSanitized) return;
+  const std::optional<RobotModel> go2 = testing::SharedRobot("unitree_go2");
+  if (!go2) return;
+  PipelineOptions options;
+  options.facing = Facing::kBackward;
+  StairSpec spec;
+  const PipelineResult steep = RunPipeline(*go2, Staircase(spec), options);
+  INFO(steep.plan.status_reason);
+  REQUIRE(steep.plan.status == PlanStatus::kInfeasible);
+  CHECK_THAT(steep.plan.status_reason, Catch::Contains("body: moved back along the travel by more than the bound"));
+  CHECK_THAT(steep.plan.status_reason, Catch::Contains("other foothold layouts either"));
+  // The margin is the binding constraint: without it the climb keeps moving forward.
+  PipelineOptions no_margin = options;
+  no_margin.body_qp.clearance_margin = 0.0;
+  const PipelineResult unmargined = RunPipeline(*go2, Staircase(spec), no_margin);
+  INFO("no margin: " << unmargined.plan.status_reason);
+  REQUIRE(unmargined.plan.status == PlanStatus::kOk);
+  REQUIRE(unmargined.validated);
+  CHECK(unmargined.validation.ok);
+  spec.rise = 0.10;
+  spec.run = 0.28;
+  const PipelineResult low = RunPipeline(*go2, Staircase(spec), options);
+  RequireValid(low);
+}
+
 TEST_CASE("body_layouts out of range is refused, naming the field", "[planning][layouts]") {
   PipelineOptions options;
   options.body_layouts = -1;
