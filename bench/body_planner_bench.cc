@@ -49,7 +49,7 @@ double ThreadCpuMicros() {
 struct Fixture {
   Staircase stairs{StairSpec{}};
   ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, Facing::kForward);
-  Plan footsteps = PlanCrawl(BuiltinRobot(), stairs, map);
+  Plan footsteps = PlanCrawlFootholds(BuiltinRobot(), stairs, map);
   BodyPlannerSettings settings;
   std::unique_ptr<BodyPlanner> planner;
   double period = kPeriod;  // of the control loop [s]

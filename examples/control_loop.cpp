@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   const Staircase stairs(spec);
   const ConstrainedMap map = ConstrainedMap::FromStaircase(stairs, facing);
   const RobotModel& robot = BuiltinRobot();
-  const Plan footsteps = PlanCrawl(robot, stairs, map);
+  const Plan footsteps = PlanCrawlFootholds(robot, stairs, map);
   if (footsteps.status != PlanStatus::kOk) {
     std::printf("crawl plan infeasible: %s\n", footsteps.status_reason.c_str());
     return 3;

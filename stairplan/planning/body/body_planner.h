@@ -4,7 +4,7 @@
 // touch the stairs and by the support polygon the centre of mass must stay over (quasi-static
 // gaits), re-linearised around the previous solution and re-solved warm once per cycle.
 //
-//   BodyPlanner planner(robot, stairs, map, PlanCrawl(robot, stairs, map), settings);  // once
+//   BodyPlanner planner(robot, stairs, map, PlanCrawlFootholds(robot, stairs, map), settings);  // once
 //   BodyState state = planner.StartState();
 //   for (double now = 0.0;; now += 0.003) {                  // every 3 ms
 //     const BodyPlannerOutput& out = planner.Update(state, BodyCommand{}, now);
