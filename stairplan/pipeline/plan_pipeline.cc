@@ -116,8 +116,11 @@ bool SameFootholds(const Plan& a, const Plan& b) {
 // in turn, up to body_layouts of them, and the first on which it finds a body is the plan.
 Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                          const Plan& footsteps, const PipelineOptions& options, const std::optional<Eigen::Vector2d>& standing) {
-  Plan first = PlanBody(robot, stairs, map, footsteps, options.body_qp, standing);
-  if (first.status == PlanStatus::kOk || options.footsteps != FootstepSource::kSelectedCrawl) return first;
+  // Where other layouts may follow, a failing first layout is planned only to its first failure,
+  // as they are: the rest of a plan that fails is of no use but to count its failures.
+  const bool search = options.footsteps == FootstepSource::kSelectedCrawl && options.body_layouts > 0;
+  Plan first = PlanBody(robot, stairs, map, footsteps, options.body_qp, standing, search);
+  if (first.status == PlanStatus::kOk || !search) return first;
   const auto t_layouts = std::chrono::steady_clock::now();
   CrawlSettings crawl = options.crawl;
   crawl.swing_duration = footsteps.cadence_s;

@@ -91,7 +91,9 @@ struct PipelineOptions {
   /// many of the crawl's other layouts fitted to the robot (FittedLayouts()) and keeps the first
   /// on which it finds one: Unitree Go2 climbs the default stairs with its front feet one tread
   /// ahead of its hind ones, not two (there its front shanks, reaching far ahead of the hips,
-  /// lie on the nosings behind the feet). 0: the crawl's footholds only.
+  /// lie on the nosings behind the feet). Each layout that fails, the crawl's own too, is planned
+  /// only to its first failure, which the reason names. 0: the crawl's footholds only, planned in
+  /// full (the reason names the first failure of each kind).
   int body_layouts = 12;
   std::string body_nlp;          ///< "", "ipopt" or "nlopt": refine the QP body with the NLP
   BodyNlpSettings nlp;  ///< the NLP's solver settings, with body_nlp

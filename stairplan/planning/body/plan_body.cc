@@ -99,7 +99,8 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
   if (!stop_at_first_violation) check = checker.CheckTrajectory(plan.body);
   std::string reason = solver_failure;
   if (reason.empty() && !check.ok()) {
-    reason = "body re-check: " + check.Summary() + " (" + std::to_string(check.violations) + " violations";
+    reason = "body re-check: " + check.Summary() + " (" + std::to_string(check.violations) +
+             (check.violations == 1 ? " violation" : " violations");
     if (conflict_cycles > 0) reason += "; " + std::to_string(conflict_cycles) + " cycles found " + first_conflict;
     if (stale_cycles > 0) reason += "; " + std::to_string(stale_cycles) + " cycles kept the previous plan";
     reason += ")";
