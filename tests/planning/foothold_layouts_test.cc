@@ -135,10 +135,10 @@ TEST_CASE("Unitree Go2 facing backward: no layout keeps its body moving forward 
   // Walking backward up the default stairs, at each front swing the body would have to step back
   // 2-4 cm to keep the trailing front legs' links the body QP's 5 mm execution margin off the
   // nosings; the re-check refuses that retreat on every layout, and the reason says so. Without
-  // that margin the climb keeps moving forward and validates. On 0.10 m steps (run 0.28 m) the same robot
-  // climbs backward without stepping back, and the plan validates. The normal build only (a
-  // dozen layouts; "the body re-check refuses a body that moves back along the travel beyond the
-  // bound" checks the refusal under the sanitizers).
+  // that margin the climb keeps moving forward and validates. On 0.10 m steps (run 0.28 m) the
+  // same robot climbs backward without stepping back, and the plan validates. The normal build
+  // only (a dozen layouts; "the body re-check refuses a body that moves back along the travel
+  // beyond the bound" checks the refusal under the sanitizers).
   if (testing::kSanitized) return;
   const std::optional<RobotModel> go2 = testing::SharedRobot("unitree_go2");
   if (!go2) return;
