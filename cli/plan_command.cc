@@ -67,8 +67,9 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
                  "step: the step planner's own footsteps; "
                  "paper, paper-alt: the 2012 paper's crawl, cases 1 and 2 (seed 003; climbing only)");
   app.add_option("--crawl-sequence", o.crawl_sequence,
-                 "Order of the crawl's swings: lateral (each side's hind then front leg; default) or pairs "
-                 "(hind pair then front pair, the 2012 paper's)");
+                 "Order of the crawl's swings along the travel: lateral (each side's trailing then leading leg; "
+                 "default; where no body is found, leading-first is tried too), leading-first (each side's leading "
+                 "then trailing leg) or pairs (trailing pair then leading pair, the 2012 paper's)");
   app.add_option("--out", o.out, "Output directory for plan.json and plan.svg (default ./stairplan-out)");
   app.add_option("--start", o.start,
                  "X,Y,YAW: the robot's tracked pose; stair mode is judged there and the robot turns and moves to the "

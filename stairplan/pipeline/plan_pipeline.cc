@@ -110,10 +110,11 @@ bool SameFootholds(const Plan& a, const Plan& b) {
   return true;
 }
 
-// The body optimisation on the crawl's footholds. Which tread each foot takes is a choice the
-// continuous optimisation cannot make, and only it can tell whether a body exists on them: where
-// it finds none on the footholds given, the crawl's other layouts fitted to the robot are planned
-// in turn, up to body_layouts of them, and the first on which it finds a body is the plan.
+// The body optimisation on the crawl's footholds. Which tread each foot takes, and in which order
+// the legs swing, are choices the continuous optimisation cannot make, and only it can tell whether
+// a body exists on them: where it finds none on the footholds given, the same layout in the other
+// lateral order is planned, then the crawl's other layouts fitted to the robot, each in both
+// orders, up to body_layouts plans in all; the first on which it finds a body is the plan.
 Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                          const Plan& footsteps, const PipelineOptions& options, const std::optional<Eigen::Vector2d>& standing) {
   // Where other layouts may follow, a failing first layout is planned only to its first failure,
@@ -124,21 +125,28 @@ Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const
   const auto t_layouts = std::chrono::steady_clock::now();
   CrawlSettings crawl = options.crawl;
   crawl.swing_duration = footsteps.cadence_s;
+  std::vector<CrawlSettings> layouts = {crawl};
+  for (const CrawlSettings& layout : FittedLayouts(robot, stairs, map, crawl)) layouts.push_back(layout);
   int tried = 0;
-  for (const CrawlSettings& layout : FittedLayouts(robot, stairs, map, crawl)) {
-    if (tried >= options.body_layouts) break;
-    Plan candidate = PlanCrawlFootholds(robot, stairs, map, layout);
-    if (candidate.status != PlanStatus::kOk || SameFootholds(candidate, footsteps)) continue;
-    ++tried;
-    candidate.controllers = footsteps.controllers;
-    candidate.selected = footsteps.selected;
-    Plan bodied = PlanBody(robot, stairs, map, std::move(candidate), options.body_qp, standing, true);
-    if (bodied.status != PlanStatus::kOk) continue;
-    bodied.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
-    return bodied;
+  for (const CrawlSettings& layout : layouts) {
+    const CrawlSequence other = OtherLateralOrder(layout.sequence);
+    const int orders = other == layout.sequence ? 1 : 2;
+    for (int o = 0; o < orders && tried < options.body_layouts; ++o) {
+      CrawlSettings ordered = layout;
+      ordered.sequence = o == 0 ? layout.sequence : other;
+      Plan candidate = PlanCrawlFootholds(robot, stairs, map, ordered);
+      if (candidate.status != PlanStatus::kOk || SameFootholds(candidate, footsteps)) continue;
+      ++tried;
+      candidate.controllers = footsteps.controllers;
+      candidate.selected = footsteps.selected;
+      Plan bodied = PlanBody(robot, stairs, map, std::move(candidate), options.body_qp, standing, true);
+      if (bodied.status != PlanStatus::kOk) continue;
+      bodied.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
+      return bodied;
+    }
   }
   if (tried > 0) {
-    first.status_reason += "; none on " + std::to_string(tried) + " other foothold layout" + (tried > 1 ? "s" : "") + " either";
+    first.status_reason += "; none on " + std::to_string(tried) + " other foothold layout" + (tried > 1 ? "s or orders" : " or order") + " either";
   }
   first.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
   return first;

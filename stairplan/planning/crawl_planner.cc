@@ -17,11 +17,22 @@
 namespace stairplan {
 namespace {
 
-// The legs one cycle swings, in order.
-const std::array<const char*, 4>& SwingOrder(CrawlSequence sequence) {
-  static constexpr std::array<const char*, 4> kPairs = {"RH", "LH", "RF", "LF"};
-  static constexpr std::array<const char*, 4> kLateral = {"RH", "RF", "LH", "LF"};
-  return sequence == CrawlSequence::kLateral ? kLateral : kPairs;
+// The legs one cycle swings, in order. The sequences are defined along the travel: facing
+// backward the front legs trail.
+std::array<const char*, 4> SwingOrder(CrawlSequence sequence, Facing facing) {
+  struct Slot {
+    bool right;
+    bool trailing;
+  };
+  std::array<Slot, 4> slots = {{{true, true}, {false, true}, {true, false}, {false, false}}};  // kPairs
+  if (sequence == CrawlSequence::kLateral) slots = {{{true, true}, {true, false}, {false, true}, {false, false}}};
+  if (sequence == CrawlSequence::kLateralLeadingFirst) slots = {{{true, false}, {true, true}, {false, false}, {false, true}}};
+  std::array<const char*, 4> order{};
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    const bool hind = slots[i].trailing == (facing == Facing::kForward);
+    order[i] = slots[i].right ? (hind ? "RH" : "RF") : (hind ? "LH" : "LF");
+  }
+  return order;
 }
 
 double MeanRun(const StairSpec& spec) {
@@ -90,7 +101,14 @@ Plan Infeasible(Plan plan, const std::string& reason) {
 CrawlSequence ParseCrawlSequence(const std::string& text) {
   if (text == "pairs") return CrawlSequence::kPairs;
   if (text == "lateral") return CrawlSequence::kLateral;
-  throw std::invalid_argument("crawl-sequence: must be 'pairs' or 'lateral' (got '" + text + "')");
+  if (text == "leading-first") return CrawlSequence::kLateralLeadingFirst;
+  throw std::invalid_argument("crawl-sequence: must be 'pairs', 'lateral' or 'leading-first' (got '" + text + "')");
+}
+
+CrawlSequence OtherLateralOrder(CrawlSequence sequence) {
+  if (sequence == CrawlSequence::kLateral) return CrawlSequence::kLateralLeadingFirst;
+  if (sequence == CrawlSequence::kLateralLeadingFirst) return CrawlSequence::kLateral;
+  return sequence;
 }
 
 void CrawlSettings::Validate() const {
@@ -228,7 +246,7 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
 
   // Each swing is preceded by a four-feet phase in which the COM moves over the next triangle.
   const double slot_duration = settings.shift_duration + settings.swing_duration;
-  const std::array<const char*, 4>& order = SwingOrder(settings.sequence);
+  const std::array<const char*, 4> order = SwingOrder(settings.sequence, map.facing());
   for (int c = 0; c < cycles; ++c) {
     for (std::size_t slot = 0; slot < order.size(); ++slot) {
       const auto leg = std::find_if(tracks.begin(), tracks.end(), [&](const LegTrack& l) { return l.name == order[slot]; });

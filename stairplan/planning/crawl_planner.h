@@ -18,20 +18,30 @@
 
 namespace stairplan {
 
-/// The order in which the crawl swings its legs, one at a time, within a cycle.
+/// The order in which the crawl swings its legs, one at a time, within a cycle, along the travel:
+/// the trailing legs are the hind legs facing forward and the front legs facing backward.
 enum class CrawlSequence {
-  /// Right hind, left hind, right front, left front: the hind pair, then the front pair (the 2012
-  /// paper's crawl). Between the pairs the stance is a stride shorter: a short robot's hind feet
-  /// land just behind its front feet, and the next support triangle is a sliver the COM must
-  /// cross the body to reach.
+  /// The trailing pair, then the leading pair (the 2012 paper's crawl: facing forward right hind,
+  /// left hind, right front, left front). Between the pairs the stance is a stride shorter: a short robot's
+  /// trailing feet land just behind its leading feet, and the next support triangle is a sliver
+  /// the COM must cross the body to reach.
   kPairs,
-  /// Right hind, right front, left hind, left front: each side's hind leg, then its front leg (the
-  /// lateral-sequence crawl of McGhee and Frank, 1968, the most stable order of a crawl). The
-  /// stance keeps its length, and the COM moves across once a cycle.
+  /// Each side's trailing leg, then its leading leg, right side first (the lateral-sequence crawl
+  /// of McGhee and Frank, 1968, the most stable order of a crawl). The stance keeps its length,
+  /// and the COM moves across once a cycle.
   kLateral,
+  /// Each side's leading leg, then its trailing leg, right side first. The COM gives up some of
+  /// its lead before each leading swing, but the stance stretches where kLateral's shortens: a
+  /// trailing leg swings toward a neighbour that has already stepped on (Unitree A1, its front
+  /// knees pointing back, climbs the low stairs backward only in this order).
+  kLateralLeadingFirst,
 };
 
-/// "pairs" or "lateral"; throws std::invalid_argument otherwise.
+/// The other order of the same kind, tried where no body is found on the first: kLateral and
+/// kLateralLeadingFirst each other's; kPairs none (itself).
+CrawlSequence OtherLateralOrder(CrawlSequence sequence);
+
+/// "pairs", "lateral" or "leading-first"; throws std::invalid_argument otherwise.
 CrawlSequence ParseCrawlSequence(const std::string& text);
 
 /// The crawl planner's timing, foothold layout and search.

@@ -1,6 +1,7 @@
-// The body optimisation judges the crawl's foothold layouts (PipelineOptions::body_layouts): where
-// it finds no body on the crawl's own footholds, it plans on the crawl's other layouts fitted to
-// the robot and keeps the first on which it finds one.
+// The body optimisation judges the crawl's foothold layouts and swing orders
+// (PipelineOptions::body_layouts): where it finds no body on the crawl's own footholds, it plans on
+// the same layout in the other lateral order and on the crawl's other layouts fitted to the robot,
+// and keeps the first on which it finds one.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -116,7 +117,7 @@ TEST_CASE("a body the optimisation finds on no layout: the first layout's reason
   INFO(r.plan.status_reason);
   REQUIRE(r.plan.status == PlanStatus::kInfeasible);
   CHECK_THAT(r.plan.status_reason, Catch::StartsWith("body re-check: t="));
-  CHECK_THAT(r.plan.status_reason, Catch::EndsWith("; none on 1 other foothold layout either"));
+  CHECK_THAT(r.plan.status_reason, Catch::EndsWith("; none on 1 other foothold layout or order either"));
   if (testing::kSanitized) return;
 
   spec.rise = 0.10;
@@ -130,15 +131,15 @@ TEST_CASE("a body the optimisation finds on no layout: the first layout's reason
   CHECK(low.validation.ok);
 }
 
-TEST_CASE("Unitree Go2 facing backward: no layout keeps its body moving forward on the default stairs, the low ones do",
+TEST_CASE("Unitree Go2 facing backward: no layout in either order keeps its legs the execution margin off the default stairs, the low ones do",
           "[planning][layouts][progress]") {
-  // Walking backward up the default stairs, at each front swing the body would have to step back
-  // 2-4 cm to keep the trailing front legs' links the body QP's 5 mm execution margin off the
-  // nosings; the re-check refuses that retreat on every layout, and the reason says so. Without
-  // that margin the climb keeps moving forward and validates. On 0.10 m steps (run 0.28 m) the
-  // same robot climbs backward without stepping back, and the plan validates. The normal build
-  // only (a dozen layouts; "the body re-check refuses a body that moves back along the travel
-  // beyond the bound" checks the refusal under the sanitizers).
+  // Walking backward up the default stairs, on every layout and in both swing orders the body
+  // re-check finds a leg's links nearer the stairs than the body QP's 5 mm execution margin, or
+  // the body stepping back to keep it; the crawl's own footholds fail on the margin first, and the
+  // reason says so. Without that margin the climb validates. On 0.10 m steps (run 0.28 m) the
+  // same robot climbs backward, and the plan validates. The normal build only (two dozen
+  // candidates; "the body re-check refuses a body that moves back along the travel beyond the
+  // bound" checks the retreat's refusal under the sanitizers).
   if (testing::kSanitized) return;
   const std::optional<RobotModel> go2 = testing::SharedRobot("unitree_go2");
   if (!go2) return;
@@ -148,8 +149,8 @@ TEST_CASE("Unitree Go2 facing backward: no layout keeps its body moving forward 
   const PipelineResult steep = RunPipeline(*go2, Staircase(spec), options);
   INFO(steep.plan.status_reason);
   REQUIRE(steep.plan.status == PlanStatus::kInfeasible);
-  CHECK_THAT(steep.plan.status_reason, Catch::Contains("body: moved back along the travel by more than the bound"));
-  CHECK_THAT(steep.plan.status_reason, Catch::Contains("other foothold layouts either"));
+  CHECK_THAT(steep.plan.status_reason, Catch::Contains("clearance below the margin"));
+  CHECK_THAT(steep.plan.status_reason, Catch::Contains("other foothold layouts or orders either"));
   // The margin is the binding constraint: without it the climb keeps moving forward.
   PipelineOptions no_margin = options;
   no_margin.body_qp.clearance_margin = 0.0;
@@ -162,6 +163,41 @@ TEST_CASE("Unitree Go2 facing backward: no layout keeps its body moving forward 
   spec.run = 0.28;
   const PipelineResult low = RunPipeline(*go2, Staircase(spec), options);
   RequireValid(low);
+}
+
+TEST_CASE("the other lateral order carries Unitree A1 backward up the low stairs, where the crawl's order finds no body",
+          "[planning][layouts]") {
+  // Climbing backward, A1's trailing front legs swing first in the lateral-sequence crawl, toward
+  // hind legs that still stand, and its right legs come closer than the margin at the first swing.
+  // With each leading leg first the stance stretches where it shortened, and the climb validates.
+  // The normal build only (under the sanitizers "a body the optimisation finds on no layout"
+  // runs the same search).
+  if (testing::kSanitized) return;
+  const std::optional<RobotModel> a1 = testing::SharedRobot("unitree_a1");
+  if (!a1) return;
+  StairSpec spec;
+  spec.rise = 0.10;
+  spec.run = 0.28;
+  PipelineOptions own;
+  own.facing = Facing::kBackward;
+  own.body_layouts = 0;
+  own.validate = false;
+  const PipelineResult crawl_order = RunPipeline(*a1, Staircase(spec), own);
+  RequireOwnFails(crawl_order, "RF/RH: legs closer than the margin");
+  PipelineOptions searched;
+  searched.facing = Facing::kBackward;
+  const PipelineResult other_order = RunPipeline(*a1, Staircase(spec), searched);
+  RequireValid(other_order);
+  // The first swing is a leading leg's: its foot stands ahead of its neighbour's along the travel.
+  const Plan& plan = other_order.plan;
+  REQUIRE(!plan.footsteps.empty());
+  const std::string first = plan.footsteps.front().leg;
+  const std::string neighbour = std::string(1, first[0]) + (first[1] == 'F' ? "H" : "F");
+  double neighbour_x = 0.0;
+  for (std::size_t l = 0; l < plan.legs.size(); ++l) {
+    if (plan.legs[l] == neighbour) neighbour_x = plan.initial_feet_W[l].x();
+  }
+  CHECK(plan.footsteps.front().from_W.x() > neighbour_x);
 }
 
 TEST_CASE("body_layouts out of range is refused, naming the field", "[planning][layouts]") {
