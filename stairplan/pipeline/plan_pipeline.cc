@@ -112,9 +112,9 @@ bool SameFootholds(const Plan& a, const Plan& b) {
 
 // The body optimisation on the crawl's footholds. Which tread each foot takes, and in which order
 // the legs swing, are choices the continuous optimisation cannot make, and only it can tell whether
-// a body exists on them: where it finds none on the footholds given, the same layout in the other
-// lateral order is planned, then the crawl's other layouts fitted to the robot, each in both
-// orders, up to body_layouts plans in all; the first on which it finds a body is the plan.
+// a body exists on them: where it finds none on the footholds given, the crawl's other layouts
+// fitted to the robot are planned in turn, then all of them in the other lateral order, up to
+// body_layouts plans in all, and the first on which it finds a body is the plan.
 Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                          const Plan& footsteps, const PipelineOptions& options, const std::optional<Eigen::Vector2d>& standing) {
   // Where other layouts may follow, a failing first layout is planned only to its first failure,
@@ -127,13 +127,13 @@ Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const
   crawl.swing_duration = footsteps.cadence_s;
   std::vector<CrawlSettings> layouts = {crawl};
   for (const CrawlSettings& layout : FittedLayouts(robot, stairs, map, crawl)) layouts.push_back(layout);
+  const CrawlSequence other = OtherLateralOrder(crawl.sequence);
   int tried = 0;
-  for (const CrawlSettings& layout : layouts) {
-    const CrawlSequence other = OtherLateralOrder(layout.sequence);
-    const int orders = other == layout.sequence ? 1 : 2;
-    for (int o = 0; o < orders && tried < options.body_layouts; ++o) {
-      CrawlSettings ordered = layout;
-      ordered.sequence = o == 0 ? layout.sequence : other;
+  const int orders = other == crawl.sequence ? 1 : 2;
+  for (int o = 0; o < orders; ++o) {
+    for (std::size_t i = 0; i < layouts.size() && tried < options.body_layouts; ++i) {
+      CrawlSettings ordered = layouts[i];
+      ordered.sequence = o == 0 ? crawl.sequence : other;
       Plan candidate = PlanCrawlFootholds(robot, stairs, map, ordered);
       if (candidate.status != PlanStatus::kOk || SameFootholds(candidate, footsteps)) continue;
       ++tried;

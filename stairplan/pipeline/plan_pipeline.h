@@ -88,14 +88,14 @@ struct PipelineOptions {
   BodySource body = BodySource::kRecedingHorizonQp;
   BodyPlannerSettings body_qp = LegRowBodySettings();  ///< for kRecedingHorizonQp (knots = the horizon)
   /// Where the body optimisation finds no body on the crawl's footholds, it plans on up to this
-  /// many other footholds and keeps the first on which it finds one: the same layout in the other
-  /// lateral order (OtherLateralOrder()), then the crawl's other layouts fitted to the robot
-  /// (FittedLayouts()), each in both orders. Unitree Go2 climbs the default stairs with its front
+  /// many other footholds and keeps the first on which it finds one: the crawl's other layouts
+  /// fitted to the robot (FittedLayouts()), then its own and those in the other lateral order
+  /// (OtherLateralOrder()). Unitree Go2 climbs the default stairs with its front
   /// feet one tread ahead of its hind ones, not two (there its front shanks, reaching far ahead
   /// of the hips, lie on the nosings behind the feet). Each that fails, the crawl's own too, is
   /// planned only to its first failure, which the reason names. 0: the crawl's footholds only,
   /// planned in full (the reason names the first failure of each kind).
-  int body_layouts = 24;
+  int body_layouts = 48;
   std::string body_nlp;          ///< "", "ipopt" or "nlopt": refine the QP body with the NLP
   BodyNlpSettings nlp;  ///< the NLP's solver settings, with body_nlp
   ConstrainedMapSettings map;  ///< the analytic map's margins
