@@ -135,6 +135,12 @@ StanceResult StanceChecker::Check(const BodyPose& body, const std::array<Eigen::
   return CheckStance(kinematics_, collision_, stairs_, body, contacts_W, ws_, settings_);
 }
 
+StanceResult StanceChecker::Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W, double prune_above) {
+  StanceSettings pruned = settings_;
+  pruned.clearance.prune_above = std::min(pruned.clearance.prune_above, prune_above);
+  return CheckStance(kinematics_, collision_, stairs_, body, contacts_W, ws_, pruned);
+}
+
 Interval1 StanceChecker::FeasibleBodyHeights(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W,
                                              double z_lo, double z_hi, double step, double tolerance) {
   if (!(step > 0.0) || !(tolerance > 0.0) || !(z_hi >= z_lo) || !std::isfinite(z_lo) || !std::isfinite(z_hi)) {

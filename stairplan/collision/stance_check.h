@@ -77,6 +77,11 @@ class StanceChecker {
 
   /// CheckStance with this checker's models and settings.
   StanceResult Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W);
+  /// The same with shape pairs surely farther apart than `prune_above` left unmeasured (as
+  /// ClearanceOptions::prune_above; their clearances read infinite): for a judge that keeps only
+  /// clearances below a margin and the smallest so far. Above the settings' min_clearance the
+  /// status is the full check's.
+  StanceResult Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W, double prune_above);
 
   /// The body heights (body.position_W.z, the rest of `body` fixed) at which Check() passes: the
   /// longest passing run found scanning [z_lo, z_hi] in `step`, its ends refined by bisection to

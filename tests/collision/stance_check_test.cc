@@ -1,6 +1,8 @@
 // StanceCheck: IK of all four feet for a body pose, limits and clearances.
 #include <catch2/catch.hpp>
 
+#include <random>
+
 #include "stairplan/collision/stance_check.h"
 #include "stairplan/kinematics/builtin_robot.h"
 
@@ -80,4 +82,50 @@ TEST_CASE("feasible body heights bracket the nominal standing height on flat gro
   CHECK_FALSE(checker.Check(body, contacts).ok());
   body.position_W.z() = heights.lo - 0.01;
   CHECK_FALSE(checker.Check(body, contacts).ok());
+}
+
+TEST_CASE("a pruned check measures every clearance below its bound as the full check does, and reads the rest as beyond it",
+          "[stance_check]") {
+  // Seeded random bodies over the first steps, the feet under their nominal places on the stairs
+  // (some out of reach, some legs in the risers), pruned at bounds from the check's margin to a
+  // decimetre: what the validator keeps (clearances below its margin and the smallest so far) is
+  // the same either way, and so is the verdict.
+  StanceChecker checker(BuiltinRobot(), Staircase(StairSpec{}));
+  std::mt19937 rng(20261207);
+  std::uniform_real_distribution<double> x(-0.5, 0.6), dz(-0.08, 0.05), pitch(-0.5, 0.2), bound(1e-6, 0.1);
+  const Staircase stairs{StairSpec{}};
+  const auto same_or_beyond = [](const Clearance& full, const Clearance& pruned, double prune) {
+    if (full.distance < prune) {
+      CHECK(pruned.distance == full.distance);
+    } else {
+      CHECK(pruned.distance >= prune);
+    }
+  };
+  int measured_below = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    BodyPose body;
+    body.position_W = {x(rng), 0.0, 0.0};
+    body.pitch = pitch(rng);
+    std::array<Eigen::Vector3d, 4> contacts;
+    for (int l = 0; l < 4; ++l) {
+      const auto& leg = checker.kinematics().leg(l);
+      const Eigen::Vector3d foot = body.ToIsometry() * leg.FootPosition(leg.nominal(), checker.workspace().leg(l));
+      contacts[static_cast<std::size_t>(l)] = {foot.x(), foot.y(), stairs.HeightAt(foot.x(), foot.y())};
+    }
+    body.position_W.z() = stairs.HeightAt(body.position_W.x(), 0.0) + 0.3 + dz(rng);
+    const double prune = bound(rng);
+    INFO("trial " << trial << ", pruned above " << prune);
+    const StanceResult full = checker.Check(body, contacts);
+    const StanceResult pruned = checker.Check(body, contacts, prune);
+    CHECK(pruned.status == full.status);
+    for (std::size_t l = 0; l < 4; ++l) same_or_beyond(full.legs[l].stairs, pruned.legs[l].stairs, prune);
+    same_or_beyond(full.body, pruned.body, prune);
+    for (const auto& [f, p] : {std::pair{&full.front_pair, &pruned.front_pair}, {&full.hind_pair, &pruned.hind_pair},
+                               {&full.left_pair, &pruned.left_pair}, {&full.right_pair, &pruned.right_pair}}) {
+      same_or_beyond(*f, *p, prune);
+      measured_below += f->distance < prune ? 1 : 0;
+    }
+    measured_below += full.min_clearance < prune ? 1 : 0;
+  }
+  CHECK(measured_below > 50);  // the bounds cut through the clearances the trials met
 }

@@ -19,6 +19,10 @@ namespace {
 // triangle of the other three [s].
 constexpr double kEventTolerance = 1e-9;
 
+// Above the pruning bound by this much, a pair exactly at the smallest clearance so far is still
+// measured [m].
+constexpr double kPruneSlack = 1e-6;
+
 // The instants a plan is replayed at: every liftoff and touchdown, the end, and a grid of
 // `time_step` whose instants within kEventTolerance of an event are that event.
 std::set<double> ReplayInstants(const Plan& plan, double time_step) {
@@ -250,7 +254,10 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
     contacts[l] = feet[i];
     stance[l] = down[i];
   }
-  const StanceResult r = checker_->Check(body, contacts);
+  // Only clearances below the margin and the smallest of the replay are reported: a shape pair
+  // surely farther apart than both needs no measuring, and the reported ones stay exact.
+  const double prune = std::max(report.min_clearance_m, settings_.min_clearance) + kPruneSlack;
+  const StanceResult r = checker_->Check(body, contacts, prune);
   const auto add = [&](const std::string& leg, ViolationKind kind, double value, const std::string& detail) {
     Record({t, leg, kind, value, detail, LegIdOfName(kinematics, leg), value, t}, report);
   };
@@ -274,7 +281,9 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
     report.min_clearance_m = std::min(report.min_clearance_m, pair->distance);
     if (!(pair->distance > settings_.min_clearance)) add(name, ViolationKind::kLegCollision, pair->distance, "");
   }
-  const Clearance body_clearance = BodyStairClearance(checker_->collision_model(), checker_->stairs(), body);
+  ClearanceOptions body_options;
+  body_options.prune_above = prune;
+  const Clearance body_clearance = BodyStairClearance(checker_->collision_model(), checker_->stairs(), body, body_options);
   report.min_clearance_m = std::min(report.min_clearance_m, body_clearance.distance);
   if (!(body_clearance.distance > settings_.min_clearance)) {
     add("body", ViolationKind::kBodyCollision, body_clearance.distance, ToString(body_clearance.part));
