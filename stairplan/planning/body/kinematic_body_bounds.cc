@@ -101,9 +101,10 @@ StanceLegCheck KinematicBodyBounds::CheckLeg(int leg, const Eigen::Vector3d& con
 }
 
 StanceResult KinematicBodyBounds::CheckFeet(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W,
-                                            double min_clearance) {
+                                            double min_clearance, double prune_above) {
   StanceSettings stance;
   stance.min_clearance = min_clearance;
+  stance.clearance.prune_above = prune_above;
   return CheckStance(*kinematics_, *collision_, *stairs_, body, contacts_W, *ws_, stance);
 }
 

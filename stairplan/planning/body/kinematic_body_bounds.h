@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -55,8 +56,11 @@ class KinematicBodyBounds final : public BodyBounds {
   StanceLegCheck CheckLeg(int leg, const Eigen::Vector3d& contact_W, const BodyPose& body);
 
   /// CheckStance() with these models: the four feet on `contacts_W` (stance or swing), every leg's
-  /// IK and clearance to the stairs, the neighbouring legs' clearances and the body's. Not per cycle.
-  StanceResult CheckFeet(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W, double min_clearance);
+  /// IK and clearance to the stairs, the neighbouring legs' clearances and the body's; shape pairs
+  /// surely farther apart than `prune_above` go unmeasured (ClearanceOptions::prune_above). Not
+  /// per cycle.
+  StanceResult CheckFeet(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W, double min_clearance,
+                         double prune_above = std::numeric_limits<double>::infinity());
 
   /// The robot's leg kinematics.
   const RobotKinematics& kinematics() const { return *kinematics_; }
