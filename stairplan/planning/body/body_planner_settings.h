@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "stairplan/planning/validity_margins.h"
+
 namespace stairplan {
 
 /// The body planner's settings: horizon, cost weights, hard limits, margins, trust region, budget.
@@ -53,7 +55,7 @@ struct BodyPlannerSettings {
   /// every leg link placed by IK, to stand this far inside the standing feet's polygon at every
   /// instant: the validator's margin, which the rows' stability_margin plans for with the COM
   /// estimate's error and any relaxed knot to spare [m].
-  double checked_stability_margin = 0.01;
+  double checked_stability_margin = kValidStabilityMargin;
   /// With stance rows (which price the body's motion against the travel), the re-check refuses a
   /// plan whose body moves back along the travel farther than this behind where it had been [m].
   double max_retreat = 0.01;

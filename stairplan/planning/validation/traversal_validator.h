@@ -16,6 +16,7 @@
 #include "stairplan/planning/plan.h"
 #include "stairplan/planning/plan_timeline.h"
 #include "stairplan/planning/swing_trajectory.h"
+#include "stairplan/planning/validity_margins.h"
 #include "stairplan/planning/com_model.h"
 #include "stairplan/planning/validation/contact_wrench_check.h"
 #include "stairplan/planning/validation/leg_id.h"
@@ -74,7 +75,7 @@ bool LargerIsWorse(ViolationKind kind);
 struct ValidationSettings {
   double time_step = 0.02;             ///< replay step [s]
   double min_clearance = 0.005;        ///< leg, leg-leg and body clearance needed [m]
-  double min_stability_margin = 0.01;  ///< COM inside the support polygon by this much [m]
+  double min_stability_margin = kValidStabilityMargin;  ///< COM inside the support polygon by this much [m]
   /// Quasi-static gaits (the crawl) need the COM inside the support polygon at all times;
   /// dynamic gaits (trot) do not, and are only reported.
   bool stability_for_dynamic_gaits = false;
