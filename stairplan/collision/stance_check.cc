@@ -1,5 +1,7 @@
 #include "stairplan/collision/stance_check.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -133,6 +135,11 @@ StanceChecker::StanceChecker(const RobotModel& robot, const Staircase& stairs, c
 
 StanceResult StanceChecker::Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W) {
   return CheckStance(kinematics_, collision_, stairs_, body, contacts_W, ws_, settings_);
+}
+
+double JudgePruneBound(double smallest, double margin) {
+  constexpr double kSlack = 1e-6;  // [m]
+  return std::max(smallest, margin) + kSlack;
 }
 
 StanceResult StanceChecker::Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W, double prune_above) {

@@ -107,6 +107,11 @@ class StanceChecker {
   RobotWorkspace ws_;
 };
 
+/// The pruning bound (StanceChecker::Check, ClearanceOptions::prune_above) for a judge that keeps
+/// only clearances below `margin` and the smallest so far, `smallest`: a little above both, so that
+/// a pair exactly at either is still measured and everything it keeps stays exact.
+double JudgePruneBound(double smallest, double margin);
+
 /// Whether leg `leg`'s clearance `stairs` (from CheckStance or LegStairClearance) is its foot
 /// grazing a tread, up to 0.1 mm deep: a foot lifting off or touching down touches its tread by
 /// design, so only deeper penetration counts against a plan.

@@ -128,4 +128,8 @@ TEST_CASE("a pruned check measures every clearance below its bound as the full c
     measured_below += full.min_clearance < prune ? 1 : 0;
   }
   CHECK(measured_below > 50);  // the bounds cut through the clearances the trials met
+  // A judge's bound sits just above both what it keeps: the margin and the smallest so far.
+  CHECK(JudgePruneBound(0.02, 0.005) > 0.02);
+  CHECK(JudgePruneBound(0.02, 0.005) < 0.02 + 1e-5);
+  CHECK(JudgePruneBound(0.001, 0.005) > 0.005);
 }

@@ -19,10 +19,6 @@ namespace {
 // the margin. Thirds of a 50 ms knot are finer than the validator's 20 ms replay.
 constexpr int kInstantsPerInterval = 3;
 
-// Above the pruning bound by this much, a pair exactly at the smallest clearance so far is still
-// measured [m].
-constexpr double kPruneSlack = 1e-6;
-
 // Notes a violation; the first of each part and kind is kept, the very first as first_violation.
 void Violated(BodyPlanCheck& check, double t, const std::string& part, const char* what) {
   ++check.violations;
@@ -60,7 +56,7 @@ void BodyChecker::CheckAt(double t, const BodyPose& pose, BodyPlanCheck& check) 
   const double min_clearance = margins_.clearance;
   // Only clearances below the margin and the smallest leg clearance so far are kept: a shape pair
   // surely farther apart than both needs no measuring, and the kept ones stay exact.
-  const double prune = std::max(check.min_clearance, min_clearance) + kPruneSlack;
+  const double prune = JudgePruneBound(check.min_clearance, min_clearance);
   const StanceResult r = bounds_.CheckFeet(pose, feet, min_clearance, prune);
   if (!(r.body.distance >= min_clearance)) Violated(check, t, "body", "clearance below the margin");
   bool reached = true;

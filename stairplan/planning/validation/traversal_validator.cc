@@ -19,10 +19,6 @@ namespace {
 // triangle of the other three [s].
 constexpr double kEventTolerance = 1e-9;
 
-// Above the pruning bound by this much, a pair exactly at the smallest clearance so far is still
-// measured [m].
-constexpr double kPruneSlack = 1e-6;
-
 // The instants a plan is replayed at: every liftoff and touchdown, the end, and a grid of
 // `time_step` whose instants within kEventTolerance of an event are that event.
 std::set<double> ReplayInstants(const Plan& plan, double time_step) {
@@ -256,7 +252,7 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
   }
   // Only clearances below the margin and the smallest of the replay are reported: a shape pair
   // surely farther apart than both needs no measuring, and the reported ones stay exact.
-  const double prune = std::max(report.min_clearance_m, settings_.min_clearance) + kPruneSlack;
+  const double prune = JudgePruneBound(report.min_clearance_m, settings_.min_clearance);
   const StanceResult r = checker_->Check(body, contacts, prune);
   const auto add = [&](const std::string& leg, ViolationKind kind, double value, const std::string& detail) {
     Record({t, leg, kind, value, detail, LegIdOfName(kinematics, leg), value, t}, report);
