@@ -35,11 +35,13 @@ struct OwnAndSearched {
   PipelineResult own, searched;
 };
 
-OwnAndSearched PlanBothWays(const RobotModel& robot, const Staircase& stairs) {
-  PipelineOptions own;
+OwnAndSearched PlanBothWays(const RobotModel& robot, const Staircase& stairs, Facing facing = Facing::kForward) {
+  PipelineOptions searched;
+  searched.facing = facing;
+  PipelineOptions own = searched;
   own.body_layouts = 0;
   own.validate = false;
-  return {RunPipeline(robot, stairs, own), RunPipeline(robot, stairs, PipelineOptions{})};
+  return {RunPipeline(robot, stairs, own), RunPipeline(robot, stairs, searched)};
 }
 
 // The plan on the crawl's own footholds found no body, the reason containing `binding`.
@@ -178,18 +180,11 @@ TEST_CASE("the other lateral order carries Unitree A1 backward up the low stairs
   StairSpec spec;
   spec.rise = 0.10;
   spec.run = 0.28;
-  PipelineOptions own;
-  own.facing = Facing::kBackward;
-  own.body_layouts = 0;
-  own.validate = false;
-  const PipelineResult crawl_order = RunPipeline(*a1, Staircase(spec), own);
-  RequireOwnFails(crawl_order, "RF/RH: legs closer than the margin");
-  PipelineOptions searched;
-  searched.facing = Facing::kBackward;
-  const PipelineResult other_order = RunPipeline(*a1, Staircase(spec), searched);
-  RequireValid(other_order);
+  const OwnAndSearched plans = PlanBothWays(*a1, Staircase(spec), Facing::kBackward);
+  RequireOwnFails(plans.own, "RF/RH: legs closer than the margin");
+  RequireValid(plans.searched);
   // The first swing is a leading leg's: its foot stands ahead of its neighbour's along the travel.
-  const Plan& plan = other_order.plan;
+  const Plan& plan = plans.searched.plan;
   REQUIRE(!plan.footsteps.empty());
   const std::string first = plan.footsteps.front().leg;
   const std::string neighbour = std::string(1, first[0]) + (first[1] == 'F' ? "H" : "F");
