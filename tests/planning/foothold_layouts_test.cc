@@ -1,6 +1,6 @@
 // The body optimisation judges the crawl's foothold layouts and swing orders
 // (PipelineOptions::body_layouts): where it finds no body on the crawl's own footholds, it plans on
-// the same layout in the other lateral order and on the crawl's other layouts fitted to the robot,
+// the crawl's other layouts fitted to the robot, then on all of them in the other lateral order,
 // and keeps the first on which it finds one.
 #include <catch2/catch.hpp>
 
@@ -153,7 +153,7 @@ TEST_CASE("Unitree Go2 facing backward: no layout in either order keeps its legs
   REQUIRE(steep.plan.status == PlanStatus::kInfeasible);
   CHECK_THAT(steep.plan.status_reason, Catch::Contains("clearance below the margin"));
   CHECK_THAT(steep.plan.status_reason, Catch::Contains("other foothold layouts or orders either"));
-  // The margin is the binding constraint: without it the climb keeps moving forward.
+  // The margin is the binding constraint: without it the climb validates.
   PipelineOptions no_margin = options;
   no_margin.body_qp.clearance_margin = 0.0;
   const PipelineResult unmargined = RunPipeline(*go2, Staircase(spec), no_margin);
