@@ -130,10 +130,9 @@ void CrawlSettings::Validate() const {
 
 namespace {
 
-// The crawl with the footholds `settings` lay out; the body fitted to the stairs' stances when
-// `fit_stairs` is given (the quasi-static path alone otherwise, for screening layouts).
-Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
-                     const CrawlSettings& settings, const Staircase* fit_stairs) {
+// The crawl's footsteps on the footholds `settings` lay out, with no body.
+Plan CrawlFootsteps(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                    const CrawlSettings& settings) {
   Plan plan;
   plan.robot_name = robot.name();
   plan.robot_source = robot.source();
@@ -262,8 +261,18 @@ Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const Con
       plan.footsteps.push_back(step);
     }
   }
+  return plan;
+}
+
+// The crawl with the footholds `settings` lay out and the quasi-static path over them, fitted to
+// the stairs' stances when `fit_stairs` is given (unfitted otherwise, for screening layouts).
+Plan PlanCrawlLayout(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+                     const CrawlSettings& settings, const Staircase* fit_stairs) {
+  Plan plan = CrawlFootsteps(robot, stairs, map, settings);
+  if (plan.status != PlanStatus::kOk) return plan;
   BodyPathSettings body = settings.body;
   body.swing = settings.swing;
+  const double yaw = map.facing() == Facing::kForward ? 0.0 : M_PI;
   plan.body = BodyPathForFootsteps(robot, plan.legs, plan.initial_feet_W, plan.footsteps, yaw, body, fit_stairs);
   return plan;
 }
@@ -462,7 +471,7 @@ std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircas
 Plan PlanCrawlFootholds(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                         const CrawlSettings& settings) {
   settings.Validate();
-  return PlanCrawlLayout(robot, stairs, map, settings, nullptr);
+  return CrawlFootsteps(robot, stairs, map, settings);
 }
 
 Plan PlanCrawl(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const CrawlSettings& settings) {

@@ -106,8 +106,8 @@ std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircas
                                          const CrawlSettings& settings);
 
 /// The crawl's footsteps on the layout `settings` give, for a body planner to carry the body
-/// over: no posture fit and no foothold search (those judge footholds by the quasi-static path).
-/// The plan's body is that path unfitted, a sketch. Never throws for geometry it cannot handle.
+/// over: no posture fit and no foothold search (those judge footholds by the quasi-static path),
+/// and no body. Never throws for geometry it cannot handle.
 Plan PlanCrawlFootholds(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                         const CrawlSettings& settings = {});
 
