@@ -57,8 +57,9 @@ BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const
   settings_.Validate();
   auto bounds = std::make_shared<KinematicBodyBounds>(robot, stairs, map.facing(), settings_);
   if (settings_.stance_rows) robot_ = bounds.get();
+  const KinematicBodyBounds& kinematic = *bounds;
   bounds_ = std::move(bounds);
-  Initialise(robot, stairs);
+  Initialise(robot, stairs, &kinematic.kinematics());
 }
 
 BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const Plan& footsteps,
@@ -66,10 +67,10 @@ BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const
     : settings_(settings), schedule_(robot, footsteps, &stairs), bounds_(std::move(bounds)) {
   settings_.Validate();
   if (!bounds_) throw std::invalid_argument("BodyPlanner: bounds must not be null");
-  Initialise(robot, stairs);
+  Initialise(robot, stairs, nullptr);
 }
 
-void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
+void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs, const RobotKinematics* built) {
   if (robot.legs().size() != static_cast<std::size_t>(kBodyLegs)) {
     throw std::invalid_argument("BodyPlanner: robot '" + robot.name() + "' must have 4 legs");
   }
@@ -114,7 +115,8 @@ void BodyPlanner::Initialise(const RobotModel& robot, const Staircase& stairs) {
   phases_.resize(static_cast<std::size_t>((n + 1) * kBodyLegs));
   std::array<Eigen::Vector3d, kBodyLegs> contacts;
   for (int l = 0; l < kBodyLegs; ++l) contacts[static_cast<std::size_t>(l)] = schedule_.Phase(l, 0.0).foot_W;
-  com_ = CalibrateComEstimate(robot, contacts, StartState());
+  com_ = built != nullptr ? CalibrateComEstimate(*built, contacts, StartState())
+                          : CalibrateComEstimate(RobotKinematics(robot), contacts, StartState());
   neutral_x_.setZero(n);
   neutral_y_.setZero(n);
   centres_.setZero(4, n);

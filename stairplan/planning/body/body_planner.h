@@ -145,7 +145,8 @@ class BodyPlanner {
   ///@}
 
  private:
-  void Initialise(const RobotModel& robot, const Staircase& stairs);
+  // `built`: the robot's kinematics when the bounds have built them already (else built here).
+  void Initialise(const RobotModel& robot, const Staircase& stairs, const RobotKinematics* built);
   // Fills the QP's inputs around the previous plan; returns the number of conflicting rows.
   void Linearise(const BodyState& state, const BodyCommand& command, double now);
   // The body pose at the trust region's centre v0 of a knot whose neutral body is at `neutral_xy`.

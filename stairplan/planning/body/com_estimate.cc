@@ -5,9 +5,8 @@
 
 namespace stairplan {
 
-ComEstimate CalibrateComEstimate(const RobotModel& robot, const std::array<Eigen::Vector3d, 4>& contacts_W,
+ComEstimate CalibrateComEstimate(const RobotKinematics& kinematics, const std::array<Eigen::Vector3d, 4>& contacts_W,
                                  const BodyState& body) {
-  const RobotKinematics kinematics(robot);
   const ComModel com_model(kinematics);
   RobotWorkspace ws(kinematics);
   // The COM with every leg's foot on its contact (through IK) for the body at `b`.

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "stairplan/kinematics/robot_model.h"
+#include "stairplan/kinematics/robot_kinematics.h"
 #include "stairplan/planning/plan.h"
 
 namespace stairplan {
@@ -30,9 +30,9 @@ struct ComEstimate {
   }
 };
 
-/// Calibrates the estimate for `robot` standing on `contacts_W` (contact points, robot leg order)
-/// with the body at `body`. Not per cycle (IK of every leg a few times).
-ComEstimate CalibrateComEstimate(const RobotModel& robot, const std::array<Eigen::Vector3d, 4>& contacts_W,
+/// Calibrates the estimate for the robot of `kinematics` standing on `contacts_W` (contact points,
+/// robot leg order) with the body at `body`. Not per cycle (IK of every leg a few times).
+ComEstimate CalibrateComEstimate(const RobotKinematics& kinematics, const std::array<Eigen::Vector3d, 4>& contacts_W,
                                  const BodyState& body);
 
 }  // namespace stairplan
