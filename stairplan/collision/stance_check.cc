@@ -125,7 +125,10 @@ StanceResult CheckStance(const RobotKinematics& kinematics, const RobotCollision
 }
 
 StanceChecker::StanceChecker(const RobotModel& robot, const Staircase& stairs, const StanceSettings& settings)
-    : kinematics_(robot), collision_(kinematics_), stairs_(stairs), settings_(settings), ws_(kinematics_) {
+    : StanceChecker(RobotKinematics(robot), stairs, settings) {}
+
+StanceChecker::StanceChecker(const RobotKinematics& kinematics, const Staircase& stairs, const StanceSettings& settings)
+    : kinematics_(kinematics), collision_(kinematics_), stairs_(stairs), settings_(settings), ws_(kinematics_) {
   settings_.Validate();
   verdict_settings_ = settings_;
   verdict_settings_.stop_at_first_failure = true;

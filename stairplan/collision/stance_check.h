@@ -74,6 +74,8 @@ class StanceChecker {
  public:
   /// Builds the kinematics, collision models and workspace of `robot` on `stairs` once.
   StanceChecker(const RobotModel& robot, const Staircase& stairs, const StanceSettings& settings = {});
+  /// The same on kinematics built already (copied: building them is the costly part).
+  StanceChecker(const RobotKinematics& kinematics, const Staircase& stairs, const StanceSettings& settings = {});
 
   /// CheckStance with this checker's models and settings.
   StanceResult Check(const BodyPose& body, const std::array<Eigen::Vector3d, 4>& contacts_W);

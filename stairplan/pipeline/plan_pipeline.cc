@@ -39,9 +39,10 @@ void InsertShiftPhases(Plan& plan, double shift) {
   }
 }
 
-Plan StepPlannerPlan(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+Plan StepPlannerPlan(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
                      const PipelineOptions& options) {
-  Plan plan = PlanWithStepPlanner(robot, stairs, map, options.step, std::make_shared<IkReachModel>(robot));
+  const RobotModel& robot = kinematics.robot();
+  Plan plan = PlanWithStepPlanner(robot, stairs, map, options.step, std::make_shared<IkReachModel>(kinematics));
   if (plan.status != PlanStatus::kOk) return plan;
   InsertShiftPhases(plan, options.crawl.shift_duration);
   for (Footstep& f : plan.footsteps) {
@@ -55,9 +56,10 @@ Plan StepPlannerPlan(const RobotModel& robot, const Staircase& stairs, const Con
 }
 
 // The crawl at the cadence the step planner selects, with the controllers' scores recorded.
-Plan SelectedCrawlPlan(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+Plan SelectedCrawlPlan(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
                        const PipelineOptions& options) {
-  const Plan selection = PlanWithStepPlanner(robot, stairs, map, options.step, std::make_shared<IkReachModel>(robot));
+  const RobotModel& robot = kinematics.robot();
+  const Plan selection = PlanWithStepPlanner(robot, stairs, map, options.step, std::make_shared<IkReachModel>(kinematics));
   // A rise no leg can step rules out every controller whatever its cadence, and any crawl with them.
   if (FirstRiseTooHigh(robot.legs(), map, options.step)) return selection;
   CrawlSettings crawl = options.crawl;
@@ -89,17 +91,18 @@ PipelineOptions ForFootstepSource(const PipelineOptions& given) {
   return options;
 }
 
-Plan FootstepPlan(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const PipelineOptions& options) {
+Plan FootstepPlan(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
+                  const PipelineOptions& options) {
   switch (options.footsteps) {
     case FootstepSource::kStepPlanner:
-      return StepPlannerPlan(robot, stairs, map, options);
+      return StepPlannerPlan(kinematics, stairs, map, options);
     case FootstepSource::kPaperCrawl:
     case FootstepSource::kPaperCrawlAlternate:
-      return PlanPaperCrawl(robot, stairs, map, PaperSettings(options.footsteps));
+      return PlanPaperCrawl(kinematics.robot(), stairs, map, PaperSettings(options.footsteps));
     case FootstepSource::kSelectedCrawl:
       break;
   }
-  return SelectedCrawlPlan(robot, stairs, map, options);
+  return SelectedCrawlPlan(kinematics, stairs, map, options);
 }
 
 bool SameFootholds(const Plan& a, const Plan& b) {
@@ -115,12 +118,13 @@ bool SameFootholds(const Plan& a, const Plan& b) {
 // a body exists on them: where it finds none on the footholds given, the crawl's other layouts
 // fitted to the robot are planned in turn, then all of them in the other lateral order, up to
 // body_layouts plans in all, and the first on which it finds a body is the plan.
-Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
+Plan BodyOnFittedLayouts(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
                          const Plan& footsteps, const PipelineOptions& options, const std::optional<Eigen::Vector2d>& standing) {
+  const RobotModel& robot = kinematics.robot();
   // Where other layouts may follow, a failing first layout is planned only to its first failure,
   // as they are: the rest of a plan that fails is of no use but to count its failures.
   const bool search = options.footsteps == FootstepSource::kSelectedCrawl && options.body_layouts > 0;
-  Plan first = PlanBody(robot, stairs, map, footsteps, options.body_qp, standing, search);
+  Plan first = PlanBody(kinematics, stairs, map, footsteps, options.body_qp, standing, search);
   if (first.status == PlanStatus::kOk || !search) return first;
   const auto t_layouts = std::chrono::steady_clock::now();
   CrawlSettings crawl = options.crawl;
@@ -139,7 +143,7 @@ Plan BodyOnFittedLayouts(const RobotModel& robot, const Staircase& stairs, const
       ++tried;
       candidate.controllers = footsteps.controllers;
       candidate.selected = footsteps.selected;
-      Plan bodied = PlanBody(robot, stairs, map, std::move(candidate), options.body_qp, standing, true);
+      Plan bodied = PlanBody(kinematics, stairs, map, std::move(candidate), options.body_qp, standing, true);
       if (bodied.status != PlanStatus::kOk) continue;
       bodied.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
       return bodied;
@@ -204,7 +208,7 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
   result.approach = ApproachStairs(stairs, aligned, options.robot_pose, options.stair_mode, options.robot_pose_source);
   if (options.start_at_alignment && aligned.found) options.crawl.start_feet = aligned.feet;
   const auto t_plan = std::chrono::steady_clock::now();
-  result.plan = FootstepPlan(robot, stairs, result.map, options);
+  result.plan = FootstepPlan(kinematics, stairs, result.map, options);
   result.plan.timing_us = {{"plan", MicrosSince(t_plan)}};
   if (options.body == BodySource::kRecedingHorizonQp && result.plan.status == PlanStatus::kOk) {
     const std::vector<std::pair<std::string, double>> timing = result.plan.timing_us;
@@ -212,7 +216,7 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
     // over the feet.
     std::optional<Eigen::Vector2d> standing;
     if (options.start_at_alignment && aligned.found) standing = aligned.position.head<2>();
-    result.plan = BodyOnFittedLayouts(robot, stairs, result.map, result.plan, options, standing);
+    result.plan = BodyOnFittedLayouts(kinematics, stairs, result.map, result.plan, options, standing);
     if (!options.body_nlp.empty() && result.plan.status == PlanStatus::kOk) {
       BodyNlpSettings nlp = options.nlp;
       nlp.solver = options.body_nlp;
@@ -222,7 +226,7 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
   }
   if (options.validate && result.plan.status == PlanStatus::kOk) {
     const auto t_validate = std::chrono::steady_clock::now();
-    TraversalValidator validator(robot, stairs, result.map, options.validation);
+    TraversalValidator validator(kinematics, stairs, result.map, options.validation);
     result.validation = validator.Validate(result.plan);
     result.validated = true;
     result.plan.timing_us.emplace_back("validate", MicrosSince(t_validate));

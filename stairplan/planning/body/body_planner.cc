@@ -53,13 +53,17 @@ void CheckFinite(double value, const char* what) {
 
 BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                          const Plan& footsteps, const BodyPlannerSettings& settings)
-    : settings_(settings), schedule_(robot, footsteps, &stairs) {
+    : BodyPlanner(RobotKinematics(robot), stairs, map, footsteps, settings) {}
+
+BodyPlanner::BodyPlanner(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
+                         const Plan& footsteps, const BodyPlannerSettings& settings)
+    : settings_(settings), schedule_(kinematics.robot(), footsteps, &stairs) {
   settings_.Validate();
-  auto bounds = std::make_shared<KinematicBodyBounds>(robot, stairs, map.facing(), settings_);
+  auto bounds = std::make_shared<KinematicBodyBounds>(kinematics, stairs, map.facing(), settings_);
   if (settings_.stance_rows) robot_ = bounds.get();
   const KinematicBodyBounds& kinematic = *bounds;
   bounds_ = std::move(bounds);
-  Initialise(robot, stairs, &kinematic.kinematics());
+  Initialise(kinematics.robot(), stairs, &kinematic.kinematics());
 }
 
 BodyPlanner::BodyPlanner(const RobotModel& robot, const Staircase& stairs, const Plan& footsteps,

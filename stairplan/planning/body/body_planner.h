@@ -100,6 +100,9 @@ class BodyPlanner {
   /// std::invalid_argument naming the field or footstep for bad settings or a malformed plan.
   BodyPlanner(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, const Plan& footsteps,
               const BodyPlannerSettings& settings = {});
+  /// The same on the robot's kinematics built already.
+  BodyPlanner(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
+              const Plan& footsteps, const BodyPlannerSettings& settings = {});
   /// The same with given bounds (tests use fakes).
   BodyPlanner(const RobotModel& robot, const Staircase& stairs, const Plan& footsteps,
               std::shared_ptr<BodyBounds> bounds, const BodyPlannerSettings& settings = {});

@@ -21,9 +21,13 @@ constexpr double kHeightTolerance = 5e-4;
 
 KinematicBodyBounds::KinematicBodyBounds(const RobotModel& robot, const Staircase& stairs, Facing facing,
                                          const BodyPlannerSettings& settings)
+    : KinematicBodyBounds(RobotKinematics(robot), stairs, facing, settings) {}
+
+KinematicBodyBounds::KinematicBodyBounds(const RobotKinematics& kinematics, const Staircase& stairs, Facing facing,
+                                         const BodyPlannerSettings& settings)
     : settings_(settings) {
   settings_.Validate();
-  kinematics_ = std::make_unique<RobotKinematics>(robot);
+  kinematics_ = std::make_unique<RobotKinematics>(kinematics);
   collision_ = std::make_unique<RobotCollisionModel>(*kinematics_);
   stairs_ = std::make_unique<StairCollisionModel>(stairs);
   ws_ = std::make_unique<RobotWorkspace>(*kinematics_);

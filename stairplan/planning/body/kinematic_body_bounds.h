@@ -44,6 +44,9 @@ class KinematicBodyBounds final : public BodyBounds {
   /// `facing` (yaw 0 or pi). Throws std::invalid_argument naming the field for bad settings.
   KinematicBodyBounds(const RobotModel& robot, const Staircase& stairs, Facing facing,
                       const BodyPlannerSettings& settings = {});
+  /// The same on kinematics built already (copied: building them is the costly part).
+  KinematicBodyBounds(const RobotKinematics& kinematics, const Staircase& stairs, Facing facing,
+                      const BodyPlannerSettings& settings = {});
 
   void SetFootholds(const std::vector<Foothold>& footholds) override;
   HeightRange HipHeight(const HipBox& box) override;

@@ -39,11 +39,20 @@ Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const Constraine
               bool stop_at_first_violation) {
   settings.Validate();
   if (plan.status != PlanStatus::kOk) return plan;
+  return PlanBody(RobotKinematics(robot), stairs, map, std::move(plan), settings, standing_xy, stop_at_first_violation);
+}
+
+Plan PlanBody(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map, Plan plan,
+              const BodyPlannerSettings& settings, const std::optional<Eigen::Vector2d>& standing_xy,
+              bool stop_at_first_violation) {
+  settings.Validate();
+  if (plan.status != PlanStatus::kOk) return plan;
+  const RobotModel& robot = kinematics.robot();
   const auto start = std::chrono::steady_clock::now();
   // Offline there is no cycle budget: every cycle solves (and fills the bound caches it needs).
   BodyPlannerSettings offline = settings;
   offline.cycle_budget_s = 10.0;
-  BodyPlanner planner(robot, stairs, map, plan, offline);
+  BodyPlanner planner(kinematics, stairs, map, plan, offline);
   const double end = planner.schedule().end_time();
   const double dt = settings.knot_dt;
   const int cycles = static_cast<int>(std::ceil(end / dt - 1e-9));

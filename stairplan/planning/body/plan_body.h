@@ -9,6 +9,7 @@
 
 #include "stairplan/geometry/constrained_map.h"
 #include "stairplan/geometry/staircase.h"
+#include "stairplan/kinematics/robot_kinematics.h"
 #include "stairplan/kinematics/robot_model.h"
 #include "stairplan/planning/body/body_check.h"
 #include "stairplan/planning/body/body_planner_settings.h"
@@ -34,6 +35,10 @@ BodyCheckMargins RecheckMargins(const BodyPlannerSettings& settings, const std::
 /// is re-checked as it is planned and the plan ends, infeasible, at the first that fails: for a
 /// caller that needs the verdict only (a search over footholds), not the count of violations.
 Plan PlanBody(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map, Plan footsteps_plan,
+              const BodyPlannerSettings& settings = {}, const std::optional<Eigen::Vector2d>& standing_xy = std::nullopt,
+              bool stop_at_first_violation = false);
+/// The same on the robot's kinematics built already (a caller planning many bodies builds them once).
+Plan PlanBody(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map, Plan footsteps_plan,
               const BodyPlannerSettings& settings = {}, const std::optional<Eigen::Vector2d>& standing_xy = std::nullopt,
               bool stop_at_first_violation = false);
 

@@ -21,7 +21,10 @@ BodyPose ToBodyPose(const Eigen::Isometry3d& base_W) {
 }  // namespace
 
 IkReachModel::IkReachModel(const RobotModel& robot, const IkSettings& settings, double max_fraction)
-    : kinematics_(robot), settings_(settings), band_(0.0, max_fraction) {
+    : IkReachModel(RobotKinematics(robot), settings, max_fraction) {}
+
+IkReachModel::IkReachModel(const RobotKinematics& kinematics, const IkSettings& settings, double max_fraction)
+    : kinematics_(kinematics), settings_(settings), band_(0.0, max_fraction) {
   settings_.Validate();
   workspace_ = std::make_unique<RobotWorkspace>(kinematics_);
 }

@@ -18,6 +18,8 @@ class IkReachModel final : public ReachModel {
   /// Builds the robot's kinematics (throws std::invalid_argument as RobotKinematics does).
   /// `max_fraction` rejects far targets before any IK, as the geometric model would.
   explicit IkReachModel(const RobotModel& robot, const IkSettings& settings = {}, double max_fraction = 1.0);
+  /// The same on kinematics built already (copied: building them is the costly part).
+  explicit IkReachModel(const RobotKinematics& kinematics, const IkSettings& settings = {}, double max_fraction = 1.0);
 
   /// True when the IK puts the foot centre at foot_W within the joint limits. Not thread-safe: one
   /// workspace, reused by every query.

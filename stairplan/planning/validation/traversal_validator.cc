@@ -175,12 +175,16 @@ void ValidationSettings::Set(const std::string& name, double value) {
 
 TraversalValidator::TraversalValidator(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                        const ValidationSettings& settings)
+    : TraversalValidator(RobotKinematics(robot), stairs, map, settings) {}
+
+TraversalValidator::TraversalValidator(const RobotKinematics& kinematics, const Staircase& stairs,
+                                       const ConstrainedMap& map, const ValidationSettings& settings)
     : stairs_(stairs), map_(map), settings_(settings) {
   settings_.Validate();
   StanceSettings stance;
   stance.ik = settings_.ik;
   stance.min_clearance = settings_.min_clearance;
-  checker_ = std::make_unique<StanceChecker>(robot, stairs, stance);
+  checker_ = std::make_unique<StanceChecker>(kinematics, stairs, stance);
   com_ = std::make_unique<ComModel>(checker_->kinematics());
   wrench_ = std::make_unique<ContactWrenchCheck>(checker_->kinematics(), com_->total_mass(), settings_.dynamics);
 }

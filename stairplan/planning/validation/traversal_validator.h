@@ -135,6 +135,11 @@ class TraversalValidator {
                      const ValidationSettings& settings = {});
   TraversalValidator(const RobotModel&, Staircase&&, const ConstrainedMap&, const ValidationSettings& = {}) = delete;
   TraversalValidator(const RobotModel&, const Staircase&, ConstrainedMap&&, const ValidationSettings& = {}) = delete;
+  /// The same on the robot's kinematics built already (copied: building them is the costly part).
+  TraversalValidator(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
+                     const ValidationSettings& settings = {});
+  TraversalValidator(const RobotKinematics&, Staircase&&, const ConstrainedMap&, const ValidationSettings& = {}) = delete;
+  TraversalValidator(const RobotKinematics&, const Staircase&, ConstrainedMap&&, const ValidationSettings& = {}) = delete;
 
   /// Replays `plan` every time_step, checks each touchdown, and reports what it breaks.
   ValidationReport Validate(const Plan& plan);
