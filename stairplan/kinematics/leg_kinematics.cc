@@ -120,15 +120,8 @@ void LegKinematics::BuildFkSegments(LegWorkspace& ws) {
     s.translation = at_zero.translation();
     if (joint.getType() == KDL::Joint::RotAxis) {
       s.revolute = true;
-      const Eigen::Vector3d a = ToEigen(joint.JointAxis()).normalized();
-      Eigen::Matrix3d k;
-      k << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+      s.axis = ToEigen(joint.JointAxis()).normalized();
       s.origin = ToEigen(joint.JointOrigin());
-      s.k_rotation = k * s.rotation;
-      s.kk_rotation = k * s.k_rotation;
-      s.lever = s.translation - s.origin;
-      s.k_lever = k * s.lever;
-      s.kk_lever = k * s.k_lever;
     } else if (joint.getType() != KDL::Joint::None) {
       return;  // KDL's solver for other joint types
     }
@@ -181,11 +174,15 @@ Eigen::Vector3d LegKinematics::SegmentFrames(const Eigen::Vector3d& q, LegWorksp
       for (std::size_t i = 0; i < fk_segments_.size(); ++i) {
         const FkSegment& s = fk_segments_[i];
         if (s.revolute) {
-          const double angle = q(j++), sn = std::sin(angle), v = 1.0 - std::cos(angle);
-          const Eigen::Vector3d lever = s.lever + sn * s.k_lever + v * s.kk_lever;  // R (p0 - o)
-          const Eigen::Matrix3d turned = s.rotation + sn * s.k_rotation + v * s.kk_rotation;  // R M0
-          p.noalias() += m * (s.origin + lever);
-          m = m * turned;
+          // Rodrigues' turn by q(j) about the unit axis a: c I + s [a]x + (1 - c) a a'.
+          const double angle = q(j++), c = std::cos(angle), sn = std::sin(angle), v = 1.0 - c;
+          const Eigen::Vector3d& a = s.axis;
+          Eigen::Matrix3d r;
+          r << c + v * a.x() * a.x(), v * a.x() * a.y() - sn * a.z(), v * a.x() * a.z() + sn * a.y(),
+              v * a.x() * a.y() + sn * a.z(), c + v * a.y() * a.y(), v * a.y() * a.z() - sn * a.x(),
+              v * a.x() * a.z() - sn * a.y(), v * a.y() * a.z() + sn * a.x(), c + v * a.z() * a.z();
+          p.noalias() += m * (s.origin + r * (s.translation - s.origin));
+          m = m * (r * s.rotation).eval();
         } else {
           p.noalias() += m * s.translation;
           m = m * s.rotation;
