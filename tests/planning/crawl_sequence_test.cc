@@ -5,6 +5,7 @@
 
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/planning/crawl_planner.h"
+#include "leg_names.h"
 
 using namespace stairplan;
 
@@ -27,8 +28,6 @@ bool Trails(const Plan& plan, std::size_t i, const std::string& other) {
   return plan.footsteps[i].from_W.x() < FootXBefore(plan, i, other) - 1e-9;
 }
 
-std::string SameSide(const std::string& leg) { return std::string(1, leg[0]) + (leg[1] == 'F' ? "H" : "F"); }
-
 }  // namespace
 
 TEST_CASE("each crawl order swings the legs it names along the travel, facing either way and up or down", "[planning][crawl]") {
@@ -50,15 +49,15 @@ TEST_CASE("each crawl order swings the legs it names along the travel, facing ei
           INFO("cycle from footstep " << c);
           if (sequence == CrawlSequence::kPairs) {
             // Both trailing legs first: each trails its own side's other leg.
-            CHECK(Trails(plan, c, SameSide(plan.footsteps[c].leg)));
-            CHECK(Trails(plan, c + 1, SameSide(plan.footsteps[c + 1].leg)));
+            CHECK(Trails(plan, c, testing::SameSideLeg(plan.footsteps[c].leg)));
+            CHECK(Trails(plan, c + 1, testing::SameSideLeg(plan.footsteps[c + 1].leg)));
             CHECK(plan.footsteps[c].leg[0] != plan.footsteps[c + 1].leg[0]);
             continue;
           }
           // One side's two legs, then the other side's, right first.
           for (const std::size_t first : {c, c + 2}) {
             CHECK(plan.footsteps[first].leg[0] == (first == c ? 'R' : 'L'));
-            CHECK(plan.footsteps[first + 1].leg == SameSide(plan.footsteps[first].leg));
+            CHECK(plan.footsteps[first + 1].leg == testing::SameSideLeg(plan.footsteps[first].leg));
             CHECK(Trails(plan, first, plan.footsteps[first + 1].leg) == (sequence == CrawlSequence::kLateral));
           }
         }

@@ -11,6 +11,7 @@
 
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/pipeline/plan_pipeline.h"
+#include "leg_names.h"
 #include "sanitized.h"
 #include "shared_robot.h"
 
@@ -60,6 +61,19 @@ void RequireValid(const PipelineResult& searched) {
   CHECK(searched.validation.min_clearance_m >= searched.clearances.validator);
 }
 
+// The layout search rescuing shared robot `name` on `spec`: on the crawl's own footholds the body
+// optimisation finds no body, the reason containing `binding`, and the searched plan validates.
+// None where ../shared is absent.
+std::optional<OwnAndSearched> RequireSearchRescues(const std::string& name, const StairSpec& spec, Facing facing,
+                                                   const std::string& binding) {
+  const std::optional<RobotModel> robot = testing::SharedRobot(name);
+  if (!robot) return std::nullopt;
+  OwnAndSearched plans = PlanBothWays(*robot, Staircase(spec), facing);
+  RequireOwnFails(plans.own, binding);
+  RequireValid(plans.searched);
+  return plans;
+}
+
 }  // namespace
 
 TEST_CASE("the body optimisation takes Unitree Go2 up the default stairs on footholds it chose among the crawl's layouts",
@@ -69,17 +83,15 @@ TEST_CASE("the body optimisation takes Unitree Go2 up the default stairs on foot
   // plans lifts them (the shank pivots about its foot, and the clearance's gradient in the body's
   // motion is below 0.1). One tread apart, it climbs. The normal build only (two minutes under the
   // sanitizers): there "a body the optimisation finds on no layout" runs the same search.
+  // The searched plan's validation checks the body at t = 0 too: on the layout found the robot
+  // starts nearer the flight, and at its nominal height its head would overhang the first nosing by
+  // 15 mm.
   if (testing::kSanitized) return;
-  const std::optional<RobotModel> go2 = testing::SharedRobot("unitree_go2");
-  if (!go2) return;
-  StairSpec spec;
-  const OwnAndSearched plans = PlanBothWays(*go2, Staircase(spec));
-  RequireOwnFails(plans.own, "RF: clearance below the margin");
-  CHECK(FrontTreadsAhead(plans.own.plan) == 2);
-  // Among the validator's checks, the body at t = 0: on the layout found the robot starts nearer
-  // the flight, and standing at its nominal height its head would overhang the first nosing by 15 mm.
-  RequireValid(plans.searched);
-  CHECK(FrontTreadsAhead(plans.searched.plan) == 1);
+  const std::optional<OwnAndSearched> plans =
+      RequireSearchRescues("unitree_go2", StairSpec{}, Facing::kForward, "RF: clearance below the margin");
+  if (!plans) return;
+  CHECK(FrontTreadsAhead(plans->own.plan) == 2);
+  CHECK(FrontTreadsAhead(plans->searched.plan) == 1);
 }
 
 TEST_CASE("the re-check that judges a layout checks swing legs and leg pairs: Unitree Go2 descends the low stairs",
@@ -91,15 +103,11 @@ TEST_CASE("the re-check that judges a layout checks swing legs and leg pairs: Un
   // crawl's footholds plan clear; five take 2 min under the sanitizers): there "the body re-check
   // passes the nominal stance and names the legs of a crossed pair" checks the pairs.
   if (testing::kSanitized) return;
-  const std::optional<RobotModel> go2 = testing::SharedRobot("unitree_go2");
-  if (!go2) return;
   StairSpec spec;
   spec.rise = 0.10;
   spec.run = 0.28;
   spec.direction = TravelDirection::kDown;
-  const OwnAndSearched plans = PlanBothWays(*go2, Staircase(spec));
-  RequireOwnFails(plans.own, "RF/RH: legs closer than the margin");
-  RequireValid(plans.searched);
+  RequireSearchRescues("unitree_go2", spec, Facing::kForward, "RF/RH: legs closer than the margin");
 }
 
 TEST_CASE("a body the optimisation finds on no layout: the first layout's reason, and how many others failed",
@@ -175,19 +183,17 @@ TEST_CASE("the other lateral order carries Unitree A1 backward up the low stairs
   // The normal build only (under the sanitizers "a body the optimisation finds on no layout"
   // runs the same search).
   if (testing::kSanitized) return;
-  const std::optional<RobotModel> a1 = testing::SharedRobot("unitree_a1");
-  if (!a1) return;
   StairSpec spec;
   spec.rise = 0.10;
   spec.run = 0.28;
-  const OwnAndSearched plans = PlanBothWays(*a1, Staircase(spec), Facing::kBackward);
-  RequireOwnFails(plans.own, "RF/RH: legs closer than the margin");
-  RequireValid(plans.searched);
+  const std::optional<OwnAndSearched> plans =
+      RequireSearchRescues("unitree_a1", spec, Facing::kBackward, "RF/RH: legs closer than the margin");
+  if (!plans) return;
   // The first swing is a leading leg's: its foot stands ahead of its neighbour's along the travel.
-  const Plan& plan = plans.searched.plan;
+  const Plan& plan = plans->searched.plan;
   REQUIRE(!plan.footsteps.empty());
   const std::string first = plan.footsteps.front().leg;
-  const std::string neighbour = std::string(1, first[0]) + (first[1] == 'F' ? "H" : "F");
+  const std::string neighbour = testing::SameSideLeg(first);
   double neighbour_x = 0.0;
   for (std::size_t l = 0; l < plan.legs.size(); ++l) {
     if (plan.legs[l] == neighbour) neighbour_x = plan.initial_feet_W[l].x();
