@@ -48,6 +48,10 @@ Plan StepPlannerPlan(const RobotKinematics& kinematics, const Staircase& stairs,
   for (Footstep& f : plan.footsteps) {
     f.swing_apex_z = SwingTrajectory(f.from_W, f.position_W, stairs, options.crawl.swing).apex_z();
   }
+  if (options.body == BodySource::kRecedingHorizonQp) {
+    plan.body.clear();  // the body optimisation's to plan
+    return plan;
+  }
   const double yaw = options.facing == Facing::kForward ? 0.0 : M_PI;
   BodyPathSettings body = options.crawl.body;
   body.swing = options.crawl.swing;
