@@ -1,7 +1,6 @@
 #include "stairplan/collision/stance_check.h"
 
 #include <algorithm>
-
 #include <cmath>
 #include <stdexcept>
 #include <string>

@@ -90,10 +90,10 @@ TEST_CASE("a pruned check measures every clearance below its bound as the full c
   // (some out of reach, some legs in the risers), pruned at bounds from the check's margin to a
   // decimetre: what the validator keeps (clearances below its margin and the smallest so far) is
   // the same either way, and so is the verdict.
-  StanceChecker checker(BuiltinRobot(), Staircase(StairSpec{}));
+  const Staircase stairs{StairSpec{}};
+  StanceChecker checker(BuiltinRobot(), stairs);
   std::mt19937 rng(20261207);
   std::uniform_real_distribution<double> x(-0.5, 0.6), dz(-0.08, 0.05), pitch(-0.5, 0.2), bound(1e-6, 0.1);
-  const Staircase stairs{StairSpec{}};
   const auto same_or_beyond = [](const Clearance& full, const Clearance& pruned, double prune) {
     if (full.distance < prune) {
       CHECK(pruned.distance == full.distance);
