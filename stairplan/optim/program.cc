@@ -288,6 +288,32 @@ void Program::SetConstraintCoefficient(const ConstraintRows& rows, int row, cons
   if (row_revision_.size() != static_cast<std::size_t>(A_.rows())) return TouchMatrix();  // resized behind our back
   matrix_revision_ = NextRevision();
   row_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
+  TrackWrittenColumn(k, column);
+}
+
+void Program::SetRowCoefficients(const ConstraintRows& rows, int row, const Coefficient* coefficients, int count) {
+  CheckRows(rows, "SetRowCoefficients");
+  if (row < 0 || row >= rows.size || count < 0 || (count > 0 && coefficients == nullptr)) {
+    throw std::invalid_argument("SetRowCoefficients: row " + std::to_string(row) + " of '" + rows.name +
+                                "' is outside them, or the coefficients are missing");
+  }
+  for (int i = 0; i < count; ++i) {
+    if (coefficients[i].column < 0 || coefficients[i].column >= num_variables() || !std::isfinite(coefficients[i].value)) {
+      throw std::invalid_argument("SetRowCoefficients: coefficient " + std::to_string(i) + " of row " +
+                                  std::to_string(row) + " of '" + rows.name +
+                                  "' is outside the variables, or its value is not finite");
+    }
+  }
+  if (count == 0) return;
+  const int k = rows.start + row;
+  for (int i = 0; i < count; ++i) A_(k, coefficients[i].column) = coefficients[i].value;
+  if (row_revision_.size() != static_cast<std::size_t>(A_.rows())) return TouchMatrix();  // resized behind our back
+  matrix_revision_ = NextRevision();
+  row_revision_[static_cast<std::size_t>(k)] = matrix_revision_;
+  for (int i = 0; i < count; ++i) TrackWrittenColumn(k, coefficients[i].column);
+}
+
+void Program::TrackWrittenColumn(int k, int column) {
   // The column joins the row's written ones, kept ascending.
   int& count = written_count_[static_cast<std::size_t>(k)];
   if (count > kTrackedColumns) return;

@@ -151,6 +151,16 @@ class Program {
   /// per-cycle updates of a few entries, where a row block would write every column).
   void SetConstraintCoefficient(const ConstraintRows& rows, int row, const VariableBlock& block, int index,
                                 double value);
+  /// One coefficient of a row: of the program's variable `column` (a block's start plus the
+  /// variable's index in it).
+  struct Coefficient {
+    int column = 0;      ///< the variable's index in x
+    double value = 0.0;  ///< its coefficient in the row
+  };
+  /// Replaces `count` coefficients of row `row` of `rows` at once, as many SetConstraintCoefficient
+  /// calls would (the same tracking for solvers), checked and counted once for the row: the body
+  /// planner rewrites a few coefficients of hundreds of rows every cycle.
+  void SetRowCoefficients(const ConstraintRows& rows, int row, const Coefficient* coefficients, int count);
   /// Replaces the initial guess of `block`'s variables.
   void SetInitialGuess(const VariableBlock& block, const Eigen::Ref<const Eigen::VectorXd>& x0);
 
@@ -220,6 +230,9 @@ class Program {
   void CheckRows(const ConstraintRows& rows, const char* what) const;
   void TouchHessian();
   void TouchMatrix();
+  // Adds `column` to row k's written columns (ascending; past kTrackedColumns the row counts as
+  // written anywhere).
+  void TrackWrittenColumn(int k, int column);
 
   std::vector<VariableBlock> blocks_;
   std::vector<ConstraintRows> row_groups_;

@@ -3,8 +3,10 @@
 
 #include <cmath>
 #include <functional>
+#include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "stairplan/optim/program.h"
 
@@ -99,6 +101,46 @@ TEST_CASE("one coefficient changes its row alone", "[program]") {
   CHECK_THAT(ThrownMessage([&] { p.SetConstraintCoefficient(r, 3, x, 0, 1.0); }), Catch::Contains("'r'"));
   CHECK_THAT(ThrownMessage([&] { p.SetConstraintCoefficient(r, 0, x, -1, 1.0); }), Catch::Contains("'x'"));
   CHECK_THAT(ThrownMessage([&] { p.SetConstraintCoefficient(r, 0, x, 0, std::nan("")); }), Catch::Contains("finite"));
+}
+
+TEST_CASE("a row's coefficients written at once are as written one by one", "[program]") {
+  // Two programs, the same random writes: one coefficient at a time, or each row's at once. The
+  // matrices, the rows counted as changed and the columns solvers are told of must agree.
+  constexpr int kN = 12, kM = 5;
+  Program one, batched;
+  std::vector<VariableBlock> blocks;
+  std::vector<ConstraintRows> rows;
+  for (Program* p : {&one, &batched}) {
+    blocks.push_back(p->AddVariables("x", kN));
+    rows.push_back(p->AddLinearConstraint({{blocks.back(), Eigen::MatrixXd::Identity(kM, kN)}}, Eigen::VectorXd::Zero(kM),
+                                          Eigen::VectorXd::Ones(kM), "r"));
+  }
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> row_of(0, kM - 1), column_of(0, kN - 1), count_of(0, 10);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  for (int round = 0; round < 200; ++round) {
+    const auto seen_one = one.matrix_revision(), seen_batched = batched.matrix_revision();
+    const int row = row_of(rng);
+    std::vector<Program::Coefficient> coefficients(static_cast<std::size_t>(count_of(rng)));
+    for (Program::Coefficient& c : coefficients) c = {column_of(rng), value(rng)};
+    for (const Program::Coefficient& c : coefficients) one.SetConstraintCoefficient(rows[0], row, blocks[0], c.column, c.value);
+    batched.SetRowCoefficients(rows[1], row, coefficients.data(), static_cast<int>(coefficients.size()));
+    REQUIRE(batched.constraint_matrix() == one.constraint_matrix());
+    for (int k = 0; k < kM; ++k) {
+      REQUIRE((one.row_revision(k) > seen_one) == (batched.row_revision(k) > seen_batched));
+      const int *columns_one = nullptr, *columns_batched = nullptr;
+      int count_one = 0, count_batched = 0;
+      const bool tracked = one.WrittenColumns(k, seen_one, &columns_one, &count_one);
+      REQUIRE(batched.WrittenColumns(k, seen_batched, &columns_batched, &count_batched) == tracked);
+      if (!tracked) continue;
+      REQUIRE(std::vector<int>(columns_batched, columns_batched + count_batched) ==
+              std::vector<int>(columns_one, columns_one + count_one));
+    }
+  }
+  const Program::Coefficient outside{kN, 1.0}, not_finite{0, std::nan("")};
+  CHECK_THAT(ThrownMessage([&] { batched.SetRowCoefficients(rows[1], kM, &outside, 0); }), Catch::Contains("'r'"));
+  CHECK_THAT(ThrownMessage([&] { batched.SetRowCoefficients(rows[1], 0, &outside, 1); }), Catch::Contains("outside"));
+  CHECK_THAT(ThrownMessage([&] { batched.SetRowCoefficients(rows[1], 0, &not_finite, 1); }), Catch::Contains("finite"));
 }
 
 TEST_CASE("misuse throws invalid_argument naming the block or rows", "[program]") {

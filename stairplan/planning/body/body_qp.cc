@@ -186,7 +186,6 @@ BodyQp::BodyQp(const BodyPlannerSettings& settings, const std::array<double, kBo
   zmp_lo = support_lo;
   zmp_hi = support_hi;
   single_row_ = {com_support_.rows.name, com_support_.rows.start, 1};
-  one_row_ = {"stance or clearance", 0, 1};
 
   // Stance and clearance rows: free until the planner linearises a stance leg into them.
   const int legs_rows = stance_rows ? kBodyLegs * n : 0;
@@ -347,21 +346,25 @@ void BodyQp::PushKnotRows(const KnotRows& inputs, PushedRows* rows) {
   if (rows->rows.size == 0) return;
   // Free rows keep whatever coefficients they had: pushing them would only cost time.
   const std::array<const optim::VariableBlock*, 5> blocks{&z_, &pitch_, &shift_, &lateral_, &relax_};
+  // A row's changed coefficients go in at once: 4 variables at one or two knots, and relax.
+  std::array<optim::Program::Coefficient, 9> changed;
   for (int row = 0; row < rows->rows.size; ++row) {
     if (inputs.lo[row] == -optim::kInf && inputs.hi[row] == optim::kInf) continue;
     const int k = row / rows->per_knot;
-    one_row_.start = rows->rows.start + row;
+    int count = 0;
     for (int v = 0; v < 5; ++v) {
       const double value = v < 4 ? inputs.a(row, v) : inputs.sigma[row];
       if (value == rows->pushed(row, v)) continue;
+      const int column = blocks[static_cast<std::size_t>(v)]->start + k;
       if (rows->spans_next && v < 4) {
-        SetCoefficient(one_row_, *blocks[static_cast<std::size_t>(v)], k, 0.5 * value);
-        SetCoefficient(one_row_, *blocks[static_cast<std::size_t>(v)], k + 1, 0.5 * value);
+        changed[static_cast<std::size_t>(count++)] = {column, 0.5 * value};
+        changed[static_cast<std::size_t>(count++)] = {column + 1, 0.5 * value};
       } else {
-        SetCoefficient(one_row_, *blocks[static_cast<std::size_t>(v)], k, value);
+        changed[static_cast<std::size_t>(count++)] = {column, value};
       }
       rows->pushed(row, v) = value;
     }
+    program_.SetRowCoefficients(rows->rows, row, changed.data(), count);
   }
   program_.SetConstraintBounds(rows->rows, inputs.lo, inputs.hi);
 }

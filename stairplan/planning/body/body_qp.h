@@ -277,7 +277,6 @@ class BodyQp {
   optim::ConstraintRows progress_rows_;
   Eigen::VectorXd progress_hi_;  // +inf
   optim::ConstraintRows single_row_;       // one support row (its start moves; no string copies)
-  optim::ConstraintRows one_row_;          // one row of a KnotRows family (likewise)
   void PushSupportRows();
   // Pushes the COM's family (support_lo/hi/sigma) or the ZMP's (zmp_lo/hi, no relaxation).
   void PushSupportFamily(SupportFamily* family);
