@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "stairplan/geometry/field_error.h"
 #include "stairplan/planning/body/plan_body.h"
 #include "stairplan/planning/body_path.h"
+#include "stairplan/planning/crawl_planner.h"
 #include "stairplan/planning/step/ik_reach_model.h"
 #include "stairplan/planning/step/paper_crawl.h"
 #include "stairplan/planning/step/step_height.h"
@@ -117,18 +120,33 @@ bool SameFootholds(const Plan& a, const Plan& b) {
   return true;
 }
 
+// `footsteps` judged without a body: it lands a foot on another (CrowdedTouchdowns()).
+Plan CrowdedLayout(Plan footsteps, const TouchdownCrowding& crowding) {
+  char text[160];
+  std::snprintf(text, sizeof(text), "footholds: %d touchdown%s on a foot that still stands (the first at t=%.3f s, %s on %s)",
+                crowding.touchdowns, crowding.touchdowns == 1 ? "" : "s", crowding.first_t, crowding.leg.c_str(),
+                crowding.onto.c_str());
+  footsteps.status = PlanStatus::kInfeasible;
+  footsteps.status_reason = text;
+  return footsteps;
+}
+
 // The body optimisation on the crawl's footholds. Which tread each foot takes, and in which order
 // the legs swing, are choices the continuous optimisation cannot make, and only it can tell whether
 // a body exists on them: where it finds none on the footholds given, the crawl's other layouts
 // fitted to the robot are planned in turn, then all of them in the other lateral order, up to
-// body_layouts plans in all, and the first on which it finds a body is the plan.
+// body_layouts plans in all, and the first on which it finds a body is the plan. A layout that
+// lands a foot on another has no body (the feet would stand in each other): the search passes it
+// without planning one.
 Plan BodyOnFittedLayouts(const RobotKinematics& kinematics, const Staircase& stairs, const ConstrainedMap& map,
                          const Plan& footsteps, const PipelineOptions& options, const std::optional<Eigen::Vector2d>& standing) {
   const RobotModel& robot = kinematics.robot();
   // Where other layouts may follow, a failing first layout is planned only to its first failure,
   // as they are: the rest of a plan that fails is of no use but to count its failures.
   const bool search = options.footsteps == FootstepSource::kSelectedCrawl && options.body_layouts > 0;
-  Plan first = PlanBody(kinematics, stairs, map, footsteps, options.body_qp, standing, search);
+  const TouchdownCrowding crowding = search ? CrowdedTouchdowns(robot, footsteps) : TouchdownCrowding{};
+  Plan first = crowding.touchdowns > 0 ? CrowdedLayout(footsteps, crowding)
+                                       : PlanBody(kinematics, stairs, map, footsteps, options.body_qp, standing, search);
   if (first.status == PlanStatus::kOk || !search) return first;
   const auto t_layouts = std::chrono::steady_clock::now();
   CrawlSettings crawl = options.crawl;
@@ -137,22 +155,31 @@ Plan BodyOnFittedLayouts(const RobotKinematics& kinematics, const Staircase& sta
   for (const CrawlSettings& layout : FittedLayouts(robot, stairs, map, crawl)) layouts.push_back(layout);
   const CrawlSequence other = OtherLateralOrder(crawl.sequence);
   int tried = 0;
+  // Where the first layout had no body planned, why the first one planned failed.
+  std::string next_reason;
   const int orders = other == crawl.sequence ? 1 : 2;
   for (int o = 0; o < orders; ++o) {
     for (std::size_t i = 0; i < layouts.size() && tried < options.body_layouts; ++i) {
       CrawlSettings ordered = layouts[i];
       ordered.sequence = o == 0 ? crawl.sequence : other;
       Plan candidate = PlanCrawlFootholds(robot, stairs, map, ordered);
-      if (candidate.status != PlanStatus::kOk || SameFootholds(candidate, footsteps)) continue;
+      if (candidate.status != PlanStatus::kOk || SameFootholds(candidate, footsteps) ||
+          CrowdedTouchdowns(robot, candidate).touchdowns > 0) {
+        continue;
+      }
       ++tried;
       candidate.controllers = footsteps.controllers;
       candidate.selected = footsteps.selected;
       Plan bodied = PlanBody(kinematics, stairs, map, std::move(candidate), options.body_qp, standing, true);
-      if (bodied.status != PlanStatus::kOk) continue;
+      if (bodied.status != PlanStatus::kOk) {
+        if (crowding.touchdowns > 0 && next_reason.empty()) next_reason = bodied.status_reason;
+        continue;
+      }
       bodied.timing_us.emplace_back("other_layouts", MicrosSince(t_layouts));
       return bodied;
     }
   }
+  if (!next_reason.empty()) first.status_reason += "; on the next layout, " + next_reason;
   if (tried > 0) {
     first.status_reason += "; none on " + std::to_string(tried) + " other foothold layout" + (tried > 1 ? "s or orders" : " or order") + " either";
   }

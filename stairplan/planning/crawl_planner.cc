@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <deque>
-#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -363,26 +362,9 @@ void ReplayTouchdowns(const Plan& plan, Visit visit) {
 class TouchdownChecker {
  public:
   TouchdownChecker(const RobotModel& robot, const Staircase& stairs, const CrawlSettings& settings)
-      : checker_(robot, stairs), body_(settings.body), min_inradius_(settings.min_support_inradius) {
-    for (const LegModel& leg : robot.legs()) foot_radius_[leg.name] = leg.foot_radius;
-  }
+      : checker_(robot, stairs), body_(settings.body), min_inradius_(settings.min_support_inradius) {}
 
-  // Touchdowns on a foothold another foot still stands on (their feet overlap seen from above):
-  // a short robot's hind foot landing where its front foot has not lifted from yet.
-  int Crowded(const Plan& plan) const {
-    int crowded = 0;
-    ReplayTouchdowns(plan, [&](const Footstep& step, std::size_t swinging, const std::vector<Eigen::Vector3d>& feet) {
-      for (std::size_t i = 0; i < feet.size(); ++i) {
-        const double apart = RadiusOf(plan.legs[i]) + RadiusOf(step.leg);
-        if (i != swinging && (feet[i] - step.position_W).head<2>().norm() < apart) {
-          ++crowded;
-          break;
-        }
-      }
-      return true;
-    });
-    return crowded;
-  }
+  int Crowded(const Plan& plan) const { return CrowdedTouchdowns(checker_.kinematics().robot(), plan).touchdowns; }
 
   // Touchdowns whose stance, with the plan's own body pose, fails the stance check, swings whose
   // support triangle is too thin to stand over, plus one when the body jumps (accelerates faster
@@ -445,18 +427,37 @@ class TouchdownChecker {
     return failed;
   }
 
-  double RadiusOf(const std::string& leg) const {
-    const auto it = foot_radius_.find(leg);
-    return it == foot_radius_.end() ? 0.0 : it->second;
-  }
-
   StanceChecker checker_;
   BodyPathSettings body_;
   double min_inradius_ = 0.0;
-  std::map<std::string, double> foot_radius_;
 };
 
 }  // namespace
+
+TouchdownCrowding CrowdedTouchdowns(const RobotModel& robot, const Plan& plan) {
+  const auto radius_of = [&robot](const std::string& name) {
+    for (const LegModel& leg : robot.legs()) {
+      if (leg.name == name) return leg.foot_radius;
+    }
+    return 0.0;
+  };
+  TouchdownCrowding crowding;
+  ReplayTouchdowns(plan, [&](const Footstep& step, std::size_t swinging, const std::vector<Eigen::Vector3d>& feet) {
+    for (std::size_t i = 0; i < feet.size(); ++i) {
+      const double apart = radius_of(plan.legs[i]) + radius_of(step.leg);
+      if (i != swinging && (feet[i] - step.position_W).head<2>().norm() < apart) {
+        if (crowding.touchdowns++ == 0) {
+          crowding.first_t = step.t_touchdown;
+          crowding.leg = step.leg;
+          crowding.onto = plan.legs[i];
+        }
+        break;
+      }
+    }
+    return true;
+  });
+  return crowding;
+}
 
 std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                          const CrawlSettings& settings) {

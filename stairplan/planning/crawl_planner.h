@@ -105,6 +105,21 @@ struct CrawlSettings {
 std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                          const CrawlSettings& settings);
 
+/// Touchdowns of a plan on a foothold another foot still stands on (CrowdedTouchdowns()).
+struct TouchdownCrowding {
+  int touchdowns = 0;  ///< how many
+  ///@{
+  /// The first of them: when, the leg landing and the leg it lands on.
+  double first_t = 0.0;
+  std::string leg, onto;
+  ///@}
+};
+
+/// Touchdowns of `plan` on a foothold another foot still stands on (their feet overlap seen from
+/// above; radii from `robot`'s legs): a short robot's hind foot landing where its front foot has
+/// not lifted from yet. No body makes such a plan valid: the feet would stand in each other.
+TouchdownCrowding CrowdedTouchdowns(const RobotModel& robot, const Plan& plan);
+
 /// The crawl's footsteps on the layout `settings` give, for a body planner to carry the body
 /// over: no posture fit and no foothold search (those judge footholds by the quasi-static path),
 /// and no body. Never throws for geometry it cannot handle.

@@ -11,6 +11,7 @@
 
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/crawl_planner.h"
 #include "leg_names.h"
 #include "sanitized.h"
 #include "shared_robot.h"
@@ -112,10 +113,12 @@ TEST_CASE("the re-check that judges a layout checks swing legs and leg pairs: Un
 
 TEST_CASE("a body the optimisation finds on no layout: the first layout's reason, and how many others failed",
           "[planning][layouts]") {
-  // Unitree A1 facing forward up the default stairs: its front shanks reach the nosings on every
-  // layout; one other suffices to show the report. The verdict is the rise's: on 0.10 m steps
-  // (run 0.28 m) the same robot climbs, and the plan validates. Under the sanitizers the report
-  // on two steps only (one step plans).
+  // Unitree A1 facing forward up the default stairs. Its crawl's own layout lands each hind foot on
+  // its front foot's foothold before that foot lifts: no body makes that valid (planned on it, the
+  // body optimisation finds the right legs closer than the margin at the first swing), so the
+  // search plans none there and says so, then why the next layout failed; one other suffices to
+  // show the report. The verdict is the rise's: on 0.10 m steps (run 0.28 m) the same robot
+  // climbs, and the plan validates. Under the sanitizers the report on two steps only.
   const std::optional<RobotModel> a1 = testing::SharedRobot("unitree_a1");
   if (!a1) return;
   StairSpec spec;
@@ -123,12 +126,22 @@ TEST_CASE("a body the optimisation finds on no layout: the first layout's reason
   PipelineOptions options;
   options.validate = false;
   options.body_layouts = 1;
+  PipelineOptions own = options;
+  own.body_layouts = 0;
+  const PipelineResult on_own = RunPipeline(*a1, Staircase(spec), own);
+  const TouchdownCrowding crowding = CrowdedTouchdowns(*a1, on_own.plan);
+  CHECK(crowding.touchdowns > 0);
+  CHECK(crowding.leg == "RH");
+  CHECK(crowding.onto == "RF");
   const PipelineResult r = RunPipeline(*a1, Staircase(spec), options);
   INFO(r.plan.status_reason);
   REQUIRE(r.plan.status == PlanStatus::kInfeasible);
-  CHECK_THAT(r.plan.status_reason, Catch::StartsWith("body re-check: t="));
+  const std::string crowded = "footholds: " + std::to_string(crowding.touchdowns) + " touchdowns on a foot that still stands";
+  CHECK_THAT(r.plan.status_reason, Catch::StartsWith(crowded + " (the first at t="));
+  CHECK_THAT(r.plan.status_reason, Catch::Contains("; on the next layout, body re-check: t="));
   CHECK_THAT(r.plan.status_reason, Catch::EndsWith("; none on 1 other foothold layout or order either"));
   if (testing::kSanitized) return;
+  RequireOwnFails(on_own, "RF/RH: legs closer than the margin");
 
   spec.rise = 0.10;
   spec.run = 0.28;
