@@ -282,6 +282,7 @@ struct FootholdLayout {
   double lead_offset = 0.0;
   double trail_offset = 0.0;
   double trail_first_stride = 1.0;
+  int fit = 0;  // the offset's rank among its stance length's: 0 fits the hip spacing best
 
   CrawlSettings Apply(CrawlSettings settings) const {
     settings.stance_treads = stance_treads;
@@ -326,8 +327,8 @@ std::vector<FootholdLayout> CandidateLayouts(const RobotModel& robot, const Stai
     std::vector<double> ds = {std::clamp(want, -d_max, d_max)};
     if (std::abs(ds.front() + std::copysign(d_max, want)) > 1e-3) ds.push_back(-std::copysign(d_max, want));
     if (std::abs(ds.front()) > 1e-3) ds.push_back(0.0);
-    for (const double d : ds) {
-      for (const double first : {1.0, 0.5}) layouts.push_back({s, 0.5 * d, -0.5 * d, first});
+    for (std::size_t fit = 0; fit < ds.size(); ++fit) {
+      for (const double first : {1.0, 0.5}) layouts.push_back({s, 0.5 * ds[fit], -0.5 * ds[fit], first, static_cast<int>(fit)});
     }
   }
   return layouts;
@@ -461,8 +462,15 @@ TouchdownCrowding CrowdedTouchdowns(const RobotModel& robot, const Plan& plan) {
 
 std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                          const CrawlSettings& settings) {
+  // Each stance length's best-fitting offset before any other offset, and whole first strides
+  // before halved ones: a layout that fails on its stance length usually fails with the first
+  // stride halved too, and the next stance length's best fit is the likelier rescue.
+  std::vector<FootholdLayout> layouts = CandidateLayouts(robot, stairs, map, settings);
+  std::stable_sort(layouts.begin(), layouts.end(), [](const FootholdLayout& a, const FootholdLayout& b) {
+    return std::make_pair(a.fit, a.trail_first_stride < 1.0) < std::make_pair(b.fit, b.trail_first_stride < 1.0);
+  });
   std::vector<CrawlSettings> fitted;
-  for (const FootholdLayout& layout : CandidateLayouts(robot, stairs, map, settings)) {
+  for (const FootholdLayout& layout : layouts) {
     fitted.push_back(layout.Apply(settings));
     fitted.back().fit_footholds = 0;
   }

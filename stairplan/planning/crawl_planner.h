@@ -98,10 +98,12 @@ struct CrawlSettings {
 
 /// The foothold layouts fitted to the robot's hip spacing that the crawl's foothold search tries
 /// (see fit_footholds), as `settings` that plan each of them with no search of their own, the
-/// most promising first: the number of treads between the leading and the trailing feet nearest
-/// the hip spacing along the pitched body, then one fewer and one more, each with the pairs'
-/// offsets in their step regions that fit it best, the most the regions allow the other way, and
-/// none, and with the trailing legs' first stride whole and halved.
+/// most promising first. The number of treads between the leading and the trailing feet: the
+/// one nearest the hip spacing along the pitched body, one fewer and one more; the pairs' offsets
+/// in their step regions for each: the one that fits it best, the most the regions allow the
+/// other way, and none; the trailing legs' first stride whole or halved. The best-fitting offsets
+/// of all three tread counts come first, then the others in that order, each with the whole first
+/// strides before the halved ones.
 std::vector<CrawlSettings> FittedLayouts(const RobotModel& robot, const Staircase& stairs, const ConstrainedMap& map,
                                          const CrawlSettings& settings);
 
