@@ -436,16 +436,10 @@ class TouchdownChecker {
 }  // namespace
 
 TouchdownCrowding CrowdedTouchdowns(const RobotModel& robot, const Plan& plan) {
-  const auto radius_of = [&robot](const std::string& name) {
-    for (const LegModel& leg : robot.legs()) {
-      if (leg.name == name) return leg.foot_radius;
-    }
-    return 0.0;
-  };
   TouchdownCrowding crowding;
   ReplayTouchdowns(plan, [&](const Footstep& step, std::size_t swinging, const std::vector<Eigen::Vector3d>& feet) {
     for (std::size_t i = 0; i < feet.size(); ++i) {
-      const double apart = radius_of(plan.legs[i]) + radius_of(step.leg);
+      const double apart = robot.leg(plan.legs[i]).foot_radius + robot.leg(step.leg).foot_radius;
       if (i != swinging && (feet[i] - step.position_W).head<2>().norm() < apart) {
         if (crowding.touchdowns++ == 0) {
           crowding.first_t = step.t_touchdown;

@@ -118,8 +118,9 @@ struct TouchdownCrowding {
 };
 
 /// Touchdowns of `plan` on a foothold another foot still stands on (their feet overlap seen from
-/// above; radii from `robot`'s legs): a short robot's hind foot landing where its front foot has
-/// not lifted from yet. No body makes such a plan valid: the feet would stand in each other.
+/// above; radii from `robot`'s legs, which name the plan's): a short robot's hind foot landing
+/// where its front foot has not lifted from yet. No body makes such a plan valid: the feet would
+/// stand in each other.
 TouchdownCrowding CrowdedTouchdowns(const RobotModel& robot, const Plan& plan);
 
 /// The crawl's footsteps on the layout `settings` give, for a body planner to carry the body
