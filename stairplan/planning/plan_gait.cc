@@ -9,6 +9,7 @@ const char* ToString(Gait gait) {
     case Gait::kTrot: return "trot";
     case Gait::kPaperCrawl: return "paper_crawl";
     case Gait::kPaperCrawlAlternate: return "paper_crawl_alt";
+    case Gait::kWalk: return "walk";
   }
   return "unknown";
 }
@@ -21,6 +22,8 @@ std::optional<Gait> ParseGait(std::string_view text) {
 }
 
 bool IsQuasiStatic(Gait gait) { return gait != Gait::kTrot; }
+
+bool IsJudgedDynamically(Gait gait) { return gait == Gait::kWalk || gait == Gait::kTrot; }
 
 const char* GaitName(const std::optional<Gait>& gait) { return gait ? ToString(*gait) : ""; }
 

@@ -22,17 +22,26 @@ TEST_CASE("gaits: each name parses back to its gait, other text to none", "[plan
   CHECK(std::string(GaitName(std::nullopt)).empty());
 }
 
-TEST_CASE("gaits: the crawls are quasi-static, the trot is not", "[plan][gait]") {
+TEST_CASE("gaits: the crawls and the walk are quasi-static, the trot is not", "[plan][gait]") {
   CHECK(IsQuasiStatic(Gait::kCrawl));
   CHECK(IsQuasiStatic(Gait::kCrawlAlternate));
   CHECK(IsQuasiStatic(Gait::kPaperCrawl));
   CHECK(IsQuasiStatic(Gait::kPaperCrawlAlternate));
+  CHECK(IsQuasiStatic(Gait::kWalk));
   CHECK_FALSE(IsQuasiStatic(Gait::kTrot));
+}
+
+TEST_CASE("gaits: the walk and the trot are judged dynamically, the crawls are not", "[plan][gait]") {
+  for (const Gait g : kAllGaits) {
+    CAPTURE(ToString(g));
+    CHECK(IsJudgedDynamically(g) == (g == Gait::kWalk || g == Gait::kTrot));
+  }
 }
 
 TEST_CASE("gaits: the paper's crawls have no controller pattern and no controller walks them", "[plan][gait][step]") {
   CHECK(PatternOf(Gait::kCrawl).legs_per_phase == 1);
   CHECK(PatternOf(Gait::kTrot).legs_per_phase == 2);
+  CHECK(&PatternOf(Gait::kWalk) == &PatternOf(Gait::kCrawl));  // the walk swings in the crawl's order
   CHECK_THROWS_AS(PatternOf(Gait::kPaperCrawl), std::invalid_argument);
   StepPlannerSettings settings;
   settings.gaits = {Gait::kCrawl, Gait::kPaperCrawlAlternate};

@@ -14,7 +14,8 @@ const GaitPattern& PatternOf(Gait gait) {
   static const GaitPattern kTrot{2, 2, {{{R::kRearRight, R::kForeLeft}, {R::kRearLeft, R::kForeRight},
                                          {R::kRearRight, R::kForeLeft}, {R::kRearLeft, R::kForeRight}}}};
   switch (gait) {
-    case Gait::kCrawl: return kCrawl;
+    case Gait::kCrawl:
+    case Gait::kWalk: return kCrawl;  // the walk swings in the crawl's order
     case Gait::kCrawlAlternate: return kCrawlAlternate;
     case Gait::kTrot: return kTrot;
     case Gait::kPaperCrawl:

@@ -43,6 +43,13 @@ std::set<double> ReplayInstants(const Plan& plan, double time_step) {
 
 bool QuasiStatic(const std::optional<Gait>& gait) { return gait && IsQuasiStatic(*gait); }
 
+// The dynamic check's mode for a plan walking `gait`: reported becomes judged for a gait whose
+// pace needs it (IsJudgedDynamically); off stays off.
+DynamicsCheckMode ModeFor(DynamicsCheckMode mode, const std::optional<Gait>& gait) {
+  if (mode == DynamicsCheckMode::kReport && gait && IsJudgedDynamically(*gait)) return DynamicsCheckMode::kJudge;
+  return mode;
+}
+
 // The leg a violation's leg name means, kNone for the body, leg pairs and unknown names.
 LegId LegIdOfName(const RobotKinematics& kinematics, const std::string& name) {
   for (int l = 0; l < kinematics.leg_count(); ++l) {
@@ -193,7 +200,8 @@ ValidationReport TraversalValidator::Validate(const Plan& plan) {
   ValidationReport report;
   report.min_clearance_m = std::numeric_limits<double>::infinity();
   report.min_stability_margin_m = std::numeric_limits<double>::infinity();
-  report.dynamics.mode = settings_.dynamics.mode;
+  dynamics_mode_ = ModeFor(settings_.dynamics.mode, plan.gait);
+  report.dynamics.mode = dynamics_mode_;
   report.dynamics.torque_limits_checked = wrench_->torque_limits_checked();
   report.dynamics.body_inertia_known = wrench_->body_inertia_known();
   report.dynamics.friction = settings_.dynamics.friction;
@@ -288,7 +296,7 @@ void TraversalValidator::CheckInstant(const Plan& plan, double t, ValidationRepo
   if (!(body_clearance.distance > settings_.min_clearance)) {
     add("body", ViolationKind::kBodyCollision, body_clearance.distance, ToString(body_clearance.part));
   }
-  if (settings_.dynamics.mode != DynamicsCheckMode::kOff) CheckDynamics(plan, t, r, contacts, stance, report);
+  if (dynamics_mode_ != DynamicsCheckMode::kOff) CheckDynamics(plan, t, r, contacts, stance, report);
   const int stance_count = static_cast<int>(std::count(stance.begin(), stance.end(), true));
   if (stance_count >= 3 && (QuasiStatic(plan.gait) || settings_.stability_for_dynamic_gaits)) {
     std::array<Eigen::Vector3d, 4> q;
@@ -331,7 +339,7 @@ void TraversalValidator::CheckDynamics(const Plan& plan, double t, const StanceR
     summary.first_failure_kind = kind;
     summary.first_failure_leg = w.leg;
   }
-  if (settings_.dynamics.mode != DynamicsCheckMode::kJudge) return;
+  if (dynamics_mode_ != DynamicsCheckMode::kJudge) return;
   const std::string leg = w.leg == LegId::kNone ? std::string("body") : std::string(ToString(w.leg));
   std::string detail = "friction " + std::to_string(settings_.dynamics.friction);
   if (!w.solved) detail += ", the QP did not solve";

@@ -159,6 +159,9 @@ class TraversalValidator {
   std::unique_ptr<ComModel> com_;
   std::unique_ptr<ContactWrenchCheck> wrench_;
   WrenchInstant instant_;  // reused by every instant
+  // The dynamic check's mode for the plan being validated (settings' mode, judged for the gaits
+  // that need it).
+  DynamicsCheckMode dynamics_mode_ = DynamicsCheckMode::kReport;
 };
 
 }  // namespace stairplan
