@@ -53,8 +53,8 @@ const std::vector<std::string>& StairOptionNames() {
 }
 
 PipelineOptions PipelineOptionsFrom(const nlohmann::json& o) {
-  static const std::vector<std::string> known = {"facing", "planner", "crawl_sequence", "body", "horizon", "nlp",
-                                                 "validate", "validation_time_step"};
+  static const std::vector<std::string> known = {"facing", "planner", "gait", "crawl_sequence", "body", "horizon",
+                                                 "nlp", "validate", "validation_time_step"};
   for (const auto& [key, value] : o.items()) {
     bool found = false;
     for (const std::string& k : known) found = found || k == key;
@@ -71,6 +71,9 @@ PipelineOptions PipelineOptionsFrom(const nlohmann::json& o) {
   }
   if (o.contains("planner") && !o.at("planner").is_null()) {
     options.footsteps = ParseFootstepSource(OneOf(o.at("planner"), "planner", {"crawl", "step"}));
+  }
+  if (o.contains("gait") && !o.at("gait").is_null()) {
+    options.gait = ParseGaitChoice(OneOf(o.at("gait"), "gait", {"crawl", "walk", "auto"}));
   }
   if (o.contains("crawl_sequence") && !o.at("crawl_sequence").is_null()) {
     options.crawl.sequence = ParseCrawlSequence(OneOf(o.at("crawl_sequence"), "crawl_sequence", {"lateral", "leading-first", "pairs"}));

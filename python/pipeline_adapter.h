@@ -17,7 +17,7 @@ namespace stairplan::python {
 /// The stair fields a call may give on top of a stairs file or dict (the CLI's stair flags).
 const std::vector<std::string>& StairOptionNames();
 
-/// Options of plan() and sweep() as JSON {name: value}: facing, planner, body, horizon, nlp,
+/// Options of plan() and sweep() as JSON {name: value}: facing, planner, gait, body, horizon, nlp,
 /// validate, validation_time_step. Absent or null ones keep the CLI's defaults. Throws FieldError
 /// naming the option for a bad value or an unknown name.
 PipelineOptions PipelineOptionsFrom(const nlohmann::json& options);

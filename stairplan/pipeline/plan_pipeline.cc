@@ -168,6 +168,7 @@ Plan BodyOnFittedLayouts(const RobotKinematics& kinematics, const Staircase& sta
         continue;
       }
       ++tried;
+      candidate.gait = footsteps.gait;
       candidate.controllers = footsteps.controllers;
       candidate.selected = footsteps.selected;
       Plan bodied = PlanBody(kinematics, stairs, map, std::move(candidate), options.body_qp, standing, true);
@@ -219,16 +220,29 @@ ConstrainedMap BuildMap(const RobotKinematics& kinematics, const Staircase& stai
   return map;
 }
 
-// RunPipelineOnMap with the kinematics built once for the whole run: the map's robot regions and
-// the alignment stance use the same ones. `options` come resolved by ForFootstepSource.
-PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
-                        PipelineOptions options) {
+// The four-feet phases of `options.gait` (the crawl or the walk) on `stairs`.
+double ShiftDuration(const PipelineOptions& options, const Staircase& stairs) {
+  if (options.gait == GaitChoice::kWalk) return options.walk_shift_duration;
+  if (stairs.direction() == TravelDirection::kDown) return std::max(options.crawl.shift_duration, options.descent_shift_duration);
+  return options.crawl.shift_duration;
+}
+
+// Why a gait's plan was not taken: its status reason, else its first violation.
+std::string RejectionReason(const PipelineResult& result) {
+  if (result.plan.status != PlanStatus::kOk) return result.plan.status_reason;
+  if (result.validation.violations.empty()) return "not validated";
+  const Violation& v = result.validation.violations.front();
+  char text[200];
+  std::snprintf(text, sizeof(text), "t=%.3f s, %s: %s, %.4g (%zu violation%s)", v.t, v.leg.c_str(), ToString(v.kind), v.value,
+                result.validation.violations.size(), result.validation.violations.size() == 1 ? "" : "s");
+  return text;
+}
+
+// One gait (the crawl or the walk) planned and validated; RunOnMap chooses among them.
+PipelineResult RunGait(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
+                       PipelineOptions options) {
   const RobotModel& robot = kinematics.robot();
-  RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
-  RequireInRange("body_layouts", options.body_layouts, 0, 100);
-  if (stairs.direction() == TravelDirection::kDown) {
-    options.crawl.shift_duration = std::max(options.crawl.shift_duration, options.descent_shift_duration);
-  }
+  options.crawl.shift_duration = ShiftDuration(options, stairs);
   PipelineResult result;
   result.map = std::move(map);
   result.clearances = ClearancesOf(options, stairs);
@@ -240,6 +254,7 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
   if (options.start_at_alignment && aligned.found) options.crawl.start_feet = aligned.feet;
   const auto t_plan = std::chrono::steady_clock::now();
   result.plan = FootstepPlan(kinematics, stairs, result.map, options);
+  if (options.gait == GaitChoice::kWalk && result.plan.gait) result.plan.gait = Gait::kWalk;
   result.plan.timing_us = {{"plan", MicrosSince(t_plan)}};
   if (options.body == BodySource::kRecedingHorizonQp && result.plan.status == PlanStatus::kOk) {
     const std::vector<std::pair<std::string, double>> timing = result.plan.timing_us;
@@ -265,7 +280,39 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
   return result;
 }
 
+// RunPipelineOnMap with the kinematics built once for the whole run: the map's robot regions and
+// the alignment stance use the same ones. `options` come resolved by ForFootstepSource. Auto
+// plans the walk, and the crawl where the validator rejects the walk's plan (or there is none).
+PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
+                        PipelineOptions options) {
+  RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
+  RequireInRange("walk_shift_duration", options.walk_shift_duration, 0.0, 5.0);
+  RequireInRange("body_layouts", options.body_layouts, 0, 100);
+  if (options.gait != GaitChoice::kCrawl && options.footsteps != FootstepSource::kSelectedCrawl) {
+    throw FieldError("gait", "the walk and auto plan the crawl's footholds (FootstepSource::kSelectedCrawl, `--planner crawl`)");
+  }
+  if (options.gait == GaitChoice::kAuto && !options.validate) options.gait = GaitChoice::kCrawl;
+  if (options.gait != GaitChoice::kAuto) return RunGait(kinematics, stairs, std::move(map), options);
+  const auto t_walk = std::chrono::steady_clock::now();
+  options.gait = GaitChoice::kWalk;
+  PipelineResult walk = RunGait(kinematics, stairs, map, options);
+  if (walk.plan.status == PlanStatus::kOk && walk.validated && walk.validation.ok) return walk;
+  const double walk_us = MicrosSince(t_walk);
+  options.gait = GaitChoice::kCrawl;
+  PipelineResult crawl = RunGait(kinematics, stairs, std::move(map), options);
+  crawl.plan.rejected_gaits.push_back({Gait::kWalk, RejectionReason(walk)});
+  crawl.plan.timing_us.insert(crawl.plan.timing_us.begin(), {"walk_rejected", walk_us});
+  return crawl;
+}
+
 }  // namespace
+
+GaitChoice ParseGaitChoice(const std::string& text) {
+  if (text == "crawl") return GaitChoice::kCrawl;
+  if (text == "walk") return GaitChoice::kWalk;
+  if (text == "auto") return GaitChoice::kAuto;
+  throw std::invalid_argument("gait: must be 'crawl', 'walk' or 'auto' (got '" + text + "')");
+}
 
 FootstepSource ParseFootstepSource(const std::string& text) {
   if (text == "crawl") return FootstepSource::kSelectedCrawl;

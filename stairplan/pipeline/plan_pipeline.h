@@ -46,6 +46,22 @@ enum class BodySource {
   kRecedingHorizonQp,
 };
 
+/// Which gait the pipeline plans on the crawl's footholds.
+enum class GaitChoice {
+  /// The crawl (Gait::kCrawl): four-feet phases of crawl.shift_duration between the swings
+  /// (descent_shift_duration going down), its balance judged by the support polygon.
+  kCrawl,
+  /// The walk (Gait::kWalk): the same footholds and swings with four-feet phases of
+  /// walk_shift_duration, climbing and descending; the validator's dynamic check judges it.
+  kWalk,
+  /// The walk where its plan validates, else the crawl (Plan::rejected_gaits says why not the
+  /// walk). Without validation (PipelineOptions::validate off) nothing can judge the walk: the crawl.
+  kAuto,
+};
+
+/// "crawl", "walk" or "auto"; throws std::invalid_argument otherwise.
+GaitChoice ParseGaitChoice(const std::string& text);
+
 /// "crawl", "step", "paper" or "paper-alt"; throws std::invalid_argument otherwise.
 FootstepSource ParseFootstepSource(const std::string& text);
 
@@ -82,6 +98,13 @@ struct BodyPosture {
 struct PipelineOptions {
   Facing facing = Facing::kForward;  ///< which way the body faces relative to the travel
   FootstepSource footsteps = FootstepSource::kSelectedCrawl;  ///< which planner places the footsteps
+  /// The gait; the walk and auto plan the crawl's footholds (FootstepSource::kSelectedCrawl) only.
+  GaitChoice gait = GaitChoice::kCrawl;
+  /// The walk's four-feet phases between swings, up and down [s]. At 0.2 s the built-in robot's
+  /// climb of the default stairs takes 23.2 s instead of the crawl's 37.2 s and passes the dynamic
+  /// check; its descent does not (the legs cannot produce the wrench of its quicker shifts there),
+  /// which is why the crawl's descents shift for 0.8 s (descent_shift_duration).
+  double walk_shift_duration = 0.2;
   /// The step planner's controllers; the executed gait is quasi-static, so crawls only by default.
   StepPlannerSettings step = CrawlControllers();
   /// Which planner makes the body trajectory; the paper's crawl always plans its own path.

@@ -107,6 +107,12 @@ struct ControllerScore {
   int cycles_ruled_out = 0;       ///< cycles in which a hard rule excluded it
 };
 
+/// A gait planned before the one a plan walks, and why its plan was not taken.
+struct GaitRejection {
+  Gait gait = Gait::kWalk;  ///< the gait tried
+  std::string reason;       ///< its plan's status reason, or its first violation
+};
+
 /// A plan: footsteps, body trajectory and timings for one traversal of a staircase.
 struct Plan {
   std::string robot_name;  ///< the robot's name
@@ -128,6 +134,8 @@ struct Plan {
   std::vector<std::pair<std::string, double>> timing_us;  ///< per stage [us]
   std::vector<ControllerScore> controllers;   ///< the step planner's controllers, empty for other planners
   int selected = -1;                          ///< index into `controllers` chosen most often, -1 when none
+  /// Faster gaits planned first and not taken (the pipeline's GaitChoice::kAuto), in the order tried.
+  std::vector<GaitRejection> rejected_gaits;
 
   /// The time of the last body sample [s].
   double duration() const { return body.empty() ? 0.0 : body.back().t; }

@@ -143,6 +143,8 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
                            {"ruled_out_reason", c.ruled_out_reason}, {"cycles_selected", c.cycles_selected},
                            {"cycles_ruled_out", c.cycles_ruled_out}});
   }
+  nlohmann::json rejected = nlohmann::json::array();
+  for (const GaitRejection& g : plan.rejected_gaits) rejected.push_back({{"gait", ToString(g.gait)}, {"reason", g.reason}});
   nlohmann::json timing = nlohmann::json::object();
   for (const auto& [stage, us] : plan.timing_us) timing[stage] = us;
   nlohmann::json out = {{"robot", {{"name", plan.robot_name}, {"source", plan.robot_source}, {"legs", plan.legs}}},
@@ -150,6 +152,7 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
                          {"facing", ToString(plan.facing)},
                          {"map", MapToJson(map)},
                          {"gait", GaitName(plan.gait)},
+                         {"rejected_gaits", rejected},
                          {"cadence_s", plan.cadence_s},
                          {"hip_height_fraction", std::isfinite(plan.hip_height_fraction) ? nlohmann::json(plan.hip_height_fraction)
                                                                                          : nlohmann::json(nullptr)},

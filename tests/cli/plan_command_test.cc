@@ -211,6 +211,27 @@ TEST_CASE("plan.json names the body planner and, for the receding horizon, carri
   CHECK(code == 0);
 }
 
+TEST_CASE("plan --gait auto walks up the default stairs and crawls down them, saying why not the walk", "[cli][plan]") {
+  const std::string dir = MakeTempDir("plan-gait");
+  const Run up = Plan("--gait auto --out " + dir + "/up", dir);
+  REQUIRE(up.code == 0);
+  const json walk = json::parse(ReadFile(dir + "/up/plan.json"));
+  CHECK(walk["gait"] == "walk");
+  CHECK(walk["rejected_gaits"].empty());
+  CHECK(walk["validation"]["dynamics"]["mode"] == "judge");
+  CHECK_THAT(up.out, Catch::Contains("gait:      walk"));
+  const Run down = Plan("--gait auto --direction down --out " + dir + "/down", dir);
+  REQUIRE(down.code == 0);
+  const json crawl = json::parse(ReadFile(dir + "/down/plan.json"));
+  CHECK(crawl["gait"] == "crawl");
+  REQUIRE(crawl["rejected_gaits"].size() == 1);
+  CHECK(crawl["rejected_gaits"][0]["gait"] == "walk");
+  const std::string reason = crawl["rejected_gaits"][0]["reason"];
+  CHECK_THAT(reason, Catch::Contains("wrench_unattainable") || Catch::Contains("torque_limit") ||
+                         Catch::Contains("friction_cone"));
+  CHECK_THAT(down.out, Catch::Contains("not the walk: " + reason));
+}
+
 TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[cli][plan]") {
   const std::string dir = MakeTempDir("plan-bad");
   const auto expect_bad = [&](const std::string& args, const std::string& named) {
@@ -228,6 +249,8 @@ TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[
   expect_bad("--direction sideways", "--direction");
   expect_bad("--facing left", "--facing");
   expect_bad("--crawl-sequence trot", "--crawl-sequence");
+  expect_bad("--gait trot", "--gait");
+  expect_bad("--gait walk --planner step", "--gait");
   expect_bad("--robot /nonexistent.urdf", "/nonexistent.urdf");
   expect_bad("--stairs /nonexistent.yaml", "/nonexistent.yaml");
   expect_bad("--no-such-flag", "--no-such-flag");

@@ -148,3 +148,16 @@ def test_validate_and_simulate_a_short_flight(tmp_path):
     assert outcome["passed"], outcome["cause"]
     assert outcome["final_error_m"] < 0.1 and outcome["all_landed_in_step_regions"]
     assert len(outcome["landings"]) == len(plan.footsteps)
+
+
+def test_plan_gait_auto_takes_the_walk_where_it_validates():
+    """gait='auto' is the CLI's --gait auto: up two default steps the walk validates, its dynamic
+    check judged; a gait the pipeline does not plan is refused, naming the option."""
+    plan = stairplan.plan(steps=2, gait="auto")
+    d = plan.to_dict()
+    assert plan.status == "ok"
+    assert plan.gait == "walk" and d["gait"] == "walk" and d["rejected_gaits"] == []
+    assert d["validation"]["ok"] and d["validation"]["dynamics"]["mode"] == "judge"
+    with pytest.raises(stairplan.FieldError) as e:
+        stairplan.plan(steps=2, gait="trot")
+    assert e.value.field == "gait"

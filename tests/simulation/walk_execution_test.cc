@@ -1,0 +1,66 @@
+// The walk (PipelineOptions::gait) executed in MuJoCo: where auto takes it, the validator's dynamic
+// check has passed its quicker weight shifts, and physics carries the robot through them.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/simulation/plan_executor.h"
+#include "sanitized.h"
+#include "test_paths.h"
+
+using namespace stairplan;
+
+namespace {
+
+// Auto's plan is the walk, it validates, and MuJoCo executes it at its own pace: success, every
+// landing touched inside its step region, no link but the feet on the stairs.
+void WalksInMuJoCo(const RobotModel& robot, const Staircase& stairs, const std::string& what) {
+  PipelineOptions options;
+  options.gait = GaitChoice::kAuto;
+  const PipelineResult planned = RunPipeline(robot, stairs, options);
+  INFO(what << ": " << planned.plan.status_reason);
+  REQUIRE(planned.validation.ok);
+  REQUIRE(planned.plan.gait == Gait::kWalk);
+  const SimulationOutcome o = Simulate(robot, stairs, planned.plan);
+  INFO(ToString(o.status) << " / " << o.FirstCause() << ", roll " << o.max_roll);
+  CHECK(o.time_scale == 1.0);
+  CHECK(o.status == SimStatus::kSuccess);
+  CHECK(o.Passed());
+  CHECK(o.landings.size() == planned.plan.footsteps.size());
+  for (const FootLanding& l : o.landings) {
+    CAPTURE(l.leg, l.t_planned);
+    CHECK(l.touched);
+    CHECK(l.in_step_region);
+  }
+  CHECK(std::abs(o.final_base_W.z() - planned.plan.body.front().z) > 0.8 * stairs.total_rise());
+}
+
+Staircase DefaultStairs(TravelDirection direction, int steps) {
+  StairSpec spec;
+  spec.direction = direction;
+  spec.steps = steps;
+  return Staircase(spec);
+}
+
+}  // namespace
+
+TEST_CASE("the built-in robot walks up the default stairs in MuJoCo at the walk's pace", "[simulation][walk]") {
+  const int steps = testing::FullOrSanitized(StairSpec{}.steps, 3);
+  WalksInMuJoCo(BuiltinRobot(), DefaultStairs(TravelDirection::kUp, steps), "stairbot up");
+}
+
+TEST_CASE("ANYmal C walks up and down the default stairs in MuJoCo at the walk's pace", "[simulation][walk]") {
+  if (testing::SharedDir().empty()) {
+    WARN("skipped: ../shared not found");
+    return;
+  }
+  if (testing::kSanitized) return;  // the built-in robot's walk above runs under the sanitizers
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath("data/robots/anymal_c.urdf"));
+  for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
+    WalksInMuJoCo(robot, DefaultStairs(direction, StairSpec{}.steps), direction == TravelDirection::kUp ? "up" : "down");
+  }
+}
