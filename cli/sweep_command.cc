@@ -35,6 +35,7 @@ namespace {
 struct SweepOptions {
   std::string rise = "0.10:0.25:20", run = "0.20:0.35:20", nosing = "0.02", steps = "7";
   std::string directions = "up", facing = "forward", robot, robots, out, csv, svg, shard = "0/1";
+  std::string gait = "crawl";
   int threads = 1;
   double validation_step = ValidationSettings{}.time_step;  // plan's: a coarser step judges a body QP at its knots alone
   bool times = false;
@@ -74,16 +75,13 @@ SweepGrid ParseGrid(const SweepOptions& o) {
 
 // One grid point through the same pipeline as `stairplan plan`, validation included; what it
 // throws besides bad stairs is a "failed" row, so one broken point never ends a sweep.
-PointOutcome Evaluate(const SweepPoint& point, const RobotModel& robot, Facing facing, double validation_step,
+PointOutcome Evaluate(const SweepPoint& point, const RobotModel& robot, const PipelineOptions& options,
                       const SweepPhysics* physics) {
   PointOutcome outcome;
   SweepRow& row = outcome.row;
   row.point = point;
   try {
     const Staircase stairs(point.Spec());
-    PipelineOptions options;
-    options.facing = facing;
-    options.validation.time_step = validation_step;
     const PipelineResult result = RunPipeline(robot, stairs, options);
     if (physics != nullptr) {
       outcome.physics = SimulateSweepPoint(point, robot, stairs, result, physics->settings(), physics->clearance());
@@ -121,8 +119,21 @@ std::string RobotIdentity(const std::string& path, const RobotModel& robot) {
 
 std::string SettingsText(const SweepOptions& o) {
   std::ostringstream s;
-  s << "validation_step=" << o.validation_step << " simulate=" << (o.simulate ? "yes" : "no");
+  s << "validation_step=" << o.validation_step << " simulate=" << (o.simulate ? "yes" : "no") << " gait=" << o.gait;
   return s.str();
+}
+
+// What every point plans with: the grid's facing, --validation-step and --gait.
+PipelineOptions PointOptions(const SweepOptions& o, const SweepGrid& grid) {
+  PipelineOptions options;
+  options.facing = grid.facing;
+  options.validation.time_step = o.validation_step;
+  try {
+    options.gait = ParseGaitChoice(o.gait);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(std::string("--") + e.what());
+  }
+  return options;
 }
 
 // Rank 0's output files of one robot's sweep, opened (and with --resume, read) before any point.
@@ -242,9 +253,9 @@ std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const Swe
   const SweepPhysics physics_settings;
   const SweepPhysics* physics = o.simulate ? &physics_settings : nullptr;
   const auto start = std::chrono::steady_clock::now();
-  ComputePoints(cluster, todo, points, [&](const SweepPoint& p) {
-    return Evaluate(p, *robot, grid.facing, o.validation_step, physics);
-  }, deliver, o.threads);
+  const PipelineOptions options = PointOptions(o, grid);
+  ComputePoints(cluster, todo, points, [&](const SweepPoint& p) { return Evaluate(p, *robot, options, physics); },
+                deliver, o.threads);
   if (!coordinator) return std::nullopt;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::vector<SweepRow> rows = SweepRowsFromCsv(files.plans->Finish(), job.csv);
@@ -303,6 +314,7 @@ int RunSweepCommand(const std::vector<std::string>& args) {
   app.add_option("--steps", o.steps, "Step count axis A:B:N or a value (default 7)");
   app.add_option("--direction", o.directions, "up, down or up,down (default up)");
   app.add_option("--facing", o.facing, "forward or backward (default forward)");
+  app.add_option("--gait", o.gait, "crawl (default), walk, or auto: the walk where it validates, else the crawl (as plan's)");
   app.add_option("--robot", o.robot, "Robot URDF (default: the built-in stairbot)");
   app.add_option("--robots", o.robots,
                  "An atlas: comma-separated URDFs ('builtin' for stairbot), each swept into --out DIR: "
@@ -331,6 +343,7 @@ int RunSweepCommand(const std::vector<std::string>& args) {
     std::vector<SweepJob> jobs;
     try {
       grid = ParseGrid(o);
+      PointOptions(o, grid);  // a bad --gait is refused before any file is written
       shard = Shard::Parse(o.shard, "--shard");
       jobs = Jobs(o);
     } catch (const FieldError& e) {

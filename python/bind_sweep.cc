@@ -42,6 +42,7 @@ py::list RowDicts(const std::vector<SweepRow>& rows) {
     d["reason"] = r.reason;
     d["cadence_s"] = r.cadence_s;
     d["footsteps"] = r.footsteps;
+    d["gait"] = GaitName(r.gait);
     d["min_clearance_m"] = r.min_clearance_m;
     d["min_stability_margin_m"] = r.min_stability_margin_m;
     d["plan_us"] = r.plan_us;
@@ -56,7 +57,7 @@ py::object RowArray(const py::list& dicts) {
   const std::pair<const char*, const char*> fields[] = {
       {"index", "i4"},   {"direction", "U4"}, {"steps", "i4"},     {"nosing", "f8"},
       {"rise", "f8"},    {"run", "f8"},       {"status", "U10"},   {"reason", "U"},
-      {"cadence_s", "f8"}, {"footsteps", "i4"}, {"min_clearance_m", "f8"}, {"min_stability_margin_m", "f8"},
+      {"cadence_s", "f8"}, {"footsteps", "i4"}, {"gait", "U16"}, {"min_clearance_m", "f8"}, {"min_stability_margin_m", "f8"},
       {"plan_us", "f8"}, {"validate_us", "f8"}};
   std::vector<std::pair<std::string, py::object>> columns;
   for (const auto& [name, dtype] : fields) {
@@ -124,10 +125,10 @@ void BindSweep(py::module_& m) {
         R"(Plans and validates every point of a stair grid, as `stairplan sweep` (same defaults).
 
 rise, run, nosing, steps: a value, (lo, hi, count) or 'lo:hi:count'; directions: 'up', 'down',
-'up,down' or a list. options: plan()'s options (facing, planner, body, ...). progress: called as
+'up,down' or a list. options: plan()'s options (facing, planner, gait, body, ...). progress: called as
 progress(done, total) after each point (from worker threads, holding the GIL). Returns one dict
 per point in a fixed order (index, direction, steps, nosing, rise, run, status 'valid' |
-'invalid' | 'infeasible' | 'bad_stairs', reason, cadence_s, footsteps, min_clearance_m,
+'invalid' | 'infeasible' | 'bad_stairs', reason, cadence_s, footsteps, gait, min_clearance_m,
 min_stability_margin_m, plan_us, validate_us), or with as_array=True a numpy structured array
 with those fields. Releases the GIL.)");
 }

@@ -7,6 +7,7 @@ SweepRow PipelineSweepRow(const SweepPoint& point, const PipelineResult& result)
   row.point = point;
   row.cadence_s = result.plan.cadence_s;
   row.footsteps = static_cast<int>(result.plan.footsteps.size());
+  row.gait = result.plan.gait;
   for (const auto& [stage, us] : result.plan.timing_us) (stage == "validate" ? row.validate_us : row.plan_us) += us;
   if (result.plan.status != PlanStatus::kOk) {
     row.status = "infeasible";

@@ -61,6 +61,10 @@ double CsvNumber(const std::string& field) {
   return v;
 }
 
+// The columns every sweep CSV has begun with; the gait column came later.
+constexpr const char* kHeaderStart =
+    "index,direction,steps,rise,run,nosing,status,cadence_s,footsteps,min_clearance_m,min_stability_margin_m,reason";
+
 SweepRow RowFromFields(const std::vector<std::string>& f) {
   SweepRow r;
   r.point.index = std::stoi(f[0]);
@@ -76,9 +80,16 @@ SweepRow RowFromFields(const std::vector<std::string>& f) {
   r.min_clearance_m = CsvNumber(f[9]);
   r.min_stability_margin_m = CsvNumber(f[10]);
   r.reason = f[11];
-  if (f.size() >= 14) {
-    r.plan_us = CsvNumber(f[12]);
-    r.validate_us = CsvNumber(f[13]);
+  // Rows written before the gait column have 12 fields (14 with times).
+  const bool has_gait = f.size() == 13 || f.size() == 15;
+  if (has_gait && !f[12].empty()) {
+    r.gait = ParseGait(f[12]);
+    if (!r.gait) throw std::invalid_argument("bad gait");
+  }
+  const std::size_t times = has_gait ? 13 : 12;
+  if (f.size() >= times + 2) {
+    r.plan_us = CsvNumber(f[times]);
+    r.validate_us = CsvNumber(f[times + 1]);
   }
   return r;
 }
@@ -87,7 +98,7 @@ SweepRow RowFromFields(const std::vector<std::string>& f) {
 
 SweepRow SweepRowFromCsvLine(const std::string& line) {
   const std::vector<std::string> fields = CsvLineFields(line);
-  if (fields.size() != 12 && fields.size() != 14) throw std::invalid_argument("not a sweep row");
+  if (fields.size() < 12 || fields.size() > 15) throw std::invalid_argument("not a sweep row");
   return RowFromFields(fields);
 }
 
@@ -96,7 +107,7 @@ std::vector<SweepRow> SweepRowsFromCsv(const std::string& text, const std::strin
   std::string line;
   int number = 1;
   while (std::getline(in, line) && line.rfind('#', 0) == 0) ++number;  // the manifest
-  if (line.rfind(SweepCsvHeader(false), 0) != 0) {
+  if (line.rfind(kHeaderStart, 0) != 0) {
     throw std::invalid_argument(file + ":" + std::to_string(number) + ": not a sweep CSV (no header)");
   }
   std::vector<SweepRow> rows;
@@ -154,8 +165,7 @@ std::vector<SweepRow> RunSweep(const std::vector<SweepPoint>& points, const Poin
 }
 
 std::string SweepCsvHeader(bool with_times) {
-  std::string header =
-      "index,direction,steps,rise,run,nosing,status,cadence_s,footsteps,min_clearance_m,min_stability_margin_m,reason";
+  const std::string header = std::string(kHeaderStart) + ",gait";
   return with_times ? header + ",plan_us,validate_us" : header;
 }
 
@@ -171,7 +181,7 @@ std::string SweepCsvLine(const SweepRow& r, bool with_times) {
   out << r.point.index << "," << ToString(r.point.direction) << "," << r.point.steps << "," << CsvNumber(r.point.rise)
       << "," << CsvNumber(r.point.run) << "," << CsvNumber(r.point.nosing) << "," << r.status << "," << CsvNumber(r.cadence_s)
       << "," << r.footsteps << "," << CsvNumber(r.min_clearance_m) << "," << CsvNumber(r.min_stability_margin_m) << ","
-      << CsvQuoted(r.reason);
+      << CsvQuoted(r.reason) << "," << GaitName(r.gait);
   if (with_times) out << "," << CsvNumber(r.plan_us) << "," << CsvNumber(r.validate_us);
   return out.str();
 }

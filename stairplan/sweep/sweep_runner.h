@@ -4,9 +4,11 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "stairplan/planning/plan_gait.h"
 #include "stairplan/sweep/sweep_grid.h"
 
 namespace stairplan {
@@ -20,6 +22,7 @@ struct SweepRow {
   std::string reason;       ///< the first violation or why there is no plan; empty when valid
   double cadence_s = 0.0;  ///< the chosen controller's swing duration [s]
   int footsteps = 0;  ///< footsteps in the plan
+  std::optional<Gait> gait;  ///< the gait planned (with `--gait auto`, the one taken); none when unknown
   double min_clearance_m = std::numeric_limits<double>::quiet_NaN();         ///< blank in CSV when unknown
   /// Smallest COM margin of the validation; blank in CSV when unknown [m].
   double min_stability_margin_m = std::numeric_limits<double>::quiet_NaN();
@@ -53,7 +56,8 @@ std::string SweepToCsv(const std::vector<SweepRow>& rows, bool with_times);
 std::string SweepCsvLine(const SweepRow& row, bool with_times);
 /// The fields of a CSV line, quotes (and "" inside them) removed.
 std::vector<std::string> CsvLineFields(const std::string& line);
-/// A row from its CSV line (with or without the time columns); throws std::invalid_argument.
+/// A row from its CSV line (with or without the time columns, and without the gait column of rows
+/// written before it: no gait then); throws std::invalid_argument.
 SweepRow SweepRowFromCsvLine(const std::string& line);
 
 /// The rows of a sweep CSV (SweepToCsv's or a merge's, '#' manifest lines skipped; times read when

@@ -81,6 +81,27 @@ TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-vali
   CHECK(checked == wanted);
 }
 
+TEST_CASE("sweep --gait auto names the gait each point took; a gait it does not plan exits 2", "[sweep][cli]") {
+  const std::string dir = MakeTempDir("sweep-gait");
+  const std::string runs = FullOrSanitized<std::string>("0.26:0.30:2", "0.28");
+  REQUIRE(Run("sweep --rise 0.12 --run " + runs + " --steps 3 --gait auto --csv " + dir + "/auto.csv", dir) == 0);
+  const std::string csv = ReadFile(dir + "/auto.csv");
+  CHECK_THAT(csv, Catch::Contains("gait=auto"));
+  CHECK_THAT(csv, Catch::Contains(",reason,gait\n"));
+  const auto rows = Rows(csv);
+  REQUIRE_FALSE(rows.empty());
+  for (const auto& r : rows) {
+    CAPTURE(r[0]);
+    REQUIRE(r.size() == 13);
+    CHECK(r[6] == "valid");
+    // Gentle stairs: the built-in robot's walk validates, and auto takes it.
+    CHECK(r[12] == "walk");
+  }
+  CHECK(Run("sweep --rise 0.12 --run 0.28 --steps 3 --gait trot --csv " + dir + "/trot.csv", dir) == 2);
+  CHECK_THAT(ReadFile(dir + "/err.txt"), Catch::Contains("--gait"));
+  CHECK_FALSE(std::ifstream(dir + "/trot.csv").good());
+}
+
 TEST_CASE("sweep shards merged equal the unsharded sweep", "[sweep][cli]") {
   const std::string dir = MakeTempDir("sweep-shards");
   // A 3 x 3 grid over the whole range, steep points the validator rejects among them: shards of

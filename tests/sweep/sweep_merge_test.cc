@@ -53,6 +53,34 @@ TEST_CASE("a point whose evaluation throws is a failed row and the sweep goes on
   CHECK(SweepRowFromCsvLine(SweepCsvLine(rows[4], false)).reason == "solver blew up at point 4");
 }
 
+TEST_CASE("a row keeps its gait through the CSV, and a row written before the gait column reads back without one",
+          "[sweep]") {
+  SweepRow row = MergeTestRow(EnumeratePoints(MergeTestGrid(3))[2]);
+  row.gait = Gait::kWalk;
+  row.plan_us = 12.5;
+  row.validate_us = 3.0;
+  for (const bool times : {false, true}) {
+    CAPTURE(times);
+    const SweepRow back = SweepRowFromCsvLine(SweepCsvLine(row, times));
+    CHECK(back.gait == Gait::kWalk);
+    CHECK(back.status == row.status);
+    CHECK(back.plan_us == (times ? 12.5 : 0.0));
+  }
+  row.gait.reset();
+  CHECK_FALSE(SweepRowFromCsvLine(SweepCsvLine(row, false)).gait.has_value());
+  // The columns before the gait's, with and without times, as sweeps wrote them before it.
+  const SweepRow old = SweepRowFromCsvLine("7,up,3,0.15,0.26,0.02,valid,0.45,20,0.011,0.03,\"\",8.5,1.5");
+  CHECK(old.point.index == 7);
+  CHECK_FALSE(old.gait.has_value());
+  CHECK(old.plan_us == 8.5);
+  CHECK(old.validate_us == 1.5);
+  CHECK_FALSE(SweepRowFromCsvLine("7,up,3,0.15,0.26,0.02,valid,0.45,20,0.011,0.03,\"\"").gait.has_value());
+  CHECK_THROWS(SweepRowFromCsvLine("7,up,3,0.15,0.26,0.02,valid,0.45,20,0.011,0.03,\"\",gallop"));
+  CHECK_NOTHROW(SweepRowsFromCsv("index,direction,steps,rise,run,nosing,status,cadence_s,footsteps,min_clearance_m,"
+                                 "min_stability_margin_m,reason\n7,up,3,0.15,0.26,0.02,valid,0.45,20,0.011,0.03,\"\"\n",
+                                 "old.csv"));
+}
+
 TEST_CASE("a manifest reads back and names the field in which two sweeps differ", "[sweep]") {
   SweepGrid grid = MergeTestGrid(3);
   grid.directions = {TravelDirection::kUp, TravelDirection::kDown};
