@@ -35,6 +35,20 @@ Run Plan(const std::string& args, const std::string& dir) {
   return r;
 }
 
+// `plan args` into dir/sub, which must exit 0, and the plan.json it wrote.
+struct Planned {
+  Run run;
+  json plan;
+};
+
+Planned PlanInto(const std::string& args, const std::string& dir, const std::string& sub) {
+  Planned p{Plan(args + " --out " + dir + "/" + sub, dir), json()};
+  INFO(p.run.out << p.run.err);
+  REQUIRE(p.run.code == 0);
+  p.plan = json::parse(ReadFile(dir + "/" + sub + "/plan.json"));
+  return p;
+}
+
 // Independent of the library: the default stairs rebuilt from the numbers in plan.json.
 struct Tread {
   double x_begin, x_end, z;
@@ -164,9 +178,7 @@ TEST_CASE("plan --start: out of stair mode's range it warns, and the plan still 
 
 TEST_CASE("plan.json names the body planner and, for the receding horizon, carries every cycle's solve", "[cli][plan]") {
   const std::string dir = MakeTempDir("plan-cycles");
-  const Run path = Plan("--steps 2 --body path --out " + dir + "/path", dir);
-  REQUIRE(path.code == 0);
-  const json by_path = json::parse(ReadFile(dir + "/path/plan.json"));
+  const json by_path = PlanInto("--steps 2 --body path", dir, "path").plan;
   CHECK(by_path["body_planner"] == "quasi_static_path");
   CHECK(by_path["body_cycles"]["count"] == 0);
 
@@ -213,23 +225,21 @@ TEST_CASE("plan.json names the body planner and, for the receding horizon, carri
 
 TEST_CASE("plan --gait auto walks up the default stairs and crawls down them, saying why not the walk", "[cli][plan]") {
   const std::string dir = MakeTempDir("plan-gait");
-  const Run up = Plan("--gait auto --out " + dir + "/up", dir);
-  REQUIRE(up.code == 0);
-  const json walk = json::parse(ReadFile(dir + "/up/plan.json"));
+  const Planned up = PlanInto("--gait auto", dir, "up");
+  const json& walk = up.plan;
   CHECK(walk["gait"] == "walk");
   CHECK(walk["rejected_gaits"].empty());
   CHECK(walk["validation"]["dynamics"]["mode"] == "judge");
-  CHECK_THAT(up.out, Catch::Contains("gait:      walk"));
-  const Run down = Plan("--gait auto --direction down --out " + dir + "/down", dir);
-  REQUIRE(down.code == 0);
-  const json crawl = json::parse(ReadFile(dir + "/down/plan.json"));
+  CHECK_THAT(up.run.out, Catch::Contains("gait:      walk"));
+  const Planned down = PlanInto("--gait auto --direction down", dir, "down");
+  const json& crawl = down.plan;
   CHECK(crawl["gait"] == "crawl");
   REQUIRE(crawl["rejected_gaits"].size() == 1);
   CHECK(crawl["rejected_gaits"][0]["gait"] == "walk");
   const std::string reason = crawl["rejected_gaits"][0]["reason"];
   CHECK_THAT(reason, Catch::Contains("wrench_unattainable") || Catch::Contains("torque_limit") ||
                          Catch::Contains("friction_cone"));
-  CHECK_THAT(down.out, Catch::Contains("not the walk: " + reason));
+  CHECK_THAT(down.run.out, Catch::Contains("not the walk: " + reason));
 }
 
 TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[cli][plan]") {
