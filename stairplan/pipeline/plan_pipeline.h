@@ -102,8 +102,7 @@ struct PipelineOptions {
   GaitChoice gait = GaitChoice::kCrawl;
   /// The walk's four-feet phases between swings, up and down [s]. At 0.2 s the built-in robot's
   /// climb of the default stairs takes 23.2 s instead of the crawl's 37.2 s and passes the dynamic
-  /// check; its descent does not (the legs cannot produce the wrench of its quicker shifts there),
-  /// which is why the crawl's descents shift for 0.8 s (descent_shift_duration).
+  /// check; its descent does not (the legs cannot produce the wrench of its quicker shifts there).
   double walk_shift_duration = 0.2;
   /// The step planner's controllers; the executed gait is quasi-static, so crawls only by default.
   StepPlannerSettings step = CrawlControllers();
