@@ -43,7 +43,7 @@ std::vector<double> FourFeetPhases(const Plan& plan) {
   return gaps;
 }
 
-void RequireValid(const PipelineResult& result) {
+void RequireValidated(const PipelineResult& result) {
   INFO(result.plan.status_reason);
   REQUIRE(result.plan.status == PlanStatus::kOk);
   REQUIRE(result.validated);
@@ -61,8 +61,8 @@ TEST_CASE("walk: the crawl's footholds with 0.2 s four-feet phases, a third fast
   const Staircase stairs = DefaultStairs(TravelDirection::kUp);
   const PipelineResult crawl = PlanGait(stairs, GaitChoice::kCrawl);
   const PipelineResult walk = PlanGait(stairs, GaitChoice::kWalk);
-  RequireValid(crawl);
-  RequireValid(walk);
+  RequireValidated(crawl);
+  RequireValidated(walk);
   REQUIRE(walk.plan.gait == Gait::kWalk);
   CHECK(crawl.plan.gait == Gait::kCrawl);
   // The same footholds in the same order: only the timing differs.
@@ -88,7 +88,7 @@ TEST_CASE("walk: the crawl's footholds with 0.2 s four-feet phases, a third fast
 TEST_CASE("walk: auto takes the walk where it validates, and the crawl where the dynamic check rejects the walk",
           "[pipeline][walk]") {
   const PipelineResult up = PlanGait(DefaultStairs(TravelDirection::kUp), GaitChoice::kAuto);
-  RequireValid(up);
+  RequireValidated(up);
   CHECK(up.plan.gait == Gait::kWalk);
   CHECK(up.plan.rejected_gaits.empty());
 
@@ -103,7 +103,7 @@ TEST_CASE("walk: auto takes the walk where it validates, and the crawl where the
     CHECK(IsDynamicKind(v.kind));
   }
   const PipelineResult down = PlanGait(down_stairs, GaitChoice::kAuto);
-  RequireValid(down);
+  RequireValidated(down);
   CHECK(down.plan.gait == Gait::kCrawl);
   REQUIRE(down.plan.rejected_gaits.size() == 1);
   CHECK(down.plan.rejected_gaits[0].gait == Gait::kWalk);
@@ -144,7 +144,7 @@ TEST_CASE("walk: on stairs with a friction coefficient of 0.2 the walk up fails 
           "[pipeline][walk][validation]") {
   const Staircase stairs = DefaultStairs(TravelDirection::kUp);
   const PipelineResult walk = PlanGait(stairs, GaitChoice::kWalk);
-  RequireValid(walk);
+  RequireValidated(walk);
   const RobotModel robot = BuiltinRobot();
   const ConstrainedMap map = BuildPipelineMap(robot, stairs, PipelineOptions{});
   ValidationSettings slippery;
