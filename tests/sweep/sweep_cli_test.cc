@@ -81,7 +81,7 @@ TEST_CASE("sweep CSV is identical for 1 and 2 threads and its valid rows re-vali
   CHECK(checked == wanted);
 }
 
-TEST_CASE("sweep --gait auto names the gait each point took; a gait it does not plan exits 2", "[sweep][cli]") {
+TEST_CASE("sweep --gait auto names the gait each point took, and a gait it does not plan exits 2", "[sweep][cli]") {
   const std::string dir = MakeTempDir("sweep-gait");
   const std::string runs = FullOrSanitized<std::string>("0.26:0.30:2", "0.28");
   REQUIRE(Run("sweep --rise 0.12 --run " + runs + " --steps 3 --gait auto --csv " + dir + "/auto.csv", dir) == 0);
