@@ -313,11 +313,9 @@ int RunPlan(const std::vector<std::string>& args) {
     if (IsPaperCrawl(options.footsteps) && !o.cloud.empty()) throw BadInput("--planner " + o.planner + ": plans known stairs only, not --cloud");
     try {
       options.gait = ParseGaitChoice(o.gait);
+      RequirePlannableGait(options.gait, options.footsteps);
     } catch (const std::invalid_argument& e) {
       throw BadInput(std::string("--") + e.what());
-    }
-    if (options.gait != GaitChoice::kCrawl && options.footsteps != FootstepSource::kSelectedCrawl) {
-      throw BadInput("--gait " + o.gait + ": plans the crawl's footholds, with --planner crawl only");
     }
     try {
       if (!o.crawl_sequence.empty()) options.crawl.sequence = ParseCrawlSequence(o.crawl_sequence);

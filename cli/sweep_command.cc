@@ -217,8 +217,9 @@ void ReportSweep(const std::vector<SweepRow>& rows, const SweepGrid& grid, const
 }
 
 // Runs one robot's sweep; on rank 0 (or without MPI) returns the rows of the finished CSV.
-std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const SweepGrid& grid, const Shard& shard,
-                                                SweepCluster* cluster, const SweepJob& job) {
+// `options` are what every point plans with (PointOptions).
+std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const SweepGrid& grid, const PipelineOptions& options,
+                                                const Shard& shard, SweepCluster* cluster, const SweepJob& job) {
   const bool coordinator = cluster == nullptr || cluster->Rank() == 0;
   std::optional<RobotModel> robot;
   SweepFiles files;
@@ -253,7 +254,6 @@ std::optional<std::vector<SweepRow>> SweepRobot(const SweepOptions& o, const Swe
   const SweepPhysics physics_settings;
   const SweepPhysics* physics = o.simulate ? &physics_settings : nullptr;
   const auto start = std::chrono::steady_clock::now();
-  const PipelineOptions options = PointOptions(o, grid);
   ComputePoints(cluster, todo, points, [&](const SweepPoint& p) { return Evaluate(p, *robot, options, physics); },
                 deliver, o.threads);
   if (!coordinator) return std::nullopt;
@@ -339,11 +339,12 @@ int RunSweepCommand(const std::vector<std::string>& args) {
   return Guarded("sweep", [&] {
     cluster = JoinSweepCluster();  // rows are computed on every rank, written by rank 0
     SweepGrid grid;
+    PipelineOptions options;
     Shard shard;
     std::vector<SweepJob> jobs;
     try {
       grid = ParseGrid(o);
-      PointOptions(o, grid);  // a bad --gait is refused before any file is written
+      options = PointOptions(o, grid);  // a bad --gait is refused before any file is written
       shard = Shard::Parse(o.shard, "--shard");
       jobs = Jobs(o);
     } catch (const FieldError& e) {
@@ -351,7 +352,7 @@ int RunSweepCommand(const std::vector<std::string>& args) {
     }
     std::vector<std::pair<std::string, std::vector<SweepRow>>> atlas;
     for (const SweepJob& job : jobs) {
-      std::optional<std::vector<SweepRow>> rows = SweepRobot(o, grid, shard, cluster.get(), job);
+      std::optional<std::vector<SweepRow>> rows = SweepRobot(o, grid, options, shard, cluster.get(), job);
       if (!rows) return kExitOk;  // a rank other than 0: rank 0 reports
       atlas.emplace_back(job.label, std::move(*rows));
     }

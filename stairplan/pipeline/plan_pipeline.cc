@@ -288,9 +288,7 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
   RequireInRange("walk_shift_duration", options.walk_shift_duration, 0.0, 5.0);
   RequireInRange("body_layouts", options.body_layouts, 0, 100);
-  if (options.gait != GaitChoice::kCrawl && options.footsteps != FootstepSource::kSelectedCrawl) {
-    throw FieldError("gait", "the walk and auto plan the crawl's footholds (FootstepSource::kSelectedCrawl, `--planner crawl`)");
-  }
+  RequirePlannableGait(options.gait, options.footsteps);
   if (options.gait == GaitChoice::kAuto && !options.validate) options.gait = GaitChoice::kCrawl;
   if (options.gait != GaitChoice::kAuto) return RunGait(kinematics, stairs, std::move(map), options);
   const auto t_walk = std::chrono::steady_clock::now();
@@ -312,6 +310,12 @@ GaitChoice ParseGaitChoice(const std::string& text) {
   if (text == "walk") return GaitChoice::kWalk;
   if (text == "auto") return GaitChoice::kAuto;
   throw std::invalid_argument("gait: must be 'crawl', 'walk' or 'auto' (got '" + text + "')");
+}
+
+void RequirePlannableGait(GaitChoice gait, FootstepSource footsteps) {
+  if (gait != GaitChoice::kCrawl && footsteps != FootstepSource::kSelectedCrawl) {
+    throw FieldError("gait", "the walk and auto plan the crawl's footholds, with --planner crawl only");
+  }
 }
 
 FootstepSource ParseFootstepSource(const std::string& text) {

@@ -33,9 +33,8 @@ const char* ToString(DynamicsCheckMode mode);
 struct ContactWrenchSettings {
   /// Reported for the crawls, whose slow weight shifts the support polygon judges; judged for the
   /// walk and the trot (IsJudgedDynamically), whose pace it cannot. Judging the crawls would reject
-  /// plans MuJoCo walks: on Unitree Go2's default climb (peak torque 95 % of the limits in MuJoCo)
-  /// the check finds the wrench out of reach at 126 instants, by up to 11 N of its 150 N weight,
-  /// and at none with a friction coefficient of 3: torque limits and friction together bind.
+  /// plans MuJoCo walks: the check holds the legs to their torque limits and the inscribed friction
+  /// pyramid together, where small robots' quasi-static crawls run at their limits.
   DynamicsCheckMode mode = DynamicsCheckMode::kReport;
   /// Friction coefficient of the stairs: the MuJoCo world's too (stairplan/geometry/stair_friction.h), so
   /// that the two judges see the same ground.
