@@ -502,6 +502,7 @@ void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at,
   }
   const Eigen::Vector2d com_base = ComBase(k, t, pitch, feet_sum, at, v0, restored);
   com_base_.col(k) = com_base;  // every knot's, for the ZMP rows
+  if (standing == 2) DiagonalRows(k, foothold);
   if (standing < 3) return;  // no polygon: the gait is not quasi-static here
   const double heading = schedule_.heading();
   const double previous_x = has_previous_ ? PreviousAt(previous_shift_, t) : 0.0;
@@ -569,6 +570,40 @@ void BodyPlanner::SupportRows(int k, double t, double pitch, const BodyPose& at,
       if (has_previous_ && previous < lo) lo = std::min(lo, previous + pull);
       qp.support_lo[row] = lo;
     }
+  }
+}
+
+void BodyPlanner::DiagonalRows(int k, const std::array<int, kBodyLegs>& foothold) {
+  BodyQp& qp = *qp_;
+  if (qp.zmp_rows().size == 0) return;
+  // Two feet carry the body (the trot's diagonal): their forces pass through the line between
+  // them, so the pendulum's ZMP must lie on it, between the feet. The COM has no polygon to keep
+  // to; the ZMP's four rows bound the line from both sides and its ends, in the knot's rows the
+  // absent polygon leaves free, and leave it only by the excursion, as a polygon's do.
+  std::array<int, 2> legs{};
+  int found = 0;
+  for (int l = 0; l < kBodyLegs; ++l) {
+    if (foothold[static_cast<std::size_t>(l)] >= 0) legs[static_cast<std::size_t>(found++)] = l;
+  }
+  const auto contact = [&](int l) -> Eigen::Vector2d {
+    return schedule_.footholds()[static_cast<std::size_t>(foothold[static_cast<std::size_t>(l)])].contact_W.head<2>();
+  };
+  const Eigen::Vector2d a = contact(legs[0]), b = contact(legs[1]);
+  const double length = (b - a).norm();
+  if (!(length > 1e-6)) return;
+  const Eigen::Vector2d along = (b - a) / length, across(along.y(), -along.x());
+  const std::array<Eigen::Vector2d, 4> normals = {across, -across, along, -along};
+  const std::array<double, 4> bounds = {across.dot(a), -across.dot(a), along.dot(b), -along.dot(a)};
+  const double heading = schedule_.heading();
+  static_assert(BodyQp::kSupportRows >= 4, "a knot's support rows hold the line's four");
+  for (int r = 0; r < 4; ++r) {
+    const int row = k * BodyQp::kSupportRows + r;
+    const Eigen::Vector2d& normal = normals[static_cast<std::size_t>(r)];
+    qp.support_cx[row] = normal.x() * com_.gain.x() * heading;
+    qp.support_cy[row] = normal.y() * com_.gain.y() * heading;
+    support_normal_.col(row) = normal;
+    support_edge_[row] = bounds[static_cast<std::size_t>(r)];
+    support_side_[static_cast<std::size_t>(row)] = 1;  // normal . ZMP <= bound
   }
 }
 

@@ -171,6 +171,9 @@ class BodyPlanner {
   // knots k-1..k+1, shrunk by the stability margin (rows free where no polygon applies).
   // `restored`: knot k's leg rows came from row_cache_ (its exact COM may too).
   void SupportRows(int k, double t, double pitch, const BodyPose& at, const Eigen::Vector4d& v0, bool restored);
+  // Knot k's ZMP rows where two legs stand through knots k-1..k+1 (`foothold`: each leg's, -1 for
+  // the others): the ZMP on the line between their feet.
+  void DiagonalRows(int k, const std::array<int, kBodyLegs>& foothold);
   // With leg rows, after every knot's SupportRows: the rows hold the ZMP (COM - h/g COM'', the
   // pendulum as high as the hips) inside the polygon, BodyQp::ZmpStencil over knots k-1..k+1.
   void ZmpSupportRows(double now);

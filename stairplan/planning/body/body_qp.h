@@ -27,7 +27,9 @@
 //                                 k-1, k, k+1 (w = ZmpStencil(k)); knot 0's row too, which bounds
 //                                 knot 1 against the body executed a cycle ago. No margin; the
 //                                 ZMP leaves the polygon by excursion_k at kZmpExcursionPenalty
-//                                 per metre, so that a crawl's quasi-static plan stays feasible
+//                                 per metre, so that a crawl's quasi-static plan stays feasible;
+//                                 where two feet stand (a trot's diagonal), four of the knot's
+//                                 rows hold the ZMP on the segment between them instead
 //        stance_lo_klj <= a_klj . (z_k, pitch_k, shift_k, lateral_k) + e_klj relax_k <= stance_hi_klj
 //                                 per knot, stance leg l and row j (4): its three joints within
 //                                 their limits and its extension within the knee's range,
