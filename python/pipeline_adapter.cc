@@ -73,7 +73,7 @@ PipelineOptions PipelineOptionsFrom(const nlohmann::json& o) {
     options.footsteps = ParseFootstepSource(OneOf(o.at("planner"), "planner", {"crawl", "step"}));
   }
   if (o.contains("gait") && !o.at("gait").is_null()) {
-    options.gait = ParseGaitChoice(OneOf(o.at("gait"), "gait", {"crawl", "walk", "auto"}));
+    options.gait = ParseGaitChoice(OneOf(o.at("gait"), "gait", {"crawl", "walk", "trot", "auto"}));
   }
   if (o.contains("crawl_sequence") && !o.at("crawl_sequence").is_null()) {
     options.crawl.sequence = ParseCrawlSequence(OneOf(o.at("crawl_sequence"), "crawl_sequence", {"lateral", "leading-first", "pairs"}));

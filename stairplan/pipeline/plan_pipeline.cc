@@ -71,6 +71,7 @@ Plan SelectedCrawlPlan(const RobotKinematics& kinematics, const Staircase& stair
   if (FirstRiseTooHigh(robot.legs(), map, options.step)) return selection;
   CrawlSettings crawl = options.crawl;
   if (selection.status == PlanStatus::kOk && selection.cadence_s > 0.0) crawl.swing_duration = selection.cadence_s;
+  if (options.gait == GaitChoice::kTrot) crawl.swing_duration = options.trot_swing_duration;
   // The body optimisation judges footholds itself (BodyOnFittedLayouts); the crawl's own search
   // judges them by the quasi-static path.
   Plan plan = options.body == BodySource::kRecedingHorizonQp ? PlanCrawlFootholds(robot, stairs, map, crawl)
@@ -220,9 +221,10 @@ ConstrainedMap BuildMap(const RobotKinematics& kinematics, const Staircase& stai
   return map;
 }
 
-// The four-feet phases of `options.gait` (the crawl or the walk) on `stairs`.
+// The four-feet phases of `options.gait` (the crawl, the walk or the trot) on `stairs`.
 double ShiftDuration(const PipelineOptions& options, const Staircase& stairs) {
   if (options.gait == GaitChoice::kWalk) return options.walk_shift_duration;
+  if (options.gait == GaitChoice::kTrot) return options.trot_shift_duration;
   if (stairs.direction() == TravelDirection::kDown) return std::max(options.crawl.shift_duration, options.descent_shift_duration);
   return options.crawl.shift_duration;
 }
@@ -238,11 +240,12 @@ std::string RejectionReason(const PipelineResult& result) {
   return text;
 }
 
-// One gait (the crawl or the walk) planned and validated; RunOnMap chooses among them.
+// One gait (the crawl, the walk or the trot) planned and validated; RunOnMap chooses among them.
 PipelineResult RunGait(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
                        PipelineOptions options) {
   const RobotModel& robot = kinematics.robot();
   options.crawl.shift_duration = ShiftDuration(options, stairs);
+  options.crawl.diagonal_pairs = options.gait == GaitChoice::kTrot;
   PipelineResult result;
   result.map = std::move(map);
   result.clearances = ClearancesOf(options, stairs);
@@ -255,6 +258,7 @@ PipelineResult RunGait(const RobotKinematics& kinematics, const Staircase& stair
   const auto t_plan = std::chrono::steady_clock::now();
   result.plan = FootstepPlan(kinematics, stairs, result.map, options);
   if (options.gait == GaitChoice::kWalk && result.plan.gait) result.plan.gait = Gait::kWalk;
+  if (options.gait == GaitChoice::kTrot && result.plan.gait) result.plan.gait = Gait::kTrot;
   result.plan.timing_us = {{"plan", MicrosSince(t_plan)}};
   if (options.body == BodySource::kRecedingHorizonQp && result.plan.status == PlanStatus::kOk) {
     const std::vector<std::pair<std::string, double>> timing = result.plan.timing_us;
@@ -287,6 +291,8 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
                         PipelineOptions options) {
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
   RequireInRange("walk_shift_duration", options.walk_shift_duration, 0.0, 5.0);
+  RequireInRange("trot_swing_duration", options.trot_swing_duration, 0.05, 5.0);
+  RequireInRange("trot_shift_duration", options.trot_shift_duration, 0.0, 5.0);
   RequireInRange("body_layouts", options.body_layouts, 0, 100);
   RequirePlannableGait(options.gait, options.footsteps);
   if (options.gait == GaitChoice::kAuto && !options.validate) options.gait = GaitChoice::kCrawl;
@@ -308,13 +314,14 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
 GaitChoice ParseGaitChoice(const std::string& text) {
   if (text == "crawl") return GaitChoice::kCrawl;
   if (text == "walk") return GaitChoice::kWalk;
+  if (text == "trot") return GaitChoice::kTrot;
   if (text == "auto") return GaitChoice::kAuto;
-  throw std::invalid_argument("gait: must be 'crawl', 'walk' or 'auto' (got '" + text + "')");
+  throw std::invalid_argument("gait: must be 'crawl', 'walk', 'trot' or 'auto' (got '" + text + "')");
 }
 
 void RequirePlannableGait(GaitChoice gait, FootstepSource footsteps) {
   if (gait != GaitChoice::kCrawl && footsteps != FootstepSource::kSelectedCrawl) {
-    throw FieldError("gait", "the walk and auto plan the crawl's footholds, with --planner crawl only");
+    throw FieldError("gait", "the walk, the trot and auto plan the crawl's footholds, with --planner crawl only");
   }
 }
 

@@ -54,15 +54,19 @@ enum class GaitChoice {
   /// The walk (Gait::kWalk): the same footholds and swings with four-feet phases of
   /// walk_shift_duration, climbing and descending; the validator's dynamic check judges it.
   kWalk,
+  /// The trot (Gait::kTrot): the same footholds, the diagonal pairs swinging together for
+  /// trot_swing_duration with trot_shift_duration of four feet down between them; the body
+  /// balances its pendulum's ZMP on the standing diagonal and the dynamic check judges it.
+  kTrot,
   /// The walk where its plan validates, else the crawl (Plan::rejected_gaits says why not the
   /// walk). Without validation (PipelineOptions::validate off) nothing can judge the walk: the crawl.
   kAuto,
 };
 
-/// "crawl", "walk" or "auto"; throws std::invalid_argument otherwise.
+/// "crawl", "walk", "trot" or "auto"; throws std::invalid_argument otherwise.
 GaitChoice ParseGaitChoice(const std::string& text);
 
-/// Throws FieldError("gait") unless `footsteps` can plan `gait`: the walk and auto plan the
+/// Throws FieldError("gait") unless `footsteps` can plan `gait`: the walk, the trot and auto plan the
 /// crawl's footholds (FootstepSource::kSelectedCrawl) only.
 void RequirePlannableGait(GaitChoice gait, FootstepSource footsteps);
 
@@ -102,12 +106,18 @@ struct BodyPosture {
 struct PipelineOptions {
   Facing facing = Facing::kForward;  ///< which way the body faces relative to the travel
   FootstepSource footsteps = FootstepSource::kSelectedCrawl;  ///< which planner places the footsteps
-  /// The gait; the walk and auto plan the crawl's footholds (FootstepSource::kSelectedCrawl) only.
+  /// The gait; the walk, the trot and auto plan the crawl's footholds (FootstepSource::kSelectedCrawl) only.
   GaitChoice gait = GaitChoice::kCrawl;
   /// The walk's four-feet phases between swings, up and down [s]: a third of the crawl's, short
   /// enough to cut the flight by about 40 %; where the legs cannot produce the quicker shifts'
   /// wrench, the dynamic check rejects the walk (and auto plans the crawl).
   double walk_shift_duration = 0.2;
+  ///@{
+  /// The trot's swings of a diagonal pair, and its four-feet phases between them [s]: the default
+  /// seven steps' 18 pair swings take under 8 s from the first liftoff to the last touchdown.
+  double trot_swing_duration = 0.25;
+  double trot_shift_duration = 0.15;
+  ///@}
   /// The step planner's controllers; the executed gait is quasi-static, so crawls only by default.
   StepPlannerSettings step = CrawlControllers();
   /// Which planner makes the body trajectory; the paper's crawl always plans its own path.

@@ -34,6 +34,21 @@ std::array<const char*, 4> SwingOrder(CrawlSequence sequence, Facing facing) {
   return order;
 }
 
+// Swing slots per cycle: four one leg at a time, two when the diagonal pairs swing together.
+int SlotsPerCycle(const CrawlSettings& settings) { return settings.diagonal_pairs ? 2 : 4; }
+
+// The slot of the swing `order` puts at `slot`. Trotting, each leg of the order's first pair of
+// sides swings with the other side's leg of the other end (the diagonal), in the slot of the
+// earlier of the two: the trailing right leg with the leading left one, then the others.
+double SlotOf(const CrawlSettings& settings, const std::array<const char*, 4>& order, std::size_t slot) {
+  if (!settings.diagonal_pairs) return static_cast<double>(slot);
+  const auto diagonal_of = [](const char* leg) {
+    const std::string name(leg);
+    return name == "RH" || name == "LF";
+  };
+  return diagonal_of(order[slot]) == diagonal_of(order[0]) ? 0.0 : 1.0;
+}
+
 double MeanRun(const StairSpec& spec) {
   if (spec.runs.empty()) return spec.run;
   double sum = 0.0;
@@ -250,7 +265,7 @@ Plan CrawlFootsteps(const RobotModel& robot, const Staircase& stairs, const Cons
       const auto leg = std::find_if(tracks.begin(), tracks.end(), [&](const LegTrack& l) { return l.name == order[slot]; });
       Footstep step;
       step.leg = leg->name;
-      step.t_liftoff = (4.0 * c + static_cast<double>(slot)) * slot_duration + settings.shift_duration;
+      step.t_liftoff = (SlotsPerCycle(settings) * c + SlotOf(settings, order, slot)) * slot_duration + settings.shift_duration;
       step.t_touchdown = step.t_liftoff + settings.swing_duration;
       step.from_W = c == 0 ? start(*leg) : foothold(*leg, leg->start_index + c);
       step.position_W = foothold(*leg, leg->start_index + c + 1);
@@ -260,6 +275,8 @@ Plan CrawlFootsteps(const RobotModel& robot, const Staircase& stairs, const Cons
       plan.footsteps.push_back(step);
     }
   }
+  std::stable_sort(plan.footsteps.begin(), plan.footsteps.end(),
+                   [](const Footstep& a, const Footstep& b) { return a.t_touchdown < b.t_touchdown; });
   return plan;
 }
 

@@ -49,6 +49,9 @@ struct CrawlSettings {
   CrawlSequence sequence = CrawlSequence::kLateral;  ///< the order of the swings
   double swing_duration = 0.40;       ///< one leg's swing [s]
   double shift_duration = 0.60;       ///< four feet down between swings, moving the COM [s]
+  /// The diagonal pairs swing together (the trot): the same footholds and cycles, two swing slots
+  /// a cycle instead of four, each preceded by shift_duration with four feet down.
+  bool diagonal_pairs = false;
   double start_gap = 0.10;            ///< front feet this far before the first step region [m]
   /// Move the trailing feet inside their step regions to one stance length (hip spacing along the
   /// pitched body) behind the leading feet, instead of the step-region centres. Off by default:

@@ -259,7 +259,7 @@ TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[
   expect_bad("--direction sideways", "--direction");
   expect_bad("--facing left", "--facing");
   expect_bad("--crawl-sequence trot", "--crawl-sequence");
-  expect_bad("--gait trot", "--gait");
+  expect_bad("--gait gallop", "--gait");
   expect_bad("--gait walk --planner step", "--gait");
   expect_bad("--robot /nonexistent.urdf", "/nonexistent.urdf");
   expect_bad("--stairs /nonexistent.yaml", "/nonexistent.yaml");

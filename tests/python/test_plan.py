@@ -159,5 +159,5 @@ def test_plan_gait_auto_takes_the_walk_where_it_validates():
     assert plan.gait == "walk" and d["gait"] == "walk" and d["rejected_gaits"] == []
     assert d["validation"]["ok"] and d["validation"]["dynamics"]["mode"] == "judge"
     with pytest.raises(stairplan.FieldError) as e:
-        stairplan.plan(steps=2, gait="trot")
+        stairplan.plan(steps=2, gait="gallop")
     assert e.value.field == "gait"

@@ -97,9 +97,9 @@ TEST_CASE("sweep --gait auto names the gait each point took, and a gait it does 
     // Gentle stairs: the built-in robot's walk validates, and auto takes it.
     CHECK(r[12] == "walk");
   }
-  CHECK(Run("sweep --rise 0.12 --run 0.28 --steps 3 --gait trot --csv " + dir + "/trot.csv", dir) == 2);
+  CHECK(Run("sweep --rise 0.12 --run 0.28 --steps 3 --gait gallop --csv " + dir + "/gallop.csv", dir) == 2);
   CHECK_THAT(ReadFile(dir + "/err.txt"), Catch::Contains("--gait"));
-  CHECK_FALSE(std::ifstream(dir + "/trot.csv").good());
+  CHECK_FALSE(std::ifstream(dir + "/gallop.csv").good());
 }
 
 TEST_CASE("sweep shards merged equal the unsharded sweep", "[sweep][cli]") {
