@@ -80,7 +80,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   StairFlags true_stairs;
   double frame_ms = 100.0, friction = kStairFriction, video_speed = 1.0;
   bool print_json = false, no_responses = false;
-  std::string impacts = "torque_residual";
+  std::string impacts = "torque_residual", stance_forces = "gait";
   app.add_option("plan", path, "plan.json written by `stairplan plan`")->required();
   app.add_option("--robot", robot_path, "Robot URDF (default: the one the plan names)");
   app.add_option("--stairs", true_stairs.file, "Stairs YAML to execute on instead of the plan's own (stairs that differ from the model)");
@@ -106,6 +106,11 @@ int RunSimulate(const std::vector<std::string>& args) {
                  "How impacts are detected: torque_residual (joint torques against the model, default), contacts "
                  "(MuJoCo's contact list) or none")
       ->check(CLI::IsMember({"torque_residual", "contacts", "none"}));
+  app.add_option("--stance-forces", stance_forces,
+                 "Where the stance feet's forces come from: gait (default: the convex MPC for the trot, the wrench for "
+                 "the crawls and the walk), wrench (the planned body's PD wrench distributed each step) or mpc (the "
+                 "convex MPC over the plan's next 0.4 s)")
+      ->check(CLI::IsMember({"gait", "wrench", "mpc"}));
   app.add_flag("--no-responses", no_responses, "Detect and record impacts but do not answer them");
   app.add_flag("--json", print_json, "Print the outcome as JSON (the --out file's contents) instead of the summary");
   if (const int code = Parse(app, args); code >= 0) return code;
@@ -122,6 +127,7 @@ int RunSimulate(const std::vector<std::string>& args) {
                              : impacts == "contacts" ? ImpactSource::kContacts
                                                      : ImpactSource::kTorqueResidual;
     settings.impact.respond = !no_responses;
+    settings.stance_forces = ParseStanceForceSource(stance_forces);
     const bool record = rendering || !trace.empty() || frame_option->count() > 0;
     settings.frame_interval = record ? frame_ms / 1000.0 : 0.0;
     for (const std::string& o : overrides) {
@@ -170,7 +176,8 @@ int RunSimulate(const std::vector<std::string>& args) {
                 << (outcome.Passed() ? "" : " (" + outcome.FirstCause() + ")") << "; " << outcome.landings.size()
                 << " landings, max error " << outcome.MaxLandingError() * 1000 << " mm; peak torque "
                 << outcome.max_torque_ratio * 100 << "% of the limit; time_scale " << outcome.time_scale
-                << ", plan ZMP margin " << outcome.plan_zmp_margin_m * 1000 << " mm; real-time factor "
+                << ", plan ZMP margin " << outcome.plan_zmp_margin_m * 1000 << " mm; stance forces "
+                << ToString(outcome.stance_forces) << "; real-time factor "
                 << outcome.real_time_factor << "\n";
       for (const ImpactRecord& e : outcome.impacts) {
         if (e.kind == ImpactKind::kTouchdown || e.kind == ImpactKind::kLiftoffScuff) continue;  // the routine ones

@@ -23,6 +23,11 @@ constexpr double kMaxTargetSpeed = 20.0;  // joint target velocity cap [rad/s]: 
 constexpr double kMaxTargetAcceleration = 500.0;  // ... and acceleration cap [rad/s^2]
 constexpr double kBlendTime = 0.1;        // a leg's aim moves between planned and measured body over this [s]
 
+bool UsesConvexMpc(StanceForceSource source, const std::optional<Gait>& gait) {
+  if (source == StanceForceSource::kByGait) return gait && !IsQuasiStatic(*gait);
+  return source == StanceForceSource::kConvexMpc;
+}
+
 double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 }  // namespace
@@ -46,6 +51,12 @@ PlanExecutor::PlanExecutor(const RobotModel& robot, const Staircase& stairs, con
   mass_ = world_->RobotMass();
   base_body_ = mj_name2id(m, mjOBJ_BODY, robot.base_link().c_str());
   full_inertia_.assign(static_cast<std::size_t>(m->nv * m->nv), 0.0);
+  if (UsesConvexMpc(settings_.stance_forces, plan.gait)) {
+    ConvexMpcSettings mpc = settings_.mpc;
+    mpc.friction = settings_.world.friction;
+    mpc_ = std::make_unique<ConvexMpc>(mass_, mpc);
+    mpc_knots_.resize(static_cast<std::size_t>(mpc.knots));
+  }
   kp_ = settings_.kp_per_kg * mass_;
   kd_ = settings_.kd_per_kg * mass_;
   legs_.resize(4);
@@ -368,7 +379,9 @@ void PlanExecutor::Control(double tp) {
                             settings_.attitude_kd * (omega_plan_W - omega_W));
   const double* com = d->subtree_com + 3 * base_body_;
   std::array<Eigen::Vector3d, 4> force;
-  if (!force_qp_.Solve(feet, Eigen::Vector3d(com[0], com[1], com[2]), force_W, moment_W, force)) {
+  if (mpc_) {
+    MpcForces(tp, feet, force);
+  } else if (!force_qp_.Solve(feet, Eigen::Vector3d(com[0], com[1], com[2]), force_W, moment_W, force)) {
     ++outcome_.force_qp_failures;
   }
 
@@ -539,6 +552,7 @@ void PlanExecutor::Judge(double tp) {
 SimulationOutcome PlanExecutor::Run(const FrameCallback& on_frame) {
   const auto start = std::chrono::steady_clock::now();
   outcome_ = SimulationOutcome{};
+  mpc_solved_at_ = -1.0;
   outcome_.min_link_clearance_m = settings_.world.detect_margin;
   running_ = true;
   for (const LegState& leg : legs_) {
@@ -590,6 +604,7 @@ SimulationOutcome PlanExecutor::Run(const FrameCallback& on_frame) {
     outcome_.max_torque_ratio = std::max(outcome_.max_torque_ratio, peak.ratio);
   }
   outcome_.time_scale = settings_.time_scale;
+  outcome_.stance_forces = mpc_ ? StanceForceSource::kConvexMpc : StanceForceSource::kWrench;
   const ZmpMargin zmp = PlanZmpMargin(kinematics_.robot(), plan_, settings_.time_scale);
   outcome_.plan_zmp_margin_m = zmp.margin_m;
   outcome_.plan_zmp_t = zmp.t;

@@ -79,6 +79,10 @@ class PlanExecutor {
   double LoadShare(const LegState& leg, double tp) const;
   /// The whole robot's rotational inertia about its centre of mass, world frame [kg m^2].
   Eigen::Matrix3d CompositeInertia() const;
+  /// The stance forces from the convex MPC at plan time tp: re-solved every mpc_period of
+  /// simulated time from the measured state along the plan's next knots, held in between (a foot
+  /// that has lifted carries nothing).
+  void MpcForces(double tp, const std::array<StanceForceQp::Foot, 4>& feet, std::array<Eigen::Vector3d, 4>& force);
   /// Classifies each swing foot's external force (torque residual or contact forces) into
   /// leg.foot_impact and answers trips and scuffs.
   void DetectFootImpacts(double tp);
@@ -115,6 +119,10 @@ class PlanExecutor {
   int base_body_ = -1;
   double kp_ = 0.0, kd_ = 0.0;
   StanceForceQp force_qp_;
+  std::unique_ptr<ConvexMpc> mpc_;  // with StanceForceSource::kConvexMpc
+  std::vector<MpcKnot> mpc_knots_;  // the horizon, sized once
+  std::array<Eigen::Vector3d, 4> mpc_forces_{};  // the last solve's first knot
+  double mpc_solved_at_ = -1.0;  // simulated time of the last solve
   std::vector<double> full_inertia_;  // MuJoCo's mass matrix, nv x nv, sized once
   std::vector<bool> stair_geom_;      // per MuJoCo geom: part of the stairs
   std::vector<int> body_leg_;         // per MuJoCo body: the index in legs_ of the leg it belongs to, -1 otherwise

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "stairplan/simulation/impact_record.h"
+#include "stairplan/simulation/stance_force_source.h"
 
 namespace stairplan {
 
@@ -96,6 +97,8 @@ struct SimulationOutcome {
   double plan_zmp_t = 0.0;  ///< when the smallest ZMP margin occurs [s, plan time]
   double plan_max_acceleration = 0.0;  ///< largest horizontal body acceleration the plan asks for [m/s^2]
   int force_qp_failures = 0;       ///< control steps whose stance-force QP did not solve (forces zero then)
+  /// Where the stance forces came from: StanceForceSource::kWrench or kConvexMpc (kByGait resolved).
+  StanceForceSource stance_forces = StanceForceSource::kWrench;
   /// Largest horizontal distance a stance foot moved from where its stance began [m]: slip on the
   /// tread (rolling adds the foot radius times the shank's turn, millimetres). A foot that slides
   /// away unloads its leg and the support polygon with it.

@@ -69,6 +69,7 @@ nlohmann::json SimulationToJson(const SimulationOutcome& o) {
   j["max_torque_ratio"] = o.max_torque_ratio;
   j["time_scale"] = o.time_scale;
   j["force_qp_failures"] = o.force_qp_failures;
+  j["stance_forces"] = ToString(o.stance_forces);
   j["max_foot_slip_m"] = o.max_foot_slip_m;
   j["slipped_leg"] = o.slipped_leg;
   j["slip_t_s"] = o.slip_t;

@@ -39,6 +39,8 @@ void SimSettings::Validate() const {
   check("goal_tolerance", goal_tolerance, 1e-4, 10.0);
   check("frame_interval", frame_interval, 0.0, 100.0);
   impact.Validate();
+  mpc.Validate();
+  check("mpc_period", mpc_period, 1e-3, 0.1);
 }
 
 void SimSettings::Set(const std::string& name, double value) {
@@ -61,7 +63,16 @@ void SimSettings::Set(const std::string& name, double value) {
       {"impact.force_threshold", &impact.force_threshold}, {"impact.min_reswing_time", &impact.min_reswing_time},
       {"impact.retract_distance", &impact.retract_distance}, {"impact.hop_time", &impact.hop_time},
       {"impact.elevate_height", &impact.response.elevate_height},
-      {"impact.early_swing_phase", &impact.response.early_swing_phase}};
+      {"impact.early_swing_phase", &impact.response.early_swing_phase},
+      {"mpc.knot_dt", &mpc.knot_dt}, {"mpc.friction_use", &mpc.friction_use}, {"mpc.min_normal", &mpc.min_normal},
+      {"mpc.attitude_weight", &mpc.attitude_weight}, {"mpc.position_weight", &mpc.position_weight},
+      {"mpc.angular_velocity_weight", &mpc.angular_velocity_weight}, {"mpc.velocity_weight", &mpc.velocity_weight},
+      {"mpc.force_weight", &mpc.force_weight}, {"mpc_period", &mpc_period}};
+  if (name == "mpc.knots") {
+    if (!(value >= 2.0 && value <= 50.0) || value != std::floor(value)) throw FieldError(name, "must be an integer in [2, 50]");
+    mpc.knots = static_cast<int>(value);
+    return;
+  }
   const auto it = fields.find(name);
   if (it == fields.end()) throw FieldError(name, "no such simulation setting");
   *it->second = value;

@@ -6,9 +6,11 @@
 #include <string>
 
 #include "stairplan/kinematics/leg_ik.h"
+#include "stairplan/simulation/convex_mpc.h"
 #include "stairplan/simulation/impact_detection.h"
 #include "stairplan/simulation/mjcf_writer.h"
 #include "stairplan/simulation/stance_force_qp.h"
+#include "stairplan/simulation/stance_force_source.h"
 #include "stairplan/planning/swing_trajectory.h"
 
 namespace stairplan {
@@ -46,6 +48,13 @@ struct SimSettings {
   double load_ramp_time = 0.05;
   /// How the stance forces are distributed (friction: the world's).
   StanceForceSettings stance;
+  /// Where the stance forces come from: the convex MPC over the plan's next knots, or the
+  /// instantaneous distribution of the PD wrench (StanceForceQp).
+  StanceForceSource stance_forces = StanceForceSource::kByGait;
+  /// The convex MPC's horizon and weights (friction: the world's), with stance_forces kConvexMpc.
+  ConvexMpcSettings mpc;
+  /// Simulated time between the convex MPC's solves [s]; its first knot's forces hold between.
+  double mpc_period = 0.01;
   /// Share of the body-pose error (measured - planned) a swing leg follows so that it lands where
   /// the plan says in the world even when the body lags: 1 = fully, 0 = not at all.
   double swing_pose_feedback = 1.0;

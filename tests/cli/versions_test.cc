@@ -74,3 +74,19 @@ TEST_CASE("simulate prints a summary by default, like every command, and its JSO
   CHECK(printed.code == summary.code);
   CHECK(nlohmann::json::parse(printed.out)["status"] == written["status"]);
 }
+
+TEST_CASE("simulate --stance-forces: the crawl's wrench by default, the convex MPC on request, a bad source exit 2",
+          "[cli][simulation]") {
+  const std::string dir = MakeTempDir("simulate-stance-forces");
+  const std::string plan = SourceDir() + "/tests/fuzz/corpus/plan_json/minimal.json";
+  const StairplanRun by_gait = RunStairplan(dir, "simulate --json " + plan);
+  INFO(by_gait.err);
+  REQUIRE((by_gait.code == 0 || by_gait.code == 3));
+  CHECK(nlohmann::json::parse(by_gait.out)["stance_forces"] == "wrench");
+  const StairplanRun mpc = RunStairplan(dir, "simulate --json --stance-forces mpc " + plan);
+  REQUIRE((mpc.code == 0 || mpc.code == 3));
+  CHECK(nlohmann::json::parse(mpc.out)["stance_forces"] == "mpc");
+  const StairplanRun bad = RunStairplan(dir, "simulate --stance-forces magic " + plan);
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.err, Catch::Contains("--stance-forces"));
+}

@@ -1,0 +1,80 @@
+// The trot (GaitChoice::kTrot) executed in MuJoCo, its stance forces from the convex MPC: the
+// built-in robot up and down the default stairs in under 8 s, every landing in its step region
+// and no link but the feet on the stairs.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "stairplan/kinematics/builtin_robot.h"
+#include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/simulation/plan_executor.h"
+#include "sanitized.h"
+#include "test_paths.h"
+
+using namespace stairplan;
+
+namespace {
+
+// The trot's plan executed: success, every landing touched inside its step region, no other
+// contact, the flight (first liftoff to last touchdown) under 8 s; returns the speed along the
+// travel [m/s].
+double TrotsInMuJoCo(const RobotModel& robot, const Staircase& stairs, const std::string& what) {
+  PipelineOptions options;
+  options.gait = GaitChoice::kTrot;
+  const PipelineResult planned = RunPipeline(robot, stairs, options);
+  INFO(what << ": " << planned.plan.status_reason);
+  REQUIRE(planned.plan.status == PlanStatus::kOk);
+  REQUIRE(planned.plan.gait == Gait::kTrot);
+  const SimulationOutcome o = Simulate(robot, stairs, planned.plan);
+  INFO(ToString(o.status) << " / " << o.FirstCause() << ", roll " << o.max_roll);
+  CHECK(o.stance_forces == StanceForceSource::kConvexMpc);
+  CHECK(o.time_scale == 1.0);
+  CHECK(o.status == SimStatus::kSuccess);
+  CHECK(o.Passed());
+  CHECK(o.force_qp_failures == 0);
+  CHECK(o.landings.size() == planned.plan.footsteps.size());
+  for (const FootLanding& l : o.landings) {
+    CAPTURE(l.leg, l.t_planned);
+    CHECK(l.touched);
+    CHECK(l.in_step_region);
+  }
+  CHECK(std::abs(o.final_base_W.z() - planned.plan.body.front().z) > 0.8 * stairs.total_rise());
+  double first = planned.plan.footsteps.front().t_liftoff, last = 0.0;
+  for (const Footstep& f : planned.plan.footsteps) {
+    first = std::min(first, f.t_liftoff);
+    last = std::max(last, f.t_touchdown);
+  }
+  const double flight = last - first;
+  CHECK(flight < 8.0);
+  return std::abs(planned.plan.body.back().x - planned.plan.body.front().x) / flight;
+}
+
+Staircase TrotStairs(TravelDirection direction, int steps) {
+  StairSpec spec;
+  spec.direction = direction;
+  spec.steps = steps;
+  return Staircase(spec);
+}
+
+}  // namespace
+
+TEST_CASE("the built-in robot trots up and down the default stairs in MuJoCo, a third of a metre a second",
+          "[simulation][trot]") {
+  const int steps = testing::FullOrSanitized(StairSpec{}.steps, 3);
+  for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
+    const double speed = TrotsInMuJoCo(BuiltinRobot(), TrotStairs(direction, steps), direction == TravelDirection::kUp ? "up" : "down");
+    CHECK(speed > 0.3);
+  }
+}
+
+TEST_CASE("ANYmal C trots up the default stairs in MuJoCo", "[simulation][trot]") {
+  if (testing::SharedDir().empty()) {
+    WARN("skipped: ../shared not found");
+    return;
+  }
+  if (testing::kSanitized) return;  // the built-in robot's trot above runs under the sanitizers
+  const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath("data/robots/anymal_c.urdf"));
+  CHECK(TrotsInMuJoCo(robot, TrotStairs(TravelDirection::kUp, StairSpec{}.steps), "ANYmal C up") > 0.3);
+}
