@@ -18,6 +18,7 @@
 #include "stairplan/pipeline/plan_pipeline.h"
 #include "stairplan/planning/plan_json.h"
 #include "stairplan/planning/plan_svg.h"
+#include "stairplan/planning/plan_timeline.h"
 #include "stairplan/planning/stair_approach_json.h"
 
 namespace stairplan::cli {
@@ -148,7 +149,8 @@ void PrintSummary(const Plan& plan, const Staircase& stairs, const std::string& 
   for (const GaitRejection& g : plan.rejected_gaits) std::cout << "  not the " << ToString(g.gait) << ": " << g.reason << "\n";
   std::cout
             << "  footsteps: " << plan.footsteps.size() << " (" << in_region << " inside step regions)\n"
-            << "  duration:  " << plan.duration() << " s\n";
+            << "  duration:  " << plan.duration() << " s; flight " << FlightDuration(plan)
+            << " s from the first liftoff to the last touchdown, " << TravelSpeed(plan) << " m/s\n";
   PrintRelaxedCycles(plan.body_cycles);
   std::cout << "  wrote:     " << out << "/plan.json, " << out << "/plan.svg\n";
 }

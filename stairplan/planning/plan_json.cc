@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "stairplan/planning/json_version.h"
+#include "stairplan/planning/plan_timeline.h"
 
 namespace stairplan {
 namespace {
@@ -162,6 +163,8 @@ nlohmann::json PlanToJson(const Plan& plan, const Staircase& stairs, const Const
                          {"body_planner", ToString(plan.body_planner)},
                          {"body_cycles", BodyCyclesToJson(plan.body_cycles)},
                          {"duration_s", plan.duration()},
+                         {"flight_s", FlightDuration(plan)},
+                         {"speed_m_s", TravelSpeed(plan)},
                          {"status", ToString(plan.status)},
                          {"status_reason", plan.status_reason},
                          {"timing_us", timing},

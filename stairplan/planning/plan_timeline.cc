@@ -1,6 +1,7 @@
 #include "stairplan/planning/plan_timeline.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "stairplan/planning/swing_trajectory.h"
 
@@ -39,6 +40,23 @@ double PeakBodyAcceleration(const std::vector<BodyState>& body) {
   double peak = 0.0;
   for (std::size_t i = 1; i + 1 < body.size(); ++i) peak = std::max(peak, BodyAccelerationAt(body, i).cwiseAbs().maxCoeff());
   return peak;
+}
+
+double FlightDuration(const Plan& plan) {
+  if (plan.footsteps.empty()) return 0.0;
+  double first = plan.footsteps.front().t_liftoff, last = plan.footsteps.front().t_touchdown;
+  for (const Footstep& f : plan.footsteps) {
+    first = std::min(first, f.t_liftoff);
+    last = std::max(last, f.t_touchdown);
+  }
+  return last - first;
+}
+
+double TravelSpeed(const Plan& plan) {
+  const double flight = FlightDuration(plan);
+  if (plan.body.empty() || !(flight > 0.0)) return 0.0;
+  const BodyState &a = plan.body.front(), &b = plan.body.back();
+  return std::hypot(b.x - a.x, b.y - a.y) / flight;
 }
 
 }  // namespace stairplan

@@ -28,4 +28,11 @@ Eigen::Vector3d BodyAccelerationAt(const std::vector<BodyState>& body, std::size
 /// the plan must produce; 0 for fewer than three samples.
 double PeakBodyAcceleration(const std::vector<BodyState>& body);
 
+/// From the first liftoff to the last touchdown [s]; 0 without footsteps.
+double FlightDuration(const Plan& plan);
+
+/// The body's advance along the travel (horizontal, from its first sample to its last) over
+/// FlightDuration() [m/s]; 0 without footsteps or body.
+double TravelSpeed(const Plan& plan);
+
 }  // namespace stairplan

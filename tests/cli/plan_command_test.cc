@@ -242,6 +242,24 @@ TEST_CASE("plan --gait auto walks up the default stairs and crawls down them, sa
   CHECK_THAT(down.run.out, Catch::Contains("not the walk: " + reason));
 }
 
+TEST_CASE("plan --gait trot reports its flight and speed, in the summary and plan.json", "[cli][plan]") {
+  const std::string dir = MakeTempDir("plan-trot");
+  const Run run = Plan("--gait trot --out " + dir + "/trot", dir);
+  INFO(run.out << run.err);
+  // Planned, and rejected by the dynamic check (README: the trot's verdict): exit 3.
+  REQUIRE(run.code == 3);
+  const Planned trot{run, json::parse(ReadFile(dir + "/trot/plan.json"))};
+  CHECK(trot.plan["gait"] == "trot");
+  CHECK(trot.plan["status"] == "ok");
+  // 18 pair swings of 0.25 s, 0.15 s apart: the first liftoff at 0.15 s, the last touchdown at 7.2 s.
+  CHECK(trot.plan["flight_s"].get<double>() == Approx(18 * 0.4 - 0.15).margin(1e-9));
+  const double speed = trot.plan["speed_m_s"];
+  CHECK(speed > 0.3);
+  CHECK(speed < 0.4);
+  CHECK_THAT(trot.run.out, Catch::Contains("flight 7.05 s from the first liftoff to the last touchdown"));
+  CHECK_THAT(trot.run.out, Catch::Contains(" m/s"));
+}
+
 TEST_CASE("plan rejects bad input with exit 2, names it, and writes nothing", "[cli][plan]") {
   const std::string dir = MakeTempDir("plan-bad");
   const auto expect_bad = [&](const std::string& args, const std::string& named) {

@@ -9,6 +9,7 @@
 #include "stairplan/geometry/field_error.h"
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/plan_timeline.h"
 #include "stairplan/planning/validation/traversal_validator.h"
 
 using namespace stairplan;
@@ -25,13 +26,6 @@ Staircase DefaultStairs(TravelDirection direction) {
   StairSpec spec;
   spec.direction = direction;
   return Staircase(spec);
-}
-
-// First liftoff to last touchdown [s].
-double Flight(const Plan& plan) {
-  double first = plan.footsteps.front().t_liftoff;
-  for (const Footstep& f : plan.footsteps) first = std::min(first, f.t_liftoff);
-  return plan.footsteps.back().t_touchdown - first;
 }
 
 // The four-feet phases: each gap between a touchdown and the next swing's liftoff.
@@ -76,7 +70,7 @@ TEST_CASE("walk: the crawl's footholds with 0.2 s four-feet phases, a third fast
   for (const double gap : FourFeetPhases(walk.plan)) CHECK(gap == Approx(shift).margin(1e-9));
   for (const double gap : FourFeetPhases(crawl.plan)) CHECK(gap == Approx(CrawlSettings{}.shift_duration).margin(1e-9));
   // 35 four-feet phases 0.4 s shorter: 23.2 s against 37.2 s.
-  CHECK(Flight(walk.plan) < 0.65 * Flight(crawl.plan));
+  CHECK(FlightDuration(walk.plan) < 0.65 * FlightDuration(crawl.plan));
   // The walk's verdict includes the dynamic check, and it found every wrench within the legs' reach;
   // the crawl's only reports it.
   CHECK(walk.validation.dynamics.mode == DynamicsCheckMode::kJudge);

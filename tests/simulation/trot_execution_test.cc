@@ -9,6 +9,7 @@
 
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/pipeline/plan_pipeline.h"
+#include "stairplan/planning/plan_timeline.h"
 #include "stairplan/simulation/plan_executor.h"
 #include "sanitized.h"
 #include "test_paths.h"
@@ -41,14 +42,8 @@ double TrotsInMuJoCo(const RobotModel& robot, const Staircase& stairs, const std
     CHECK(l.in_step_region);
   }
   CHECK(std::abs(o.final_base_W.z() - planned.plan.body.front().z) > 0.8 * stairs.total_rise());
-  double first = planned.plan.footsteps.front().t_liftoff, last = 0.0;
-  for (const Footstep& f : planned.plan.footsteps) {
-    first = std::min(first, f.t_liftoff);
-    last = std::max(last, f.t_touchdown);
-  }
-  const double flight = last - first;
-  CHECK(flight < 8.0);
-  return std::abs(planned.plan.body.back().x - planned.plan.body.front().x) / flight;
+  CHECK(FlightDuration(planned.plan) < 8.0);
+  return TravelSpeed(planned.plan);
 }
 
 Staircase TrotStairs(TravelDirection direction, int steps) {
