@@ -62,7 +62,8 @@ nlohmann::json ValidationToJson(const ValidationReport& report) {
   nlohmann::json dynamics = {{"mode", ToString(d.mode)}, {"torque_limits_checked", d.torque_limits_checked},
                              {"body_inertia_known", d.body_inertia_known}, {"friction", d.friction},
                              {"tolerance_n", d.tolerance_n}, {"max_residual_n", finite(d.max_residual_n)},
-                             {"max_residual_t", d.max_residual_t}, {"failed_instants", d.failed_instants}};
+                             {"max_residual_t", d.max_residual_t}, {"failed_instants", d.failed_instants},
+                             {"max_line_tilt_rad", d.max_line_tilt_rad}, {"max_line_tilt_t", d.max_line_tilt_t}};
   if (d.failed_instants > 0) {
     dynamics["first_failure"] = {{"t", d.first_failure_t}, {"kind", ToString(d.first_failure_kind)},
                                  {"leg", ToString(d.first_failure_leg)}};

@@ -12,6 +12,7 @@
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/pipeline/plan_pipeline.h"
 #include "stairplan/planning/plan_timeline.h"
+#include "stairplan/planning/validation/traversal_validator.h"
 
 using namespace stairplan;
 
@@ -128,4 +129,36 @@ TEST_CASE("trot: other footstep planners and bad durations are refused, naming t
   options.trot_shift_duration = std::nan("");
   CHECK_THROWS_WITH(RunPipeline(BuiltinRobot(), stairs, options), Catch::Contains("trot_shift_duration"));
   CHECK(ParseGaitChoice("trot") == GaitChoice::kTrot);
+}
+
+TEST_CASE("trot: on two feet the validator takes the moment about their line out of the wrench and judges the tilt "
+          "it would cause",
+          "[pipeline][trot][validation]") {
+  // Down the default stairs the trot's body keeps its tilt under 0.03 rad in every two-foot phase,
+  // and every other wrench is within the feet's reach: it validates.
+  const PipelineResult down = PlanTrotOrCrawl(TravelDirection::kDown, GaitChoice::kTrot);
+  REQUIRE(down.plan.status == PlanStatus::kOk);
+  INFO((down.validation.violations.empty() ? std::string() : down.validation.violations.front().detail));
+  CHECK(down.validation.ok);
+  CHECK(down.validation.dynamics.max_line_tilt_rad > 0.0);
+  CHECK(down.validation.dynamics.max_line_tilt_rad < PipelineOptions{}.validation.dynamics.max_line_tilt);
+
+  // The same body 2 cm to the left: every diagonal's line has the COM beside it, the body would
+  // topple about it, and the phase fails, naming the pair. The four-feet instants stay balanced.
+  StairSpec spec;
+  spec.direction = TravelDirection::kDown;
+  const Staircase stairs(spec);
+  const RobotModel robot = BuiltinRobot();
+  const ConstrainedMap map = BuildPipelineMap(robot, stairs, PipelineOptions{});
+  Plan shifted = down.plan;
+  for (BodyState& b : shifted.body) b.y += 0.02;
+  TraversalValidator validator(robot, stairs, map);
+  const ValidationReport report = validator.Validate(shifted);
+  CHECK_FALSE(report.ok);
+  const auto tilt = std::find_if(report.violations.begin(), report.violations.end(),
+                                 [](const Violation& v) { return v.kind == ViolationKind::kSupportLineTilt; });
+  REQUIRE(tilt != report.violations.end());
+  CHECK(tilt->value > PipelineOptions{}.validation.dynamics.max_line_tilt);
+  CHECK_THAT(tilt->detail, Catch::Contains("LF+RH") || Catch::Contains("RF+LH"));
+  CHECK(report.dynamics.max_line_tilt_rad >= tilt->value);
 }

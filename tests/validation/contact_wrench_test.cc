@@ -287,3 +287,40 @@ TEST_CASE("the default plan is dynamically feasible and planted infeasible versi
     CHECK(off.dynamics.max_residual_n == 0.0);
   }
 }
+
+TEST_CASE("two feet: the moment about their line leaves the wrench, with the body's inertia and toppling about it",
+          "[dynamics]") {
+  const RobotModel robot = BuiltinRobot();
+  const RobotKinematics kinematics(robot);
+  RobotWorkspace ws(kinematics);
+  ContactWrenchCheck check(kinematics, kMass);
+  // LF and RH stand on the ground; the COM 0.4 m above the middle of their line, `offset` to the
+  // left of it (perpendicular), at rest.
+  WrenchInstant instant;
+  instant.body.position_W = {0.0, 0.0, 0.4};
+  instant.feet_W = {Eigen::Vector3d(0.3, 0.15, 0), Eigen::Vector3d(0.3, -0.15, 0), Eigen::Vector3d(-0.3, 0.15, 0),
+                    Eigen::Vector3d(-0.3, -0.15, 0)};
+  instant.normals_W.fill(Eigen::Vector3d::UnitZ());
+  instant.stance = {true, false, false, true};
+  for (std::size_t l = 0; l < 4; ++l) instant.q[l] = kinematics.leg(static_cast<int>(l)).nominal();
+  const Eigen::Vector3d along = (instant.feet_W[3] - instant.feet_W[0]).normalized();
+  const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(along);
+  for (const double offset : {0.0, 0.02}) {
+    CAPTURE(offset);
+    instant.com_W = Eigen::Vector3d(0, 0, 0.4) + offset * across;
+    const WrenchResult& r = check.Check(instant, ws);
+    const LineSupport& line = check.line();
+    REQUIRE(line.active);
+    CHECK(line.pair == (1 | 8));
+    // The weight's moment about the line, m g times the COM's distance from it, is the line's;
+    // what is left the two feet carry exactly.
+    CHECK(std::abs(line.moment) == Approx(kMass * kG * offset).margin(1e-9));
+    CHECK(r.residual < 1e-3);
+    // Toppling about the line: m g h per radian; the inertia at least m h^2.
+    CHECK(line.stiffness == Approx(kMass * kG * 0.4).epsilon(0.01));
+    CHECK(line.inertia >= kMass * 0.4 * 0.4);
+  }
+  instant.stance = {true, true, true, false};
+  check.Check(instant, ws);
+  CHECK_FALSE(check.line().active);
+}

@@ -97,8 +97,38 @@ const WrenchResult& ContactWrenchCheck::Check(const WrenchInstant& instant, Robo
   WrenchDemand demand;
   demand.com_W = instant.com_W;
   demand.force_W = mass_ * (instant.rates.linear_W - Eigen::Vector3d(0.0, 0.0, kGravityZ));
-  demand.moment_W = rotation * inertia_B_ * rotation.transpose() * instant.rates.angular_W;
+  const Eigen::Matrix3d inertia_W = rotation * inertia_B_ * rotation.transpose();
+  demand.moment_W = inertia_W * instant.rates.angular_W;
+  SplitLineMoment(instant, inertia_W, demand);
   return qp_.Solve(feet_, demand);
+}
+
+void ContactWrenchCheck::SplitLineMoment(const WrenchInstant& instant, const Eigen::Matrix3d& inertia_W,
+                                         WrenchDemand& demand) {
+  line_ = LineSupport{};
+  std::array<int, 2> legs{};
+  int standing = 0;
+  for (int l = 0; l < 4; ++l) {
+    if (!instant.stance[static_cast<std::size_t>(l)]) continue;
+    if (standing < 2) legs[static_cast<std::size_t>(standing)] = l;
+    ++standing;
+  }
+  if (standing != 2) return;
+  const Eigen::Vector3d a = instant.feet_W[static_cast<std::size_t>(legs[0])];
+  const Eigen::Vector3d along = instant.feet_W[static_cast<std::size_t>(legs[1])] - a;
+  if (!(along.norm() > 1e-6)) return;
+  const Eigen::Vector3d u = along.normalized(), r = instant.com_W - a;
+  // The feet give the force and any moment about a point of the line but the one along it.
+  const double moment = u.dot(demand.moment_W + r.cross(demand.force_W));
+  demand.moment_W -= moment * u;
+  const Eigen::Vector3d off_line = r - r.dot(u) * u;
+  line_.active = true;
+  line_.pair = (1 << legs[0]) | (1 << legs[1]);
+  line_.moment = moment;
+  line_.inertia = u.dot(inertia_W * u) + mass_ * off_line.squaredNorm();
+  // Tilting by theta about u moves the COM by theta u x r; the load (-force_W, gravity and the
+  // inertial force) then turns the body further by theta u . ((u x r) x load).
+  line_.stiffness = u.dot(u.cross(r).cross(-demand.force_W));
 }
 
 }  // namespace stairplan

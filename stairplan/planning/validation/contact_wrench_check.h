@@ -32,6 +32,18 @@ struct WrenchInstant {
   std::array<Eigen::Vector3d, 4> q{};            ///< the legs' joint angles [rad]
 };
 
+/// Two feet standing at an instant: the moment about the line between them that the instant's
+/// wrench asks of them and no force there can give (ContactWrenchSettings::max_line_tilt), and
+/// how the body would tip about that line.
+struct LineSupport {
+  bool active = false;  ///< exactly two feet stand
+  int pair = 0;         ///< which two: a bit per leg, LF 1, RF 2, LH 4, RH 8
+  double moment = 0.0;  ///< the moment about the line the feet cannot give [N m]
+  double inertia = 0.0;  ///< the robot's inertia about the line [kg m^2]
+  /// The gravito-inertial moment about the line per radian of tilt (positive: it topples) [N m/rad].
+  double stiffness = 0.0;
+};
+
 /// Built once per robot; Check() per instant. Not thread-safe (owns the QP and its workspace).
 class ContactWrenchCheck {
  public:
@@ -48,6 +60,9 @@ class ContactWrenchCheck {
   bool body_inertia_known() const { return body_inertia_known_; }
   /// The residual above which an instant fails [N].
   double tolerance() const { return qp_.tolerance(); }
+  /// The last Check()'s two-foot support (inactive with more or fewer feet); its moment about the
+  /// line is not part of the QP's wrench.
+  const LineSupport& line() const { return line_; }
 
  private:
   const RobotKinematics& kinematics_;
@@ -58,6 +73,9 @@ class ContactWrenchCheck {
   std::array<Eigen::Vector3d, 4> effort_{};
   ContactWrenchQp qp_;
   std::array<WrenchFoot, 4> feet_{};
+  LineSupport line_;
+  // Takes the moment about the line of two standing feet out of `demand` into line_.
+  void SplitLineMoment(const WrenchInstant& instant, const Eigen::Matrix3d& inertia_W, WrenchDemand& demand);
 };
 
 }  // namespace stairplan

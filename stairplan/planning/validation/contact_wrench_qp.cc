@@ -34,6 +34,7 @@ void ContactWrenchSettings::Validate() const {
   RequireInRange("friction", friction, 0.0, 10.0);
   if (friction_faces < 4 || friction_faces > 64) throw FieldError("friction_faces", "must be in [4, 64]");
   RequireInRange("residual_tolerance", residual_tolerance, 1e-9, 1.0);
+  RequireInRange("max_line_tilt", max_line_tilt, 0.0, 1.0);
 }
 
 const char* ToString(DynamicsCheckMode mode) {

@@ -45,6 +45,13 @@ struct ContactWrenchSettings {
   /// The residual above which an instant fails, as a share of the robot's weight. The QP's own
   /// error (a 1e-7 force regularisation) is orders of magnitude below it.
   double residual_tolerance = 1e-3;
+  /// Where two feet stand (a trot's diagonal), no force at them has a moment about the line
+  /// between them, and a plan's moment about it within a hair of zero would be a plan no robot
+  /// follows exactly: the check takes that moment out of the instant's wrench and integrates what
+  /// it would do, the body tipping about the line (a pendulum that topples away from it), over
+  /// each two-foot phase from rest. The phase fails beyond this tilt [rad]: 0.03 rad moves the
+  /// swinging feet, about 0.3 m from the line, by less than the validator's 1 cm clearance margin.
+  double max_line_tilt = 0.03;
   /// Throws std::invalid_argument naming the field.
   void Validate() const;
 };

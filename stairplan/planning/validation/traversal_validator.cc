@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <utility>
@@ -89,6 +90,7 @@ const char* ToString(ViolationKind kind) {
     case ViolationKind::kFrictionCone: return "friction_cone";
     case ViolationKind::kTorqueLimit: return "torque_limit";
     case ViolationKind::kWrenchUnattainable: return "wrench_unattainable";
+    case ViolationKind::kSupportLineTilt: return "support_line_tilt";
   }
   return "unknown";
 }
@@ -117,7 +119,8 @@ CheckFamily FamilyOf(ViolationKind kind) {
     case ViolationKind::kBodyAcceleration: return CheckFamily::kBodyAcceleration;
     case ViolationKind::kFrictionCone:
     case ViolationKind::kTorqueLimit:
-    case ViolationKind::kWrenchUnattainable: return CheckFamily::kDynamics;
+    case ViolationKind::kWrenchUnattainable:
+    case ViolationKind::kSupportLineTilt: return CheckFamily::kDynamics;
   }
   return CheckFamily::kDynamics;
 }
@@ -207,6 +210,7 @@ ValidationReport TraversalValidator::Validate(const Plan& plan) {
   report.dynamics.friction = settings_.dynamics.friction;
   report.dynamics.tolerance_n = wrench_->tolerance();
   CheckTouchdowns(plan, report);
+  line_pair_ = 0;
   if (QuasiStatic(plan.gait)) CheckBodyAcceleration(plan, report);
   const std::set<double> times = ReplayInstants(plan, settings_.time_step);
   for (double t : times) CheckInstant(plan, t, report);
@@ -327,6 +331,7 @@ void TraversalValidator::CheckDynamics(const Plan& plan, double t, const StanceR
   }
   instant_.com_W = com_->Com(instant_.body, instant_.q, checker_->workspace());
   const WrenchResult& w = wrench_->Check(instant_, checker_->workspace());
+  CheckLineTilt(plan, t, report);
   DynamicsReport& summary = report.dynamics;
   if (w.residual > summary.max_residual_n) {
     summary.max_residual_n = w.residual;
@@ -344,6 +349,38 @@ void TraversalValidator::CheckDynamics(const Plan& plan, double t, const StanceR
   std::string detail = "friction " + std::to_string(settings_.dynamics.friction);
   if (!w.solved) detail += ", the QP did not solve";
   Record({t, leg, kind, w.residual, detail, w.leg, w.residual, t}, report);
+}
+
+void TraversalValidator::CheckLineTilt(const Plan& plan, double t, ValidationReport& report) {
+  const LineSupport& line = wrench_->line();
+  // A new phase (or a gap in the replay) starts from rest: the four-feet phase before it is the
+  // executor's to level the body in.
+  const bool continues = line.active && line.pair == line_pair_ && t - tilt_t_ <= 2.0 * settings_.time_step + 1e-9;
+  if (!continues) tilt_ = tilt_rate_ = 0.0;
+  line_pair_ = line.active ? line.pair : 0;
+  if (!line.active || !(line.inertia > 0.0)) return;
+  if (continues) {
+    // The moment the feet cannot give turns the body the other way; the tilt topples it further.
+    const double dt = t - tilt_t_;
+    tilt_rate_ += dt * (-line.moment + line.stiffness * tilt_) / line.inertia;
+    tilt_ += dt * tilt_rate_;
+  }
+  tilt_t_ = t;
+  DynamicsReport& summary = report.dynamics;
+  const double tilt = std::abs(tilt_);
+  if (tilt > summary.max_line_tilt_rad) {
+    summary.max_line_tilt_rad = tilt;
+    summary.max_line_tilt_t = t;
+  }
+  if (tilt <= settings_.dynamics.max_line_tilt || dynamics_mode_ != DynamicsCheckMode::kJudge) return;
+  std::string legs;
+  for (std::size_t l = 0; l < plan.legs.size() && l < 4; ++l) {
+    if (line.pair & (1 << l)) legs += (legs.empty() ? "" : "+") + plan.legs[l];
+  }
+  char detail[96];
+  std::snprintf(detail, sizeof(detail), "tilt %.4f rad about %s's line, tolerance %.4f", tilt, legs.c_str(),
+                settings_.dynamics.max_line_tilt);
+  Record({t, "body", ViolationKind::kSupportLineTilt, tilt, detail, LegId::kNone, tilt, t}, report);
 }
 
 }  // namespace stairplan

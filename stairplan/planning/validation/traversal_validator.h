@@ -36,6 +36,9 @@ enum class ViolationKind {
   kFrictionCone,           ///< dynamics: a stance foot's friction pyramid binds (value: wrench residual [N])
   kTorqueLimit,            ///< dynamics: a stance leg's effort limit binds (value: wrench residual [N])
   kWrenchUnattainable,     ///< dynamics: the feet would have to pull, or none stands (value: wrench residual [N])
+  /// dynamics: on two feet, the moment about the line between them that they cannot give tips the
+  /// body beyond ContactWrenchSettings::max_line_tilt within the phase (value: the tilt [rad])
+  kSupportLineTilt,
 };
 /// Returns the kind as plan.json writes it, e.g. "stair_collision".
 const char* ToString(ViolationKind kind);
@@ -112,6 +115,9 @@ struct DynamicsReport {
   double first_failure_t = 0.0;        ///< the first of them [s]
   ViolationKind first_failure_kind = ViolationKind::kWrenchUnattainable;  ///< what bound there
   LegId first_failure_leg = LegId::kNone;  ///< which leg bound there
+  /// The largest tilt about a two-foot support line over the plan's two-foot phases [rad], and when.
+  double max_line_tilt_rad = 0.0;
+  double max_line_tilt_t = 0.0;  ///< [s]
 };
 
 /// The validator's verdict on a plan.
@@ -151,6 +157,9 @@ class TraversalValidator {
   // The dynamic check at one instant, from the stance result's joint angles.
   void CheckDynamics(const Plan& plan, double t, const StanceResult& stance_result, const std::array<Eigen::Vector3d, 4>& contacts,
                      const std::array<bool, 4>& stance, ValidationReport& report);
+  // The tilt about the two-foot support line at t (wrench_'s last check), integrated from rest
+  // since the phase began; a violation beyond max_line_tilt.
+  void CheckLineTilt(const Plan& plan, double t, ValidationReport& report);
 
   const Staircase& stairs_;
   const ConstrainedMap& map_;
@@ -162,6 +171,9 @@ class TraversalValidator {
   // The dynamic check's mode for the plan being validated (settings' mode, judged for the gaits
   // that need it).
   DynamicsCheckMode dynamics_mode_ = DynamicsCheckMode::kReport;
+  // The two-foot phase being integrated: its pair (0: none), the tilt and its rate, the last instant.
+  int line_pair_ = 0;
+  double tilt_ = 0.0, tilt_rate_ = 0.0, tilt_t_ = 0.0;
 };
 
 }  // namespace stairplan
