@@ -66,14 +66,7 @@ void FillCycle(int k, ConvexMpc& mpc, std::vector<MpcKnot>& knots) {
   mpc.Fill(state, knots.data(), MpcMotors{});
 }
 
-SolverFactory Factory(const std::string& name) {
-  const double limit_s = Smoke() ? 1.0 : 10.0;
-  return [name, limit_s] {
-    std::unique_ptr<Solver> solver = MakeSolver(name, limit_s);
-    UseBenchmarkAccuracy(solver.get());
-    return solver;
-  };
-}
+SolverFactory Factory(const std::string& name) { return BenchmarkSolverFactory(name, Smoke() ? 1.0 : 10.0); }
 
 struct Row {
   double p50_us = 0, p99_us = 0, iterations = 0;

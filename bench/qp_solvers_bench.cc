@@ -41,15 +41,8 @@ std::vector<std::string> Solvers() {
 }
 
 // Every solve has `qp bench`'s default limit (a shorter one in the smoke run): CLP's primal simplex
-// can cycle on the body QP, which is a failed sample, not a benchmark that never ends.
-SolverFactory Factory(const std::string& name) {
-  const double limit_s = Smoke() ? 1.0 : 10.0;
-  return [name, limit_s] {
-    std::unique_ptr<Solver> solver = MakeSolver(name, limit_s);
-    UseBenchmarkAccuracy(solver.get());
-    return solver;
-  };
-}
+// can cycle on the body QP.
+SolverFactory Factory(const std::string& name) { return BenchmarkSolverFactory(name, Smoke() ? 1.0 : 10.0); }
 
 std::string SharedDir() { return STAIRPLAN_SHARED_DIR; }
 

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "stairplan/optim/active_set_qp_solver.h"
+#include "stairplan/solvers/make_solver.h"
 
 namespace stairplan::optim {
 namespace {
@@ -79,6 +80,14 @@ void UseBenchmarkAccuracy(Solver* solver) {
   if (auto* ours = dynamic_cast<ActiveSetQpSolver*>(solver)) {
     ours->settings().refinement_steps = ActiveSetQpSettings::kHighAccuracyRefinementSteps;
   }
+}
+
+SolverFactory BenchmarkSolverFactory(const std::string& name, double time_limit_s) {
+  return [name, time_limit_s] {
+    std::unique_ptr<Solver> solver = MakeSolver(name, time_limit_s);
+    UseBenchmarkAccuracy(solver.get());
+    return solver;
+  };
 }
 
 QpSample MeasureCold(const SolverFactory& make, const Program& program, const QpMeasureSettings& settings) {

@@ -60,6 +60,10 @@ struct QpMeasureSettings {
 /// residuals; the references keep their defaults. Its cost is in the measured times.
 void UseBenchmarkAccuracy(Solver* solver);
 
+/// Makes solver `name` (MakeSolver()) with `time_limit_s` per solve and the benchmark accuracy: a
+/// benchmark's factory. A solver that cycles is a failed sample, not a benchmark that never ends.
+SolverFactory BenchmarkSolverFactory(const std::string& name, double time_limit_s);
+
 /// Cold: each repeat solves `program` with a fresh solver from `make` (no guess beyond the
 /// program's own). The outcome is the first solve's; the time is the median of the repeats.
 QpSample MeasureCold(const SolverFactory& make, const Program& program, const QpMeasureSettings& settings);

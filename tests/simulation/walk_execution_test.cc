@@ -2,13 +2,13 @@
 // check has passed its quicker weight shifts, and physics carries the robot through them.
 #include <catch2/catch.hpp>
 
-#include <cmath>
 #include <string>
 #include <vector>
 
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/pipeline/plan_pipeline.h"
 #include "stairplan/simulation/plan_executor.h"
+#include "executed_cleanly.h"
 #include "sanitized.h"
 #include "test_paths.h"
 
@@ -25,18 +25,7 @@ void WalksInMuJoCo(const RobotModel& robot, const Staircase& stairs, const std::
   INFO(what << ": " << planned.plan.status_reason);
   REQUIRE(planned.validation.ok);
   REQUIRE(planned.plan.gait == Gait::kWalk);
-  const SimulationOutcome o = Simulate(robot, stairs, planned.plan);
-  INFO(ToString(o.status) << " / " << o.FirstCause() << ", roll " << o.max_roll);
-  CHECK(o.time_scale == 1.0);
-  CHECK(o.status == SimStatus::kSuccess);
-  CHECK(o.Passed());
-  CHECK(o.landings.size() == planned.plan.footsteps.size());
-  for (const FootLanding& l : o.landings) {
-    CAPTURE(l.leg, l.t_planned);
-    CHECK(l.touched);
-    CHECK(l.in_step_region);
-  }
-  CHECK(std::abs(o.final_base_W.z() - planned.plan.body.front().z) > 0.8 * stairs.total_rise());
+  testing::CheckExecutedCleanly(Simulate(robot, stairs, planned.plan), planned.plan, stairs);
 }
 
 Staircase DefaultStairs(TravelDirection direction, int steps) {
