@@ -73,7 +73,7 @@ void AddOptions(CLI::App& app, PlanOptions& o) {
                  "polygon (default); walk: the crawl's footholds and swings with 0.2 s four-feet phases, about 40 % "
                  "faster, judged by the validator's dynamic check; trot: the same footholds, the diagonal pairs "
                  "swinging together for 0.25 s with 0.15 s four-feet phases, the body's ZMP on the standing diagonal, "
-                 "judged by the dynamic check; auto: the walk where it validates, else the crawl (--planner crawl only)");
+                 "judged by the dynamic check; auto: the fastest of the trot, the walk and the crawl whose plan validates (--planner crawl only)");
   app.add_option("--crawl-sequence", o.crawl_sequence,
                  "Order of the crawl's swings along the travel: lateral (each side's trailing then leading leg; "
                  "default; where no body is found, leading-first is tried too), leading-first (each side's leading "

@@ -314,7 +314,7 @@ int RunSweepCommand(const std::vector<std::string>& args) {
   app.add_option("--steps", o.steps, "Step count axis A:B:N or a value (default 7)");
   app.add_option("--direction", o.directions, "up, down or up,down (default up)");
   app.add_option("--facing", o.facing, "forward or backward (default forward)");
-  app.add_option("--gait", o.gait, "crawl (default), walk, trot, or auto: the walk where it validates, else the crawl (as plan's)");
+  app.add_option("--gait", o.gait, "crawl (default), walk, trot, or auto: the fastest gait that validates (as plan's)");
   app.add_option("--robot", o.robot, "Robot URDF (default: the built-in stairbot)");
   app.add_option("--robots", o.robots,
                  "An atlas: comma-separated URDFs ('builtin' for stairbot), each swept into --out DIR: "

@@ -228,8 +228,8 @@ stairs:  None (7 steps, rise 0.17, run 0.27), a Stairs, a dict of stairs YAML ke
          path, or a Perception (stairplan.perceive) to plan on its map.
 options: the CLI's flags as keywords -- steps, rise, run, nosing, width, direction ('up' or
          'down') override the stairs' fields; facing ('forward' or 'backward'), planner
-         ('crawl' or 'step'), gait ('crawl', the default, 'walk', 'trot' or 'auto': the walk
-         where it validates, else the crawl), crawl_sequence ('lateral', 'leading-first' or 'pairs'), body ('qp', the default, or
+         ('crawl' or 'step'), gait ('crawl', the default, 'walk', 'trot' or 'auto': the
+         fastest of the trot, the walk and the crawl whose plan validates), crawl_sequence ('lateral', 'leading-first' or 'pairs'), body ('qp', the default, or
          'path', the quasi-static baseline), horizon (knots, implies body='qp'), nlp
          ('ipopt' or 'nlopt', implies body='qp'), validate (True), validation_time_step (0.02 s),
          start ((x, y, yaw): the robot's pose, where stair mode is judged; in the cloud's world for

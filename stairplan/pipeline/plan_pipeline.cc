@@ -286,7 +286,8 @@ PipelineResult RunGait(const RobotKinematics& kinematics, const Staircase& stair
 
 // RunPipelineOnMap with the kinematics built once for the whole run: the map's robot regions and
 // the alignment stance use the same ones. `options` come resolved by ForFootstepSource. Auto
-// plans the walk, and the crawl where the validator rejects the walk's plan (or there is none).
+// plans the trot, the walk where the validator rejects the trot's plan (or there is none), and
+// the crawl where it rejects the walk's too.
 PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stairs, ConstrainedMap map,
                         PipelineOptions options) {
   RequireInRange("descent_shift_duration", options.descent_shift_duration, 0.0, 5.0);
@@ -297,15 +298,27 @@ PipelineResult RunOnMap(const RobotKinematics& kinematics, const Staircase& stai
   RequirePlannableGait(options.gait, options.footsteps);
   if (options.gait == GaitChoice::kAuto && !options.validate) options.gait = GaitChoice::kCrawl;
   if (options.gait != GaitChoice::kAuto) return RunGait(kinematics, stairs, std::move(map), options);
-  const auto t_walk = std::chrono::steady_clock::now();
-  options.gait = GaitChoice::kWalk;
-  PipelineResult walk = RunGait(kinematics, stairs, map, options);
-  if (walk.plan.status == PlanStatus::kOk && walk.validated && walk.validation.ok) return walk;
-  const double walk_us = MicrosSince(t_walk);
+  // The fastest gait whose plan validates: the trot, the walk, else the crawl.
+  std::vector<GaitRejection> rejected;
+  std::vector<std::pair<std::string, double>> rejected_us;
+  for (const auto& [choice, gait] : {std::pair{GaitChoice::kTrot, Gait::kTrot}, std::pair{GaitChoice::kWalk, Gait::kWalk}}) {
+    const auto t_gait = std::chrono::steady_clock::now();
+    options.gait = choice;
+    PipelineResult result = RunGait(kinematics, stairs, map, options);
+    const bool taken = result.plan.status == PlanStatus::kOk && result.validated && result.validation.ok;
+    if (!taken) {
+      rejected.push_back({gait, RejectionReason(result)});
+      rejected_us.emplace_back(std::string(ToString(gait)) + "_rejected", MicrosSince(t_gait));
+      continue;
+    }
+    result.plan.rejected_gaits = rejected;
+    result.plan.timing_us.insert(result.plan.timing_us.begin(), rejected_us.begin(), rejected_us.end());
+    return result;
+  }
   options.gait = GaitChoice::kCrawl;
   PipelineResult crawl = RunGait(kinematics, stairs, std::move(map), options);
-  crawl.plan.rejected_gaits.push_back({Gait::kWalk, RejectionReason(walk)});
-  crawl.plan.timing_us.insert(crawl.plan.timing_us.begin(), {"walk_rejected", walk_us});
+  crawl.plan.rejected_gaits = rejected;
+  crawl.plan.timing_us.insert(crawl.plan.timing_us.begin(), rejected_us.begin(), rejected_us.end());
   return crawl;
 }
 

@@ -58,8 +58,9 @@ enum class GaitChoice {
   /// trot_swing_duration with trot_shift_duration of four feet down between them; the body
   /// balances its pendulum's ZMP on the standing diagonal and the dynamic check judges it.
   kTrot,
-  /// The walk where its plan validates, else the crawl (Plan::rejected_gaits says why not the
-  /// walk). Without validation (PipelineOptions::validate off) nothing can judge the walk: the crawl.
+  /// The fastest gait whose plan validates: the trot, else the walk, else the crawl
+  /// (Plan::rejected_gaits says why not the faster ones). Without validation
+  /// (PipelineOptions::validate off) nothing can judge the faster gaits: the crawl.
   kAuto,
 };
 

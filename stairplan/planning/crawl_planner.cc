@@ -37,16 +37,16 @@ std::array<const char*, 4> SwingOrder(CrawlSequence sequence, Facing facing) {
 // Swing slots per cycle: four one leg at a time, two when the diagonal pairs swing together.
 int SlotsPerCycle(const CrawlSettings& settings) { return settings.diagonal_pairs ? 2 : 4; }
 
-// The slot of the swing `order` puts at `slot`. Trotting, each leg of the order's first pair of
-// sides swings with the other side's leg of the other end (the diagonal), in the slot of the
-// earlier of the two: the trailing right leg with the leading left one, then the others.
+// The slot in its cycle of the swing `order` puts at `slot`: that slot, one leg at a time; trotting,
+// the first slot for the legs of order[0]'s diagonal (RH and LF, or RF and LH) and the second for
+// the other diagonal.
 double SlotOf(const CrawlSettings& settings, const std::array<const char*, 4>& order, std::size_t slot) {
   if (!settings.diagonal_pairs) return static_cast<double>(slot);
-  const auto diagonal_of = [](const char* leg) {
+  const auto on_rh_lf = [](const char* leg) {
     const std::string name(leg);
     return name == "RH" || name == "LF";
   };
-  return diagonal_of(order[slot]) == diagonal_of(order[0]) ? 0.0 : 1.0;
+  return on_rh_lf(order[slot]) == on_rh_lf(order[0]) ? 0.0 : 1.0;
 }
 
 double MeanRun(const StairSpec& spec) {

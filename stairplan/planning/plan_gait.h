@@ -15,7 +15,9 @@ namespace stairplan {
 /// (stairplan/planning/step/paper_crawl.h). kWalk is a lateral-sequence walk: the crawl's footholds
 /// and swing order with brief four-feet phases between the swings (PipelineOptions::
 /// walk_shift_duration), about 40 % faster; its body still leans over each support triangle, and
-/// the validator's dynamic check judges whether the legs can produce the faster weight shifts.
+/// the validator's dynamic check judges whether the legs can produce the faster weight shifts. kTrot
+/// swings the diagonal pairs together; the pipeline plans it on the crawl's footholds
+/// (CrawlSettings::diagonal_pairs), its body's ZMP on the standing diagonal.
 enum class Gait { kCrawl, kCrawlAlternate, kTrot, kPaperCrawl, kPaperCrawlAlternate, kWalk };
 
 /// Every gait, in the enum's order.

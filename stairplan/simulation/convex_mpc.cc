@@ -1,6 +1,7 @@
 #include "stairplan/simulation/convex_mpc.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include <Eigen/LU>

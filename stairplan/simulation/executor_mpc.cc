@@ -12,7 +12,7 @@
 namespace stairplan {
 namespace {
 
-constexpr double kGravity = 9.81;  // [m/s^2]
+constexpr double kMpcGravity = 9.81;  // [m/s^2]
 
 // Whether leg `steps` (its footstep indices by liftoff, `next` the entry after the last liftoff)
 // stands at plan time t, and where: its planned foothold once it has landed there, `standing`
@@ -59,7 +59,7 @@ void PlanExecutor::MpcForces(double tp, const std::array<StanceForceQp::Foot, 4>
     motors.torque_lo[i] = feet[i].torque_lo;
     motors.torque_hi[i] = feet[i].torque_hi;
   }
-  const double full_load = 3.0 * mass_ * kGravity;
+  const double full_load = 3.0 * mass_ * kMpcGravity;
   for (int k = 0; k < settings_.mpc.knots; ++k) {
     MpcKnot& knot = mpc_knots_[static_cast<std::size_t>(k)];
     const double t = tp + k * dt / ts;

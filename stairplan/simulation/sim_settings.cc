@@ -39,7 +39,11 @@ void SimSettings::Validate() const {
   check("goal_tolerance", goal_tolerance, 1e-4, 10.0);
   check("frame_interval", frame_interval, 0.0, 100.0);
   impact.Validate();
-  mpc.Validate();
+  try {
+    mpc.Validate();
+  } catch (const FieldError& e) {
+    throw FieldError("mpc." + e.field(), e.problem());  // as Set() spells it
+  }
   check("mpc_period", mpc_period, 1e-3, 0.1);
 }
 

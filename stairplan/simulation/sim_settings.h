@@ -51,7 +51,7 @@ struct SimSettings {
   /// Where the stance forces come from: the convex MPC over the plan's next knots, or the
   /// instantaneous distribution of the PD wrench (StanceForceQp).
   StanceForceSource stance_forces = StanceForceSource::kByGait;
-  /// The convex MPC's horizon and weights (friction: the world's), with stance_forces kConvexMpc.
+  /// The convex MPC's horizon and weights (friction: the world's), wherever stance_forces picks it.
   ConvexMpcSettings mpc;
   /// Simulated time between the convex MPC's solves [s]; its first knot's forces hold between.
   double mpc_period = 0.01;

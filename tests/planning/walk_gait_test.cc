@@ -79,32 +79,47 @@ TEST_CASE("walk: the crawl's footholds with 0.2 s four-feet phases, a third fast
   CHECK(walk.plan.rejected_gaits.empty());
 }
 
-TEST_CASE("walk: auto takes the walk where it validates, and the crawl where the dynamic check rejects the walk",
-          "[pipeline][walk]") {
+TEST_CASE("auto: the fastest gait whose plan validates, the trot down the default stairs, the walk up them, the "
+          "crawl up steep ones",
+          "[pipeline][walk][trot]") {
+  const PipelineResult down = PlanGait(DefaultStairs(TravelDirection::kDown), GaitChoice::kAuto);
+  RequireValidated(down);
+  CHECK(down.plan.gait == Gait::kTrot);
+  CHECK(down.plan.rejected_gaits.empty());
+
   const PipelineResult up = PlanGait(DefaultStairs(TravelDirection::kUp), GaitChoice::kAuto);
   RequireValidated(up);
   CHECK(up.plan.gait == Gait::kWalk);
-  CHECK(up.plan.rejected_gaits.empty());
+  REQUIRE(up.plan.rejected_gaits.size() == 1);
+  CHECK(up.plan.rejected_gaits[0].gait == Gait::kTrot);
 
-  // Down the default stairs the walk's quicker shifts ask for wrenches the legs cannot produce:
-  // every violation of its plan is the dynamic check's, which the crawl only reports.
-  const Staircase down_stairs = DefaultStairs(TravelDirection::kDown);
-  const PipelineResult walk = PlanGait(down_stairs, GaitChoice::kWalk);
+  // Up steep stairs (rise 0.20 m, run 0.30 m) the trot and the walk ask for wrenches the legs
+  // cannot produce: every violation of the walk's plan is the dynamic check's, which the crawl only
+  // reports, and auto says so for both.
+  StairSpec steep_spec;
+  steep_spec.rise = 0.20;
+  steep_spec.run = 0.30;
+  const Staircase steep(steep_spec);
+  const PipelineResult walk = PlanGait(steep, GaitChoice::kWalk);
   REQUIRE(walk.plan.status == PlanStatus::kOk);
   REQUIRE_FALSE(walk.validation.ok);
   for (const Violation& v : walk.validation.violations) {
     CAPTURE(v.t, v.leg, ToString(v.kind));
     CHECK(IsDynamicKind(v.kind));
   }
-  const PipelineResult down = PlanGait(down_stairs, GaitChoice::kAuto);
-  RequireValidated(down);
-  CHECK(down.plan.gait == Gait::kCrawl);
-  REQUIRE(down.plan.rejected_gaits.size() == 1);
-  CHECK(down.plan.rejected_gaits[0].gait == Gait::kWalk);
+  const PipelineResult crawl = PlanGait(steep, GaitChoice::kAuto);
+  RequireValidated(crawl);
+  CHECK(crawl.plan.gait == Gait::kCrawl);
+  REQUIRE(crawl.plan.rejected_gaits.size() == 2);
+  CHECK(crawl.plan.rejected_gaits[0].gait == Gait::kTrot);
+  CHECK(crawl.plan.rejected_gaits[1].gait == Gait::kWalk);
   const Violation& first = walk.validation.violations.front();
-  CHECK_THAT(down.plan.rejected_gaits[0].reason, Catch::Contains(ToString(first.kind)) && Catch::Contains(first.leg));
-  const auto& timing = down.plan.timing_us;
-  CHECK(std::any_of(timing.begin(), timing.end(), [](const auto& stage) { return stage.first == "walk_rejected"; }));
+  CHECK_THAT(crawl.plan.rejected_gaits[1].reason, Catch::Contains(ToString(first.kind)) && Catch::Contains(first.leg));
+  const auto& timing = crawl.plan.timing_us;
+  for (const char* stage : {"trot_rejected", "walk_rejected"}) {
+    CAPTURE(stage);
+    CHECK(std::any_of(timing.begin(), timing.end(), [stage](const auto& s) { return s.first == stage; }));
+  }
 }
 
 TEST_CASE("walk: the validator judges a walk's dynamics and only reports a crawl's, off staying off",

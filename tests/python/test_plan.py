@@ -150,13 +150,13 @@ def test_validate_and_simulate_a_short_flight(tmp_path):
     assert len(outcome["landings"]) == len(plan.footsteps)
 
 
-def test_plan_gait_auto_takes_the_walk_where_it_validates():
-    """gait='auto' is the CLI's --gait auto: up two default steps the walk validates, its dynamic
+def test_plan_gait_auto_takes_the_fastest_gait_that_validates():
+    """gait='auto' is the CLI's --gait auto: up two default steps the trot validates, its dynamic
     check judged; a gait the pipeline does not plan is refused, naming the option."""
     plan = stairplan.plan(steps=2, gait="auto")
     d = plan.to_dict()
     assert plan.status == "ok"
-    assert plan.gait == "walk" and d["gait"] == "walk" and d["rejected_gaits"] == []
+    assert plan.gait == "trot" and d["gait"] == "trot" and d["rejected_gaits"] == []
     assert d["validation"]["ok"] and d["validation"]["dynamics"]["mode"] == "judge"
     with pytest.raises(stairplan.FieldError) as e:
         stairplan.plan(steps=2, gait="gallop")

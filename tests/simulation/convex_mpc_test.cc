@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "stairplan/simulation/convex_mpc.h"
+#include "stairplan/simulation/sim_settings.h"
 
 using namespace stairplan;
 
@@ -137,4 +138,9 @@ TEST_CASE("convex MPC: bad settings and masses are refused, naming the field", "
   settings.knot_dt = std::nan("");
   CHECK_THROWS_WITH(ConvexMpc(kMpcMass, settings), Catch::Contains("knot_dt"));
   CHECK_THROWS_WITH(ConvexMpc(0.0, ConvexMpcSettings{}), Catch::Contains("mass"));
+  // Through the simulation's settings, named as `simulate --set` spells them.
+  SimSettings sim;
+  sim.Set("mpc.knot_dt", 0.0);
+  CHECK_THROWS_WITH(sim.Validate(), Catch::Contains("mpc.knot_dt"));
+  CHECK_THROWS_WITH(sim.Set("mpc.knots", 1.5), Catch::Contains("mpc.knots"));
 }

@@ -1,5 +1,5 @@
-// The walk (PipelineOptions::gait) executed in MuJoCo: where auto takes it, the validator's dynamic
-// check has passed its quicker weight shifts, and physics carries the robot through them.
+// The walk (PipelineOptions::gait) executed in MuJoCo: where the validator's dynamic check has passed
+// its quicker weight shifts, physics carries the robot through them.
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -16,11 +16,11 @@ using namespace stairplan;
 
 namespace {
 
-// Auto's plan is the walk, it validates, and MuJoCo executes it at its own pace: success, every
-// landing touched inside its step region, no link but the feet on the stairs.
+// The walk's plan validates, and MuJoCo executes it at its own pace: success, every landing
+// touched inside its step region, no link but the feet on the stairs.
 void WalksInMuJoCo(const RobotModel& robot, const Staircase& stairs, const std::string& what) {
   PipelineOptions options;
-  options.gait = GaitChoice::kAuto;
+  options.gait = GaitChoice::kWalk;
   const PipelineResult planned = RunPipeline(robot, stairs, options);
   INFO(what << ": " << planned.plan.status_reason);
   REQUIRE(planned.validation.ok);

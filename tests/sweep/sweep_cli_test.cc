@@ -94,8 +94,8 @@ TEST_CASE("sweep --gait auto names the gait each point took, and a gait it does 
     CAPTURE(r[0]);
     REQUIRE(r.size() == 13);
     CHECK(r[6] == "valid");
-    // Gentle stairs: the built-in robot's walk validates, and auto takes it.
-    CHECK(r[12] == "walk");
+    // Gentle stairs: the built-in robot's trot validates, and auto takes it.
+    CHECK(r[12] == "trot");
   }
   CHECK(Run("sweep --rise 0.12 --run 0.28 --steps 3 --gait gallop --csv " + dir + "/gallop.csv", dir) == 2);
   CHECK_THAT(ReadFile(dir + "/err.txt"), Catch::Contains("--gait"));

@@ -331,7 +331,7 @@ void TraversalValidator::CheckDynamics(const Plan& plan, double t, const StanceR
   }
   instant_.com_W = com_->Com(instant_.body, instant_.q, checker_->workspace());
   const WrenchResult& w = wrench_->Check(instant_, checker_->workspace());
-  CheckLineTilt(plan, t, report);
+  CheckLineTilt(t, report);
   DynamicsReport& summary = report.dynamics;
   if (w.residual > summary.max_residual_n) {
     summary.max_residual_n = w.residual;
@@ -351,7 +351,7 @@ void TraversalValidator::CheckDynamics(const Plan& plan, double t, const StanceR
   Record({t, leg, kind, w.residual, detail, w.leg, w.residual, t}, report);
 }
 
-void TraversalValidator::CheckLineTilt(const Plan& plan, double t, ValidationReport& report) {
+void TraversalValidator::CheckLineTilt(double t, ValidationReport& report) {
   const LineSupport& line = wrench_->line();
   // A new phase (or a gap in the replay) starts from rest: the four-feet phase before it is the
   // executor's to level the body in.
@@ -373,9 +373,10 @@ void TraversalValidator::CheckLineTilt(const Plan& plan, double t, ValidationRep
     summary.max_line_tilt_t = t;
   }
   if (tilt <= settings_.dynamics.max_line_tilt || dynamics_mode_ != DynamicsCheckMode::kJudge) return;
+  const RobotKinematics& kinematics = checker_->kinematics();
   std::string legs;
-  for (std::size_t l = 0; l < plan.legs.size() && l < 4; ++l) {
-    if (line.pair & (1 << l)) legs += (legs.empty() ? "" : "+") + plan.legs[l];
+  for (int l = 0; l < kinematics.leg_count() && l < 4; ++l) {
+    if (line.pair & (1 << l)) legs += (legs.empty() ? "" : "+") + kinematics.leg(l).name();
   }
   char detail[96];
   std::snprintf(detail, sizeof(detail), "tilt %.4f rad about %s's line, tolerance %.4f", tilt, legs.c_str(),

@@ -159,7 +159,7 @@ class TraversalValidator {
                      const std::array<bool, 4>& stance, ValidationReport& report);
   // The tilt about the two-foot support line at t (wrench_'s last check), integrated from rest
   // since the phase began; a violation beyond max_line_tilt.
-  void CheckLineTilt(const Plan& plan, double t, ValidationReport& report);
+  void CheckLineTilt(double t, ValidationReport& report);
 
   const Staircase& stairs_;
   const ConstrainedMap& map_;
