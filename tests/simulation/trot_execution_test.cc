@@ -8,6 +8,7 @@
 #include "stairplan/kinematics/builtin_robot.h"
 #include "stairplan/pipeline/plan_pipeline.h"
 #include "stairplan/planning/plan_timeline.h"
+#include "stairplan/planning/validation/traversal_validator.h"
 #include "stairplan/simulation/plan_executor.h"
 #include "executed_cleanly.h"
 #include "sanitized.h"
@@ -61,4 +62,35 @@ TEST_CASE("ANYmal C trots up the default stairs in MuJoCo", "[simulation][trot]"
   if (testing::kSanitized) return;  // the built-in robot's trot above runs under the sanitizers
   const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath("data/robots/anymal_c.urdf"));
   CHECK(TrotsInMuJoCo(robot, TrotStairs(TravelDirection::kUp, StairSpec{}.steps), "ANYmal C up") > 0.3);
+}
+
+TEST_CASE("the built-in robot's trot down the default stairs on a friction of 0.2: the validator names the instant "
+          "and the leg, and in MuJoCo it slips and falls",
+          "[simulation][trot][validation]") {
+  if (testing::kSanitized) return;  // the trots above run under the sanitizers
+  const Staircase stairs = TrotStairs(TravelDirection::kDown, StairSpec{}.steps);
+  PipelineOptions options;
+  options.gait = GaitChoice::kTrot;
+  const PipelineResult planned = RunPipeline(BuiltinRobot(), stairs, options);
+  REQUIRE(planned.plan.status == PlanStatus::kOk);
+  REQUIRE(planned.validation.ok);  // on the default friction
+  const RobotModel robot = BuiltinRobot();
+  const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
+  ValidationSettings slippery;
+  slippery.dynamics.friction = 0.2;
+  TraversalValidator validator(robot, stairs, map, slippery);
+  const ValidationReport report = validator.Validate(planned.plan);
+  REQUIRE_FALSE(report.ok);
+  const Violation& first = report.violations.front();
+  CAPTURE(first.t, first.leg, ToString(first.kind), first.value);
+  CHECK(first.kind == ViolationKind::kFrictionCone);
+  CHECK(first.leg_id != LegId::kNone);
+  CHECK(first.t > 0.0);
+  SimSettings settings;
+  settings.world.friction = 0.2;
+  const SimulationOutcome o = Simulate(robot, stairs, planned.plan, settings);
+  INFO(ToString(o.status) << " / " << o.FirstCause() << ", slip " << o.max_foot_slip_m << " m (" << o.slipped_leg << ")");
+  CHECK_FALSE(o.Passed());
+  CHECK(o.status == SimStatus::kFall);
+  CHECK(o.max_foot_slip_m > 0.05);
 }
