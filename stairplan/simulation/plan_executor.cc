@@ -353,36 +353,15 @@ void PlanExecutor::Control(double tp) {
   }
   if (!started) return;
 
-  // The stance feet carry the wrench that moves the body as planned (the plan's acceleration fed
-  // forward, PD on the measured base pose and velocity, gravity), distributed by the stance-force
-  // QP: forces in their friction pyramids and the motors' room, never pulling, the moments of all
-  // force components about the centre of mass included. A foot takes its load over
-  // load_ramp_time after touchdown and gives it up over the same time before its liftoff.
-  const double ts = settings_.time_scale;
-  const bool moving = tp > 0.0 && tp < plan_.duration();
-  const Eigen::Vector3d a_plan = moving ? Eigen::Vector3d(reference.acceleration_W / (ts * ts)) : Eigen::Vector3d::Zero();
-  const Eigen::Vector3d v_plan = moving ? Eigen::Vector3d(reference.velocity_W / ts) : Eigen::Vector3d::Zero();
-  const Eigen::Vector3d v(d->qvel[0], d->qvel[1], d->qvel[2]);
-  const Eigen::Vector3d omega_W = r_measured * Eigen::Vector3d(d->qvel[3], d->qvel[4], d->qvel[5]);
-  const Eigen::Vector3d kp(settings_.xy_kp, settings_.xy_kp, settings_.height_kp);
-  const Eigen::Vector3d kd(settings_.xy_kd, settings_.xy_kd, settings_.height_kd);
-  const Eigen::Vector3d force_W =
-      mass_ * (Eigen::Vector3d(0, 0, 9.81) + settings_.acceleration_feedforward * a_plan +
-               kp.cwiseProduct(planned.position_W - measured.position_W) + kd.cwiseProduct(v_plan - v));
-  const Eigen::AngleAxisd rotation_error(planned.ToIsometry().linear() * r_measured.transpose());
-  const Eigen::Vector3d pitch_axis_W(-std::sin(planned.yaw), std::cos(planned.yaw), 0.0);
-  const Eigen::Vector3d omega_plan_W =
-      moving ? Eigen::Vector3d((reference.pitch_rate * pitch_axis_W + reference.yaw_rate * Eigen::Vector3d::UnitZ()) / ts)
-             : Eigen::Vector3d::Zero();
-  const Eigen::Vector3d moment_W =
-      CompositeInertia() * (settings_.attitude_kp * rotation_error.angle() * rotation_error.axis() +
-                            settings_.attitude_kd * (omega_plan_W - omega_W));
-  const double* com = d->subtree_com + 3 * base_body_;
   std::array<Eigen::Vector3d, 4> force;
   if (mpc_) {
     MpcForces(tp, feet, force);
-  } else if (!force_qp_.Solve(feet, Eigen::Vector3d(com[0], com[1], com[2]), force_W, moment_W, force)) {
-    ++outcome_.force_qp_failures;
+  } else {
+    const double* com = d->subtree_com + 3 * base_body_;
+    const BodyWrench wrench = PdWrench(tp, reference, measured, r_measured);
+    if (!force_qp_.Solve(feet, Eigen::Vector3d(com[0], com[1], com[2]), wrench.force_W, wrench.moment_W, force)) {
+      ++outcome_.force_qp_failures;
+    }
   }
 
   for (std::size_t i = 0; i < legs_.size(); ++i) {
@@ -398,6 +377,36 @@ void PlanExecutor::Control(double tp) {
       d->ctrl[leg.motor[j]] = std::clamp(demanded, -leg.effort[j], leg.effort[j]);
     }
   }
+}
+
+PlanExecutor::BodyWrench PlanExecutor::PdWrench(double tp, const BodyReferenceState& reference, const BodyPose& measured,
+                                                const Eigen::Matrix3d& r_measured) const {
+  // The stance feet carry the wrench that moves the body as planned (the plan's acceleration fed
+  // forward, PD on the measured base pose and velocity, gravity), distributed by the stance-force
+  // QP: forces in their friction pyramids and the motors' room, never pulling, the moments of all
+  // force components about the centre of mass included. A foot takes its load over
+  // load_ramp_time after touchdown and gives it up over the same time before its liftoff.
+  const mjData* d = world_->data();
+  const BodyPose& planned = reference.pose;
+  const double ts = settings_.time_scale;
+  const bool moving = tp > 0.0 && tp < plan_.duration();
+  const Eigen::Vector3d a_plan = moving ? Eigen::Vector3d(reference.acceleration_W / (ts * ts)) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d v_plan = moving ? Eigen::Vector3d(reference.velocity_W / ts) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d v(d->qvel[0], d->qvel[1], d->qvel[2]);
+  const Eigen::Vector3d omega_W = r_measured * Eigen::Vector3d(d->qvel[3], d->qvel[4], d->qvel[5]);
+  const Eigen::Vector3d kp(settings_.xy_kp, settings_.xy_kp, settings_.height_kp);
+  const Eigen::Vector3d kd(settings_.xy_kd, settings_.xy_kd, settings_.height_kd);
+  BodyWrench wrench;
+  wrench.force_W = mass_ * (Eigen::Vector3d(0, 0, 9.81) + settings_.acceleration_feedforward * a_plan +
+                            kp.cwiseProduct(planned.position_W - measured.position_W) + kd.cwiseProduct(v_plan - v));
+  const Eigen::AngleAxisd rotation_error(planned.ToIsometry().linear() * r_measured.transpose());
+  const Eigen::Vector3d pitch_axis_W(-std::sin(planned.yaw), std::cos(planned.yaw), 0.0);
+  const Eigen::Vector3d omega_plan_W =
+      moving ? Eigen::Vector3d((reference.pitch_rate * pitch_axis_W + reference.yaw_rate * Eigen::Vector3d::UnitZ()) / ts)
+             : Eigen::Vector3d::Zero();
+  wrench.moment_W = CompositeInertia() * (settings_.attitude_kp * rotation_error.angle() * rotation_error.axis() +
+                                          settings_.attitude_kd * (omega_plan_W - omega_W));
+  return wrench;
 }
 
 bool PlanExecutor::CheckContacts(double tp, std::vector<bool>& foot_touching) {

@@ -23,6 +23,7 @@
 #include "stairplan/geometry/constrained_map.h"
 #include "stairplan/kinematics/robot_kinematics.h"
 #include "stairplan/planning/plan.h"
+#include "stairplan/simulation/body_reference.h"
 #include "stairplan/simulation/impact_record.h"
 #include "stairplan/simulation/mujoco_world.h"
 #include "stairplan/simulation/sim_outcome.h"
@@ -79,6 +80,15 @@ class PlanExecutor {
   double LoadShare(const LegState& leg, double tp) const;
   /// The whole robot's rotational inertia about its centre of mass, world frame [kg m^2].
   Eigen::Matrix3d CompositeInertia() const;
+  /// A wrench on the body at its centre of mass, world frame.
+  struct BodyWrench {
+    Eigen::Vector3d force_W = Eigen::Vector3d::Zero();   ///< [N]
+    Eigen::Vector3d moment_W = Eigen::Vector3d::Zero();  ///< [N m]
+  };
+  /// The wrench the stance feet carry without the MPC: the plan's acceleration fed forward, PD on
+  /// the measured pose and velocity, gravity.
+  BodyWrench PdWrench(double tp, const BodyReferenceState& reference, const BodyPose& measured,
+                      const Eigen::Matrix3d& r_measured) const;
   /// The stance forces from the convex MPC at plan time tp: re-solved every mpc_period of
   /// simulated time from the measured state along the plan's next knots, held in between (a foot
   /// that has lifted carries nothing).
