@@ -1,6 +1,7 @@
 // The trot (GaitChoice::kTrot) executed in MuJoCo, its stance forces from the convex MPC: the
 // built-in robot up and down the default stairs in under 8 s, every landing in its step region
-// and no link but the feet on the stairs.
+// and no link but the feet on the stairs; ANYmal C up them; ANYmal C, Go1 and Go2 up and down
+// lower stairs their validators accept.
 #include <catch2/catch.hpp>
 
 #include <string>
