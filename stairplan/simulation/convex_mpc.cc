@@ -6,6 +6,7 @@
 
 #include <Eigen/LU>
 
+#include "stairplan/geometry/cross_matrix.h"
 #include "stairplan/geometry/field_error.h"
 
 namespace stairplan {
@@ -15,12 +16,6 @@ constexpr double kGravity = 9.81;  // [m/s^2]
 
 // Row offsets of the state's parts.
 constexpr int kAttitude = 0, kPosition = 3, kAngularVelocity = 6, kVelocity = 9;
-
-Eigen::Matrix3d Cross(const Eigen::Vector3d& r) {
-  Eigen::Matrix3d c;
-  c << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return c;
-}
 
 }  // namespace
 
@@ -88,7 +83,7 @@ void ConvexMpc::FillDynamics(const MpcKnot* knots) {
     const Eigen::Matrix3d inverse = k.inertia_W.inverse();
     const Eigen::Vector3d com = k.position_W + k.com_offset_W;
     for (int i = 0; i < 4; ++i) {
-      const Eigen::Matrix3d spin = inverse * Cross(k.feet_W[static_cast<std::size_t>(i)] - com);
+      const Eigen::Matrix3d spin = inverse * CrossMatrix(k.feet_W[static_cast<std::size_t>(i)] - com);
       auto block = b_.block<kStates, 3>(0, kForces * j + 3 * i);
       block.middleRows<3>(kAttitude) = half * spin;
       block.middleRows<3>(kPosition) = (half / mass_) * Eigen::Matrix3d::Identity();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "stairplan/geometry/cross_matrix.h"
 #include "stairplan/geometry/field_error.h"
 
 namespace stairplan {
@@ -58,9 +59,7 @@ bool StanceForceQp::Solve(const std::array<Foot, 4>& feet, const Eigen::Vector3d
   for (int i = 0; i < 4; ++i) {
     const Foot& foot = feet[static_cast<std::size_t>(i)];
     const Eigen::Vector3d r = foot.position_W - com_W;
-    Eigen::Matrix3d cross;
-    cross << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-    wrench_map_.block(3, 3 * i, 3, 3) = cross;  // moment of f about the COM: r x f
+    wrench_map_.block(3, 3 * i, 3, 3) = CrossMatrix(r);  // moment of f about the COM: r x f
     const bool stance = foot.max_normal > 0.0;
     const double least = std::min(settings_.min_normal, foot.max_normal);
     const double tangential = stance ? optim::kInf : 0.0;

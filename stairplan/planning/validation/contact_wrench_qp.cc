@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include "stairplan/geometry/cross_matrix.h"
 #include "stairplan/geometry/field_error.h"
 
 namespace stairplan {
@@ -20,12 +21,6 @@ Eigen::Vector3d FirstTangent(const Eigen::Vector3d& n) {
   Eigen::Vector3d t = Eigen::Vector3d::UnitX() - n.x() * n;
   if (t.norm() < 1e-6) t = Eigen::Vector3d::UnitY() - n.y() * n;
   return t.normalized();
-}
-
-Eigen::Matrix3d SkewMatrix(const Eigen::Vector3d& r) {
-  Eigen::Matrix3d m;
-  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return m;
 }
 
 }  // namespace
@@ -103,7 +98,7 @@ void ContactWrenchQp::SetFoot(int leg, const WrenchFoot& foot, const WrenchDeman
   if (foot.stance && foot.normal_W.norm() < 1e-9) {
     throw std::invalid_argument(std::string("ContactWrenchQp: foot ") + ToString(LegIdFromIndex(leg)) + " has a zero normal");
   }
-  wrench_map_.block<3, 3>(3, 3 * i) = SkewMatrix(foot.position_W - demand.com_W);  // moment about the COM: r x f
+  wrench_map_.block<3, 3>(3, 3 * i) = CrossMatrix(foot.position_W - demand.com_W);  // moment about the COM: r x f
   const double free = foot.stance ? optim::kInf : 0.0;
   force_lower_.segment<3>(3 * i).setConstant(-free);
   force_upper_.segment<3>(3 * i).setConstant(free);
