@@ -11,6 +11,7 @@
 #include "stairplan/pipeline/plan_pipeline.h"
 #include "stairplan/planning/plan_timeline.h"
 #include "stairplan/planning/validation/traversal_validator.h"
+#include "gait_fixtures.h"
 
 using namespace stairplan;
 
@@ -20,12 +21,6 @@ PipelineResult PlanGait(const Staircase& stairs, GaitChoice gait) {
   PipelineOptions options;
   options.gait = gait;
   return RunPipeline(BuiltinRobot(), stairs, options);
-}
-
-Staircase DefaultStairs(TravelDirection direction) {
-  StairSpec spec;
-  spec.direction = direction;
-  return Staircase(spec);
 }
 
 // The four-feet phases: each gap between a touchdown and the next swing's liftoff.
@@ -52,7 +47,7 @@ bool IsDynamicKind(ViolationKind kind) { return FamilyOf(kind) == CheckFamily::k
 TEST_CASE("walk: the crawl's footholds with 0.2 s four-feet phases, a third faster up the default stairs, "
           "and its dynamic check judged and passed",
           "[pipeline][walk]") {
-  const Staircase stairs = DefaultStairs(TravelDirection::kUp);
+  const Staircase stairs = testing::DefaultStairs(TravelDirection::kUp);
   const PipelineResult crawl = PlanGait(stairs, GaitChoice::kCrawl);
   const PipelineResult walk = PlanGait(stairs, GaitChoice::kWalk);
   RequireValidated(crawl);
@@ -82,12 +77,12 @@ TEST_CASE("walk: the crawl's footholds with 0.2 s four-feet phases, a third fast
 TEST_CASE("auto: the fastest gait whose plan validates, the trot down the default stairs, the walk up them, the "
           "crawl up steep ones",
           "[pipeline][walk][trot]") {
-  const PipelineResult down = PlanGait(DefaultStairs(TravelDirection::kDown), GaitChoice::kAuto);
+  const PipelineResult down = PlanGait(testing::DefaultStairs(TravelDirection::kDown), GaitChoice::kAuto);
   RequireValidated(down);
   CHECK(down.plan.gait == Gait::kTrot);
   CHECK(down.plan.rejected_gaits.empty());
 
-  const PipelineResult up = PlanGait(DefaultStairs(TravelDirection::kUp), GaitChoice::kAuto);
+  const PipelineResult up = PlanGait(testing::DefaultStairs(TravelDirection::kUp), GaitChoice::kAuto);
   RequireValidated(up);
   CHECK(up.plan.gait == Gait::kWalk);
   REQUIRE(up.plan.rejected_gaits.size() == 1);
@@ -124,7 +119,7 @@ TEST_CASE("auto: the fastest gait whose plan validates, the trot down the defaul
 
 TEST_CASE("walk: the validator judges a walk's dynamics and only reports a crawl's, off staying off",
           "[pipeline][walk][validation]") {
-  const Staircase stairs = DefaultStairs(TravelDirection::kDown);
+  const Staircase stairs = testing::DefaultStairs(TravelDirection::kDown);
   const PipelineResult walk = PlanGait(stairs, GaitChoice::kWalk);
   REQUIRE(walk.plan.status == PlanStatus::kOk);
   const RobotModel robot = BuiltinRobot();
@@ -151,15 +146,10 @@ TEST_CASE("walk: the validator judges a walk's dynamics and only reports a crawl
 TEST_CASE("walk: on stairs with a friction coefficient of 0.2 the walk up fails the dynamic check, the instant and "
           "the leg named",
           "[pipeline][walk][validation]") {
-  const Staircase stairs = DefaultStairs(TravelDirection::kUp);
+  const Staircase stairs = testing::DefaultStairs(TravelDirection::kUp);
   const PipelineResult walk = PlanGait(stairs, GaitChoice::kWalk);
   RequireValidated(walk);
-  const RobotModel robot = BuiltinRobot();
-  const ConstrainedMap map = BuildPipelineMap(robot, stairs, PipelineOptions{});
-  ValidationSettings slippery;
-  slippery.dynamics.friction = 0.2;
-  TraversalValidator validator(robot, stairs, map, slippery);
-  const ValidationReport report = validator.Validate(walk.plan);
+  const ValidationReport report = testing::ValidateOnFriction(walk.plan, stairs, 0.2);
   REQUIRE_FALSE(report.ok);
   const Violation& first = report.violations.front();
   CAPTURE(first.t, first.leg, ToString(first.kind), first.value);
@@ -172,7 +162,7 @@ TEST_CASE("walk: on stairs with a friction coefficient of 0.2 the walk up fails 
 
 TEST_CASE("walk: the walk and auto refuse other footstep planners and a bad shift duration, naming the field",
           "[pipeline][walk]") {
-  const Staircase stairs = DefaultStairs(TravelDirection::kUp);
+  const Staircase stairs = testing::DefaultStairs(TravelDirection::kUp);
   PipelineOptions options;
   options.gait = GaitChoice::kWalk;
   options.footsteps = FootstepSource::kStepPlanner;

@@ -12,6 +12,7 @@
 #include "stairplan/planning/validation/traversal_validator.h"
 #include "stairplan/simulation/plan_executor.h"
 #include "executed_cleanly.h"
+#include "gait_fixtures.h"
 #include "sanitized.h"
 #include "test_paths.h"
 
@@ -41,20 +42,13 @@ double TrotsInMuJoCo(const RobotModel& robot, const Staircase& stairs, const std
   return TravelSpeed(planned.plan);
 }
 
-Staircase TrotStairs(TravelDirection direction, int steps) {
-  StairSpec spec;
-  spec.direction = direction;
-  spec.steps = steps;
-  return Staircase(spec);
-}
-
 }  // namespace
 
 TEST_CASE("the built-in robot trots up and down the default stairs in MuJoCo, a third of a metre a second",
           "[simulation][trot]") {
   const int steps = testing::FullOrSanitized(StairSpec{}.steps, 3);
   for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
-    const double speed = TrotsInMuJoCo(BuiltinRobot(), TrotStairs(direction, steps), direction == TravelDirection::kUp ? "up" : "down");
+    const double speed = TrotsInMuJoCo(BuiltinRobot(), testing::DefaultStairs(direction, steps), direction == TravelDirection::kUp ? "up" : "down");
     CHECK(speed > 0.3);
   }
 }
@@ -66,7 +60,7 @@ TEST_CASE("ANYmal C trots up the default stairs in MuJoCo", "[simulation][trot]"
   }
   if (testing::kSanitized) return;  // the built-in robot's trot above runs under the sanitizers
   const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath("data/robots/anymal_c.urdf"));
-  CHECK(TrotsInMuJoCo(robot, TrotStairs(TravelDirection::kUp, StairSpec{}.steps), "ANYmal C up") > 0.3);
+  CHECK(TrotsInMuJoCo(robot, testing::DefaultStairs(TravelDirection::kUp), "ANYmal C up") > 0.3);
 }
 
 // Issue 19's second acceptance: the same for ANYmal C and two Unitree robots, on stairs their
@@ -102,18 +96,13 @@ TEST_CASE("the built-in robot's trot down the default stairs on a friction of 0.
           "and the leg, and in MuJoCo it slips and falls",
           "[simulation][trot][validation]") {
   if (testing::kSanitized) return;  // the trots above run under the sanitizers
-  const Staircase stairs = TrotStairs(TravelDirection::kDown, StairSpec{}.steps);
+  const Staircase stairs = testing::DefaultStairs(TravelDirection::kDown);
   PipelineOptions options;
   options.gait = GaitChoice::kTrot;
   const PipelineResult planned = RunPipeline(BuiltinRobot(), stairs, options);
   REQUIRE(planned.plan.status == PlanStatus::kOk);
   REQUIRE(planned.validation.ok);  // on the default friction
-  const RobotModel robot = BuiltinRobot();
-  const ConstrainedMap map = BuildPipelineMap(robot, stairs, options);
-  ValidationSettings slippery;
-  slippery.dynamics.friction = 0.2;
-  TraversalValidator validator(robot, stairs, map, slippery);
-  const ValidationReport report = validator.Validate(planned.plan);
+  const ValidationReport report = testing::ValidateOnFriction(planned.plan, stairs, 0.2);
   REQUIRE_FALSE(report.ok);
   const Violation& first = report.violations.front();
   CAPTURE(first.t, first.leg, ToString(first.kind), first.value);
@@ -122,7 +111,7 @@ TEST_CASE("the built-in robot's trot down the default stairs on a friction of 0.
   CHECK(first.t > 0.0);
   SimSettings settings;
   settings.world.friction = 0.2;
-  const SimulationOutcome o = Simulate(robot, stairs, planned.plan, settings);
+  const SimulationOutcome o = Simulate(BuiltinRobot(), stairs, planned.plan, settings);
   INFO(ToString(o.status) << " / " << o.FirstCause() << ", slip " << o.max_foot_slip_m << " m (" << o.slipped_leg << ")");
   CHECK_FALSE(o.Passed());
   CHECK(o.status == SimStatus::kFall);

@@ -9,6 +9,7 @@
 #include "stairplan/pipeline/plan_pipeline.h"
 #include "stairplan/simulation/plan_executor.h"
 #include "executed_cleanly.h"
+#include "gait_fixtures.h"
 #include "sanitized.h"
 #include "test_paths.h"
 
@@ -28,18 +29,11 @@ void WalksInMuJoCo(const RobotModel& robot, const Staircase& stairs, const std::
   testing::CheckExecutedCleanly(Simulate(robot, stairs, planned.plan), planned.plan, stairs);
 }
 
-Staircase DefaultStairs(TravelDirection direction, int steps) {
-  StairSpec spec;
-  spec.direction = direction;
-  spec.steps = steps;
-  return Staircase(spec);
-}
-
 }  // namespace
 
 TEST_CASE("the built-in robot walks up the default stairs in MuJoCo at the walk's pace", "[simulation][walk]") {
   const int steps = testing::FullOrSanitized(StairSpec{}.steps, 3);
-  WalksInMuJoCo(BuiltinRobot(), DefaultStairs(TravelDirection::kUp, steps), "stairbot up");
+  WalksInMuJoCo(BuiltinRobot(), testing::DefaultStairs(TravelDirection::kUp, steps), "stairbot up");
 }
 
 TEST_CASE("ANYmal C walks up and down the default stairs in MuJoCo at the walk's pace", "[simulation][walk]") {
@@ -50,6 +44,6 @@ TEST_CASE("ANYmal C walks up and down the default stairs in MuJoCo at the walk's
   if (testing::kSanitized) return;  // the built-in robot's walk above runs under the sanitizers
   const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath("data/robots/anymal_c.urdf"));
   for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
-    WalksInMuJoCo(robot, DefaultStairs(direction, StairSpec{}.steps), direction == TravelDirection::kUp ? "up" : "down");
+    WalksInMuJoCo(robot, testing::DefaultStairs(direction), direction == TravelDirection::kUp ? "up" : "down");
   }
 }
