@@ -4,6 +4,7 @@
 // controller that only sees positions reacts to the body shifts after they have happened.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -20,6 +21,12 @@ struct BodyReferenceState {
   Eigen::Vector3d acceleration_W = Eigen::Vector3d::Zero();  ///< [m/s^2]
   double pitch_rate = 0.0;                                    ///< [rad/s]
   double yaw_rate = 0.0;                                      ///< [rad/s]
+
+  /// The body's angular velocity in world axes [rad/s]: the pitch rate about the yawed body's y
+  /// axis and the yaw rate about z.
+  Eigen::Vector3d AngularVelocityW() const {
+    return pitch_rate * Eigen::Vector3d(-std::sin(pose.yaw), std::cos(pose.yaw), 0.0) + yaw_rate * Eigen::Vector3d::UnitZ();
+  }
 };
 
 /// The spline through `body` at plan time t (clamped to the plan; at rest before and after). The

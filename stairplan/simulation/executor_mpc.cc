@@ -12,8 +12,6 @@
 namespace stairplan {
 namespace {
 
-constexpr double kMpcGravity = 9.81;  // [m/s^2]
-
 // Whether leg `steps` (its footstep indices by liftoff, `next` the entry after the last liftoff)
 // stands at plan time t, and where: its planned foothold once it has landed there, `standing`
 // (where it stands now) until its next liftoff.
@@ -59,7 +57,6 @@ void PlanExecutor::MpcForces(double tp, const std::array<StanceForceQp::Foot, 4>
     motors.torque_lo[i] = feet[i].torque_lo;
     motors.torque_hi[i] = feet[i].torque_hi;
   }
-  const double full_load = 3.0 * mass_ * kMpcGravity;
   for (int k = 0; k < settings_.mpc.knots; ++k) {
     MpcKnot& knot = mpc_knots_[static_cast<std::size_t>(k)];
     const double t = tp + k * dt / ts;
@@ -67,9 +64,7 @@ void PlanExecutor::MpcForces(double tp, const std::array<StanceForceQp::Foot, 4>
     const BodyReferenceState r = BodyReferenceAt(plan_.body, std::clamp(t, 0.0, duration));
     knot.position_W = k == 0 ? measured.position_W : r.pose.position_W;
     knot.velocity_W = moving ? Eigen::Vector3d(r.velocity_W / ts) : Eigen::Vector3d::Zero();
-    const Eigen::Vector3d pitch_axis_W(-std::sin(r.pose.yaw), std::cos(r.pose.yaw), 0.0);
-    knot.angular_velocity_W =
-        moving ? Eigen::Vector3d((r.pitch_rate * pitch_axis_W + r.yaw_rate * Eigen::Vector3d::UnitZ()) / ts) : Eigen::Vector3d::Zero();
+    knot.angular_velocity_W = moving ? Eigen::Vector3d(r.AngularVelocityW() / ts) : Eigen::Vector3d::Zero();
     knot.com_offset_W = com - measured.position_W;
     knot.inertia_W = inertia;
     for (std::size_t i = 0; i < 4; ++i) {
@@ -80,7 +75,7 @@ void PlanExecutor::MpcForces(double tp, const std::array<StanceForceQp::Foot, 4>
       }
       const LegState& leg = legs_[i];
       const bool stance = PlannedFoothold(plan_, leg_steps_[i], leg.next, leg.stance, feet[i].position_W, t, knot.feet_W[i]);
-      knot.max_normal[i] = stance ? full_load : 0.0;
+      knot.max_normal[i] = stance ? FootLoadLimit(1.0) : 0.0;
     }
   }
   if (!mpc_->Solve(state, mpc_knots_.data(), motors, mpc_forces_)) ++outcome_.force_qp_failures;

@@ -344,7 +344,7 @@ void PlanExecutor::Control(double tp) {
     if (!leg.stance) own_torque[i] += settings_.swing_inertia_feedforward * inertia * qdd_target;
     StanceForceQp::Foot& foot = feet[i];
     foot.position_W = FootContactPoint(leg);
-    foot.max_normal = load[i] * 3.0 * mass_ * 9.81;
+    foot.max_normal = FootLoadLimit(load[i]);
     // The ground pushes the foot with f: the joints hold it with -J^T f (base frame).
     foot.torque_map = -kin.FootJacobian(q, lws).transpose() * r_measured.transpose();
     const Eigen::Vector3d effort = settings_.stance.torque_use * Eigen::Vector3d(leg.effort[0], leg.effort[1], leg.effort[2]);
@@ -400,10 +400,7 @@ PlanExecutor::BodyWrench PlanExecutor::PdWrench(double tp, const BodyReferenceSt
   wrench.force_W = mass_ * (Eigen::Vector3d(0, 0, 9.81) + settings_.acceleration_feedforward * a_plan +
                             kp.cwiseProduct(planned.position_W - measured.position_W) + kd.cwiseProduct(v_plan - v));
   const Eigen::AngleAxisd rotation_error(planned.ToIsometry().linear() * r_measured.transpose());
-  const Eigen::Vector3d pitch_axis_W(-std::sin(planned.yaw), std::cos(planned.yaw), 0.0);
-  const Eigen::Vector3d omega_plan_W =
-      moving ? Eigen::Vector3d((reference.pitch_rate * pitch_axis_W + reference.yaw_rate * Eigen::Vector3d::UnitZ()) / ts)
-             : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d omega_plan_W = moving ? Eigen::Vector3d(reference.AngularVelocityW() / ts) : Eigen::Vector3d::Zero();
   wrench.moment_W = CompositeInertia() * (settings_.attitude_kp * rotation_error.angle() * rotation_error.axis() +
                                           settings_.attitude_kd * (omega_plan_W - omega_W));
   return wrench;

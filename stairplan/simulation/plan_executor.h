@@ -80,6 +80,9 @@ class PlanExecutor {
   double LoadShare(const LegState& leg, double tp) const;
   /// The whole robot's rotational inertia about its centre of mass, world frame [kg m^2].
   Eigen::Matrix3d CompositeInertia() const;
+  /// The most a stance foot may carry at `share` of its full load [N]: full is three times the
+  /// robot's weight.
+  double FootLoadLimit(double share) const { return share * 3.0 * mass_ * 9.81; }
   /// A wrench on the body at its centre of mass, world frame.
   struct BodyWrench {
     Eigen::Vector3d force_W = Eigen::Vector3d::Zero();   ///< [N]
