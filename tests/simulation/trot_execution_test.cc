@@ -4,6 +4,7 @@
 // lower stairs their validators accept.
 #include <catch2/catch.hpp>
 
+#include <optional>
 #include <string>
 
 #include "stairplan/kinematics/builtin_robot.h"
@@ -14,7 +15,7 @@
 #include "executed_cleanly.h"
 #include "gait_fixtures.h"
 #include "sanitized.h"
-#include "test_paths.h"
+#include "shared_robot.h"
 
 using namespace stairplan;
 
@@ -54,13 +55,10 @@ TEST_CASE("the built-in robot trots up and down the default stairs in MuJoCo, a 
 }
 
 TEST_CASE("ANYmal C trots up the default stairs in MuJoCo", "[simulation][trot]") {
-  if (testing::SharedDir().empty()) {
-    WARN("skipped: ../shared not found");
-    return;
-  }
   if (testing::kSanitized) return;  // the built-in robot's trot above runs under the sanitizers
-  const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath("data/robots/anymal_c.urdf"));
-  CHECK(TrotsInMuJoCo(robot, testing::DefaultStairs(TravelDirection::kUp), "ANYmal C up") > 0.3);
+  const std::optional<RobotModel> robot = testing::SharedRobot("anymal_c");
+  if (!robot) return;
+  CHECK(TrotsInMuJoCo(*robot, testing::DefaultStairs(TravelDirection::kUp), "ANYmal C up") > 0.3);
 }
 
 // Issue 19's second acceptance: the same for ANYmal C and two Unitree robots, on stairs their
@@ -70,24 +68,21 @@ TEST_CASE("ANYmal C trots up the default stairs in MuJoCo", "[simulation][trot]"
 // executes most of those too (README).
 TEST_CASE("ANYmal C and Unitree Go1 and Go2 trot up and down stairs their validators accept in MuJoCo",
           "[simulation][trot]") {
-  if (testing::SharedDir().empty()) {
-    WARN("skipped: ../shared not found");
-    return;
-  }
   if (testing::kSanitized) return;  // the built-in robot's trot above runs under the sanitizers
   struct Case {
     const char* urdf;
     double rise, run;  // [m]
   };
   for (const Case& c : {Case{"anymal_c", 0.08, 0.26}, Case{"unitree_go1", 0.08, 0.26}, Case{"unitree_go2", 0.06, 0.27}}) {
-    const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath(std::string("data/robots/") + c.urdf + ".urdf"));
+    const std::optional<RobotModel> robot = testing::SharedRobot(c.urdf);
+    if (!robot) return;
     for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
       StairSpec spec;
       spec.direction = direction;
       spec.rise = c.rise;
       spec.run = c.run;
       const std::string what = std::string(c.urdf) + (direction == TravelDirection::kUp ? " up" : " down");
-      CHECK(TrotsInMuJoCo(robot, Staircase(spec), what, /*validated=*/true) > 0.3);
+      CHECK(TrotsInMuJoCo(*robot, Staircase(spec), what, /*validated=*/true) > 0.3);
     }
   }
 }

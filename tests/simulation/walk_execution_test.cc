@@ -2,6 +2,7 @@
 // its quicker weight shifts, physics carries the robot through them.
 #include <catch2/catch.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,7 +12,7 @@
 #include "executed_cleanly.h"
 #include "gait_fixtures.h"
 #include "sanitized.h"
-#include "test_paths.h"
+#include "shared_robot.h"
 
 using namespace stairplan;
 
@@ -37,13 +38,10 @@ TEST_CASE("the built-in robot walks up the default stairs in MuJoCo at the walk'
 }
 
 TEST_CASE("ANYmal C walks up and down the default stairs in MuJoCo at the walk's pace", "[simulation][walk]") {
-  if (testing::SharedDir().empty()) {
-    WARN("skipped: ../shared not found");
-    return;
-  }
   if (testing::kSanitized) return;  // the built-in robot's walk above runs under the sanitizers
-  const RobotModel robot = RobotModel::FromUrdfFile(testing::SharedPath("data/robots/anymal_c.urdf"));
+  const std::optional<RobotModel> robot = testing::SharedRobot("anymal_c");
+  if (!robot) return;
   for (const TravelDirection direction : {TravelDirection::kUp, TravelDirection::kDown}) {
-    WalksInMuJoCo(robot, testing::DefaultStairs(direction), direction == TravelDirection::kUp ? "up" : "down");
+    WalksInMuJoCo(*robot, testing::DefaultStairs(direction), direction == TravelDirection::kUp ? "up" : "down");
   }
 }
